@@ -1,0 +1,89 @@
+#include "app/cli/cli_common.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "app/embedded_scene.h"
+#include "model/scene/scene_io.h"
+
+namespace fovea::cli {
+
+std::vector<std::pair<std::string, Installer>>& registry() {
+  static std::vector<std::pair<std::string, Installer>> r;
+  return r;
+}
+
+Registrar::Registrar(const char* name, Installer install) { registry().emplace_back(name, install); }
+
+Scene loadSceneOrExit(const std::string& path) {
+  SceneLoadResult r = path.empty() ? parseScene(embeddedDefaultSceneJson(), std::string(kEmbeddedSceneName))
+                                   : loadSceneFile(path);
+  for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
+  if (!r.ok()) {
+    std::string all;
+    for (const auto& e : r.errors) all += (all.empty() ? "" : "\n") + e;
+    inputError(all);
+  }
+  return *r.scene;
+}
+
+namespace {
+nlohmann::json sanitize(const nlohmann::json& j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) return nullptr;
+  if (j.is_array() || j.is_object()) {
+    nlohmann::json out = j;
+    for (auto& v : out) v = sanitize(v);
+    return out;
+  }
+  return j;
+}
+}  // namespace
+
+void printJson(const nlohmann::json& j, bool compact) {
+  std::cout << sanitize(j).dump(compact ? -1 : 2) << std::endl;
+}
+
+std::vector<double> parseNumberList(const std::string& text, const std::string& argName, std::size_t minCount,
+                                    std::size_t maxCount) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(v))
+      usageError(argName + ": '" + item + "' is not a finite number");
+    out.push_back(v);
+  }
+  if (out.size() < minCount || out.size() > maxCount)
+    usageError(argName + ": expected " + std::to_string(minCount) +
+               (maxCount > minCount ? " to " + std::to_string(maxCount) : "") + " comma-separated numbers, got '" +
+               text + "'");
+  return out;
+}
+
+Progress::Progress(std::string label) : label_(std::move(label)), tty_(::isatty(STDERR_FILENO) != 0) {}
+Progress::~Progress() {
+  if (tty_ && last_ >= 0) std::fprintf(stderr, "\n");
+}
+void Progress::update(double fraction) {
+  if (!tty_) return;
+  const int pct = static_cast<int>(std::lround(std::clamp(fraction, 0.0, 1.0) * 100));
+  if (pct == last_) return;
+  last_ = pct;
+  const int bars = pct * 30 / 100;
+  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", label_.c_str(), bars, "##############################", 30 - bars, "",
+               pct);
+  std::fflush(stderr);
+}
+
+}  // namespace fovea::cli
