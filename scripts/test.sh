@@ -6,6 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/fovea-ccache}"
+# Relative paths in the cache key: a fresh clone elsewhere reuses earlier compilations.
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE=5G
 start=$(date +%s)
 cmake --preset ci >/dev/null
 cmake --build --preset ci
