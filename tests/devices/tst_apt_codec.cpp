@@ -1,0 +1,248 @@
+// APT codec against byte sequences worked out by hand from the Thorlabs "Host-Controller
+// Communications Protocol" document; unit scaling against the document's conversion table;
+// the streaming decoder against garbage, partial and concatenated input (fixed-seed fuzz).
+#include <QtTest>
+
+#include <random>
+
+#include "devices/apt/apt_decoder.h"
+#include "devices/apt/apt_message.h"
+#include "devices/apt/stage_models.h"
+
+using namespace fovea::apt;
+using Bytes = std::vector<std::uint8_t>;
+
+namespace {
+std::string hex(const Message& m) {
+  return toHex(encode(m));
+}
+UnitConverter converter(const char* controller, const char* stage) {
+  return UnitConverter(*findController(controller), *findStage(stage));
+}
+}  // namespace
+
+class TestAptCodec : public QObject {
+  Q_OBJECT
+ private slots:
+  void headerOnlyMessages() {
+    // Header-only: id (LE 16 bit), param1, param2, dest 0x50 (generic USB), source 0x01 (host).
+    // MOD_IDENTIFY 0x0223 -> 23 02, params 00 00.
+    QCOMPARE(hex(identify()), std::string("23 02 00 00 50 01"));
+    // HW_REQ_INFO 0x0005.
+    QCOMPARE(hex(reqHwInfo()), std::string("05 00 00 00 50 01"));
+    // MOD_SET_CHANENABLESTATE 0x0210: param1 channel 1, param2 0x01 enable / 0x02 disable.
+    QCOMPARE(hex(setChanEnableState(0x50, 1, true)), std::string("10 02 01 01 50 01"));
+    QCOMPARE(hex(setChanEnableState(0x50, 1, false)), std::string("10 02 01 02 50 01"));
+    QCOMPARE(hex(reqChanEnableState(0x50, 1)), std::string("11 02 01 00 50 01"));
+    // HW_START_UPDATEMSGS 0x0011, HW_STOP_UPDATEMSGS 0x0012.
+    QCOMPARE(hex(startUpdateMsgs(0x50)), std::string("11 00 00 00 50 01"));
+    QCOMPARE(hex(stopUpdateMsgs(0x50)), std::string("12 00 00 00 50 01"));
+    // MOT_MOVE_HOME 0x0443, channel 1.
+    QCOMPARE(hex(moveHome(0x50, 1)), std::string("43 04 01 00 50 01"));
+    // MOT_MOVE_JOG 0x046A: param2 direction 0x01 forward, 0x02 reverse.
+    QCOMPARE(hex(moveJog(0x50, 1, JogDirection::Forward)), std::string("6A 04 01 01 50 01"));
+    QCOMPARE(hex(moveJog(0x50, 1, JogDirection::Reverse)), std::string("6A 04 01 02 50 01"));
+    // MOT_MOVE_STOP 0x0465: param2 stop mode 0x01 immediate, 0x02 profiled.
+    QCOMPARE(hex(moveStop(0x50, 1, StopMode::Immediate)), std::string("65 04 01 01 50 01"));
+    QCOMPARE(hex(moveStop(0x50, 1, StopMode::Profiled)), std::string("65 04 01 02 50 01"));
+    // MOT_REQ_DCSTATUSUPDATE 0x0490, MOT_ACK_DCSTATUSUPDATE 0x0492 (keep-alive).
+    QCOMPARE(hex(reqDcStatusUpdate(0x50, 1)), std::string("90 04 01 00 50 01"));
+    QCOMPARE(hex(ackDcStatusUpdate(0x50)), std::string("92 04 00 00 50 01"));
+    QCOMPARE(hex(reqVelParams(0x50, 1)), std::string("14 04 01 00 50 01"));
+    QCOMPARE(hex(reqJogParams(0x50, 1)), std::string("17 04 01 00 50 01"));
+    // A bay of a rack: destination 0x21 (bay 0).
+    QCOMPARE(hex(moveHome(0x21, 1)), std::string("43 04 01 00 21 01"));
+  }
+
+  void longMessages() {
+    // MOT_MOVE_ABSOLUTE 0x0453, 6 data bytes: header 53 04 | 06 00 | 0x50|0x80 = D0 | 01.
+    // 5 mm on an MTS25-Z8: 5 x 34 304 = 171 520 = 0x00029E00 -> LE 00 9E 02 00; channel 01 00.
+    const auto z8 = converter("KDC101", "MTS25-Z8");
+    QCOMPARE(hex(moveAbsolute(0x50, 1, z8.positionToCounts(5.0))), std::string("53 04 06 00 D0 01 01 00 00 9E 02 00"));
+    // MOT_MOVE_RELATIVE 0x0448 by -1 mm: -34 304 = 0x100000000 - 0x8600 = 0xFFFF7A00 -> 00 7A FF FF.
+    QCOMPARE(hex(moveRelative(0x50, 1, z8.positionToCounts(-1.0))), std::string("48 04 06 00 D0 01 01 00 00 7A FF FF"));
+    // MOT_SET_VELPARAMS 0x0413, 14 bytes (0x0E): channel, min velocity, acceleration, max velocity.
+    // 1.5 mm/s^2 x 261.93 = 392.9 -> 393 = 0x189; 2.0 mm/s x 767 367.49 = 1 534 735 = 0x176B0F.
+    VelParams v{1, 0, z8.accelerationToApt(1.5), z8.velocityToApt(2.0)};
+    QCOMPARE(hex(setVelParams(0x50, v)), std::string("13 04 0E 00 D0 01 01 00 00 00 00 00 89 01 00 00 0F 6B 17 00"));
+    // MOT_SET_JOGPARAMS 0x0416, 22 bytes (0x16): channel, mode 2 (single step), step 0.5 mm =
+    // 17 152 = 0x4300, min velocity 0, acceleration 393, max velocity 1 534 735, stop mode 2.
+    JogParams j{1, JogMode::SingleStep, z8.positionToCounts(0.5), 0, 393, 1534735, StopMode::Profiled};
+    QCOMPARE(hex(setJogParams(0x50, j)),
+             std::string("16 04 16 00 D0 01 01 00 02 00 00 43 00 00 00 00 00 00 89 01 00 00 0F 6B 17 00 02 00"));
+    QCOMPARE(parseJogParams(setJogParams(0x50, j)).value(), j);
+    QCOMPARE(parseVelParams(setVelParams(0x50, v)).value(), v);
+  }
+
+  void controllerReplies() {
+    // MOT_MOVE_COMPLETED from the controller: dest host|0x80 = 81, source 50, 14 bytes:
+    // channel 01 00, position 171 520 (00 9E 02 00), velocity 00 00, reserved 00 00,
+    // status bits 0x80000400 (channel enabled + homed) -> 00 04 00 80.
+    const Bytes raw = {0x64, 0x04, 0x0E, 0x00, 0x81, 0x50, 0x01, 0x00, 0x00, 0x9E,
+                       0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x04, 0x00, 0x80};
+    StreamDecoder d;
+    d.feed(raw);
+    auto m = d.next();
+    QVERIFY(m.has_value());
+    QCOMPARE(m->id, id::kMotMoveCompleted);
+    QCOMPARE(m->source, std::uint8_t{0x50});
+    QCOMPARE(m->dest, std::uint8_t{0x01});
+    auto s = parseChannelStatus(*m);
+    QVERIFY(s.has_value());
+    QCOMPARE(s->position, 171520);
+    QCOMPARE(s->bits, status::kChannelEnabled | status::kHomed);
+    QCOMPARE(encode(moveCompleted(0x50, *s)), raw);
+    // Negative velocity words are signed: 0xFFFE = -2.
+    ChannelStatus neg{1, -5, -2, status::kMovingReverse};
+    QCOMPARE(parseChannelStatus(getDcStatusUpdate(0x50, neg)).value(), neg);
+    // Stepper layout (GET_STATUSUPDATE 0x0481): position then a 32-bit encoder count.
+    ChannelStatus st{1, -136533, 123456, status::kHomed};
+    QCOMPARE(hex(getStatusUpdate(0x50, st)).substr(0, 17), std::string("81 04 0E 00 81 50"));
+    QCOMPARE(parseChannelStatus(getStatusUpdate(0x50, st)).value(), st);
+    // HW_GET_INFO: 84 (0x54) data bytes.
+    HwInfo info;
+    info.serial = 27000001;
+    info.model = "KDC101";
+    info.notes = "virtual";
+    info.fw_major = 3;
+    const Bytes enc = encode(getHwInfo(0x50, info));
+    QCOMPARE(enc.size(), std::size_t{90});
+    QCOMPARE(toHex(std::span(enc).first(10)),
+             std::string("06 00 54 00 81 50 C1 FC 9B 01"));  // 27000001 = 0x019BFCC1 -> LE C1 FC 9B 01
+    QCOMPARE(parseHwInfo(getHwInfo(0x50, info)).value(), info);
+    // Parsers reject wrong lengths.
+    Message shortInfo = getHwInfo(0x50, info);
+    shortInfo.data.pop_back();
+    QVERIFY(!parseHwInfo(shortInfo).has_value());
+  }
+
+  void unitScalingMatchesDocumentTable() {
+    // KDC101, T = 2048/6e6 s: Z8 -> 767 367.49 per mm/s, 261.93 per mm/s^2.
+    const auto z8 = converter("KDC101", "MTS25-Z8");
+    QVERIFY(std::abs(z8.velocityScale() - 767367.49) < 0.01);
+    QVERIFY(std::abs(z8.accelerationScale() - 261.93) < 0.005);
+    // KBD101, T = 102.4 us, DDS 2 000 counts/mm -> 13 421.77 per mm/s, 1.374 per mm/s^2.
+    const auto dds = converter("KBD101", "DDSM50");
+    QVERIFY(std::abs(dds.velocityScale() - 13421.77) < 0.01);
+    QVERIFY(std::abs(dds.accelerationScale() - 1.37439) < 1e-4);
+    // K10CR1 (stepper): 136 533.33 counts/deg, 7 329 109 per deg/s, 1 502 per deg/s^2.
+    const auto rot = converter("K10CR1", "K10CR1");
+    QCOMPARE(rot.positionToCounts(1.0), 136533);
+    QCOMPARE(rot.positionToCounts(90.0), 12288000);  // exact: 409 600 x 30
+    QVERIFY(std::abs(rot.velocityScale() - 7329109.3) < 1.0);
+    QVERIFY(std::abs(rot.accelerationScale() - 1502.0) < 0.5);
+    // Round trips stay within half a count.
+    QVERIFY(std::abs(z8.countsToPosition(z8.positionToCounts(12.3456)) - 12.3456) < 0.5 / 34304);
+    QCOMPARE(controllerForSerial("27000001")->name, std::string("KDC101"));
+    QCOMPARE(controllerForSerial("55000001")->name, std::string("K10CR1"));
+    QVERIFY(!controllerForSerial("99000001").has_value());
+  }
+
+  void decoderHandlesPartialAndConcatenated() {
+    Bytes stream;
+    std::vector<Message> sent = {identify(), moveAbsolute(0x50, 1, 171520), moveHome(0x50, 1),
+                                 setVelParams(0x50, VelParams{1, 0, 393, 1534735})};
+    for (const auto& m : sent) {
+      auto b = encode(m);
+      stream.insert(stream.end(), b.begin(), b.end());
+    }
+    // Byte by byte.
+    StreamDecoder d;
+    std::vector<Message> got;
+    for (auto b : stream) {
+      d.feed(std::span(&b, 1));
+      while (auto m = d.next()) got.push_back(*m);
+    }
+    QCOMPARE(got, sent);
+    QCOMPARE(d.discardedBytes(), std::size_t{0});
+    // All at once.
+    StreamDecoder d2;
+    d2.feed(stream);
+    got.clear();
+    while (auto m = d2.next()) got.push_back(*m);
+    QCOMPARE(got, sent);
+    // A partial long message waits for its data.
+    StreamDecoder d3;
+    auto abs = encode(moveAbsolute(0x50, 1, 42));
+    d3.feed(std::span(abs).first(8));
+    QVERIFY(!d3.next().has_value());
+    d3.feed(std::span(abs).subspan(8));
+    QCOMPARE(parseMoveAbsolute(*d3.next())->value, 42);
+  }
+
+  void decoderResynchronisesAfterGarbage() {
+    StreamDecoder d;
+    // Garbage that contains a near-miss: a real id with an impossible destination.
+    Bytes garbage = {0xFF, 0x00, 0x53, 0x04, 0x06, 0x00, 0x7E, 0x01, 0x13};
+    d.feed(garbage);
+    auto home = encode(moveHome(0x50, 1));
+    d.feed(home);
+    auto m = d.next();
+    QVERIFY(m.has_value());
+    QCOMPARE(m->id, id::kMotMoveHome);
+    QCOMPARE(d.discardedBytes(), garbage.size());
+  }
+
+  void decoderFuzzFixedSeed() {
+    std::mt19937 rng(20261123);
+    std::uniform_int_distribution<int> byte(0, 255), len(0, 40), pick(0, 5);
+    std::vector<Message> sent;
+    Bytes stream;
+    for (int i = 0; i < 3000; ++i) {
+      for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
+      Message m;
+      switch (pick(rng)) {
+        case 0:
+          m = moveAbsolute(0x50, 1, static_cast<std::int32_t>(rng()));
+          break;
+        case 1:
+          m = moveHome(0x50, 1);
+          break;
+        case 2:
+          m = getDcStatusUpdate(
+              0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 3, static_cast<std::uint32_t>(rng())});
+          break;
+        case 3:
+          m = setJogParams(0x50, JogParams{});
+          break;
+        case 4:
+          m = moveStop(0x50, 1, StopMode::Immediate);
+          break;
+        default:
+          m = reqHwInfo();
+          break;
+      }
+      sent.push_back(m);
+      auto b = encode(m);
+      stream.insert(stream.end(), b.begin(), b.end());
+    }
+    // Feed in random chunk sizes; random bytes must never crash and every real message must
+    // come out in order (an extremely rare fake header from noise is tolerated but counted).
+    StreamDecoder d;
+    std::vector<Message> got;
+    std::size_t at = 0;
+    while (at < stream.size()) {
+      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 97);
+      d.feed(std::span(stream).subspan(at, n));
+      at += n;
+      while (auto m = d.next()) got.push_back(*m);
+    }
+    std::size_t found = 0;
+    for (const auto& m : got)
+      if (found < sent.size() && m == sent[found]) ++found;
+    QCOMPARE(found, sent.size());
+    QVERIFY2(got.size() - sent.size() <= 3, "noise produced too many fake messages");
+    // Pure noise: no crash, nearly everything discarded.
+    StreamDecoder noise;
+    Bytes junk(200000);
+    for (auto& b : junk) b = static_cast<std::uint8_t>(byte(rng));
+    noise.feed(junk);
+    std::size_t fakes = 0;
+    while (noise.next()) ++fakes;
+    QVERIFY(fakes <= 3);
+    QVERIFY(noise.buffered() < 6 + StreamDecoder::kMaxDataLength);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestAptCodec)
+#include "tst_apt_codec.moc"
