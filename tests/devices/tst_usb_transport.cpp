@@ -59,6 +59,33 @@ class TestUsbTransport : public QObject {
     QVERIFY(list.empty() || !list.front().serial.empty());
   }
 
+  void recordedDeviceEnumerates() {
+    // A KDC101 described for umockdev (tests/devices/data/kdc101.umockdev: sysfs attributes
+    // and descriptors of VID 0403 PID FAF0, serial 27000001). This test re-runs itself under
+    // umockdev-run, which fakes /sys and /dev for libusb.
+    if (qEnvironmentVariableIsSet("FOVEA_UMOCKDEV_CHILD")) {
+      std::string error;
+      const auto list = enumerateUsbControllers(&error);
+      QVERIFY2(error.empty(), error.c_str());
+      QCOMPARE(list.size(), std::size_t{1});
+      QCOMPARE(list[0].serial, std::string("27000001"));
+      QCOMPARE(list[0].model, std::string("KDC101"));
+      return;
+    }
+    const QString runner = QStandardPaths::findExecutable("umockdev-run");
+    if (runner.isEmpty()) QSKIP("umockdev-run is not installed (scripts/install-deps.sh)");
+    QProcess p;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("FOVEA_UMOCKDEV_CHILD", "1");
+    p.setProcessEnvironment(env);
+    p.start(runner, {"-d", QString(FOVEA_SOURCE_DIR) + "/tests/devices/data/kdc101.umockdev", "--",
+                     QCoreApplication::applicationFilePath(), "recordedDeviceEnumerates"});
+    QVERIFY(p.waitForFinished(30000));
+    const QByteArray out = p.readAllStandardOutput() + p.readAllStandardError();
+    QVERIFY2(p.exitStatus() == QProcess::NormalExit && p.exitCode() == 0, out.constData());
+    QVERIFY2(out.contains("PASS   : TestUsbTransport::recordedDeviceEnumerates()"), out.constData());
+  }
+
   void openingAMissingControllerNamesIt() {
     LibusbTransport t("27999999");
     try {
