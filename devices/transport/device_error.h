@@ -14,6 +14,7 @@ class DeviceError : public std::runtime_error {
     Io,            // USB / driver error
     SoftLimit,     // a requested move leaves the axis's soft limits (nothing was sent)
     NotHomed,      // absolute moves need a homed axis
+    Disabled,      // the channel (motor drive) is disabled
     Protocol,      // a malformed or unexpected reply
     Usage,         // invalid argument (NaN distance, unknown model, ...)
   };

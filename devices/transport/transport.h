@@ -37,6 +37,11 @@ class Transport {
   // Connection events, called from the transport's owner thread or its I/O thread.
   virtual void setEventCallback(std::function<void(TransportEvent)> callback) { callback_ = std::move(callback); }
   virtual DeviceInfo info() const = 0;
+  // Seconds on the link's clock (timeouts are measured on it): the steady clock for real
+  // devices, the simulated clock of a virtual bench.
+  virtual double now() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  }
 
  protected:
   void notifyEvent(TransportEvent e) {

@@ -1,0 +1,373 @@
+#include "devices/stage/stage.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace fovea::devices {
+
+namespace {
+std::string fmt(double v, const std::string& unit) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4f %s", v, unit.c_str());
+  return buf;
+}
+}  // namespace
+
+StageConfig defaultStageConfig(const apt::ControllerModel& controller, const apt::StageModel& stage) {
+  StageConfig c;
+  c.controller = controller;
+  c.stage = stage;
+  c.soft_min = stage.continuous ? -180.0 : stage.travel_min;
+  c.soft_max = stage.continuous ? 180.0 : stage.travel_max;
+  return c;
+}
+
+Stage::Stage(std::unique_ptr<Transport> transport, StageConfig config, std::shared_ptr<TraceSink> trace)
+    : transport_(std::move(transport)),
+      config_(std::move(config)),
+      trace_(std::move(trace)),
+      units_(config_.controller, config_.stage) {}
+
+Stage::~Stage() {
+  try {
+    disconnect();
+  } catch (...) {
+  }
+}
+
+std::string Stage::name() const {
+  const DeviceInfo i = transport_->info();
+  return (i.model.empty() ? config_.controller.name : i.model) + " " + i.serial;
+}
+
+void Stage::send(const apt::Message& m) {
+  const auto bytes = apt::encode(m);
+  try {
+    transport_->write(bytes);
+  } catch (const DeviceError& e) {
+    if (e.kind() == DeviceError::Kind::Disconnected) {
+      connected_ = false;
+      state_.known = false;
+    }
+    throw;
+  }
+  if (trace_) trace_->message(true, bytes);
+}
+
+void Stage::absorb(const apt::Message& m) {
+  namespace id = apt::id;
+  if (m.id == id::kModGetChanEnableState) {
+    state_.enabled = m.param2 == 0x01;
+    return;
+  }
+  if (m.id == id::kMotMoveHomed) {
+    state_.homed = true;
+    state_.homing = false;
+    state_.moving = false;
+    state_.position = 0.0;
+    state_.known = true;
+  }
+  if (auto s = apt::parseChannelStatus(m)) {
+    using namespace apt::status;
+    state_.known = true;
+    state_.position = units_.countsToPosition(s->position);
+    state_.velocity = config_.controller.kind == apt::MotorKind::Stepper || config_.controller.sampling_interval_s <= 0
+                          ? 0.0
+                          : s->velocity_or_encoder / (units_.countsPerUnit() * config_.controller.sampling_interval_s);
+    state_.bits = s->bits;
+    state_.enabled = (s->bits & kChannelEnabled) != 0;
+    state_.homed = (s->bits & kHomed) != 0;
+    state_.homing = (s->bits & kHoming) != 0;
+    state_.moving = (s->bits & kMovingMask) != 0;
+    state_.forward_limit = (s->bits & kForwardHardLimit) != 0;
+    state_.reverse_limit = (s->bits & kReverseHardLimit) != 0;
+    state_.motion_error = (s->bits & kMotionError) != 0;
+    if (on_state_) on_state_(state_);
+  }
+}
+
+apt::Message Stage::waitFor(const std::function<bool(const apt::Message&)>& match, double timeout_s,
+                            const std::string& what) {
+  // Timeouts run on the link's clock: wall time for USB, simulated time for a virtual bench.
+  const double deadline = transport_->now() + timeout_s;
+  for (;;) {
+    while (auto m = decoder_.next()) {
+      if (trace_) trace_->message(false, decoder_.lastRaw());
+      absorb(*m);
+      if (match(*m)) return *m;
+    }
+    const double remaining = deadline - transport_->now();
+    if (remaining <= 0)
+      throw DeviceError(DeviceError::Kind::Timeout,
+                        name() + " did not answer " + what + " within " + fmt(timeout_s, "s"));
+    const auto slice = std::min(remaining, 0.25);
+    std::vector<std::uint8_t> bytes;
+    try {
+      bytes = transport_->read(std::chrono::milliseconds(static_cast<long>(std::ceil(slice * 1000))));
+    } catch (const DeviceError& e) {
+      if (e.kind() == DeviceError::Kind::Disconnected) {
+        connected_ = false;
+        state_.known = false;
+        state_.moving = false;
+        throw DeviceError(DeviceError::Kind::Disconnected, name() + " was disconnected while waiting for " + what +
+                                                               "; position unknown until reconnect");
+      }
+      throw;
+    }
+    decoder_.feed(bytes);
+  }
+}
+
+apt::Message Stage::request(const apt::Message& req, std::uint16_t reply_id) {
+  send(req);
+  return waitFor([reply_id](const apt::Message& m) { return m.id == reply_id; },
+                 std::chrono::duration<double>(config_.reply_timeout).count(), apt::messageName(req.id));
+}
+
+void Stage::requireConnected() const {
+  if (!connected_) throw DeviceError(DeviceError::Kind::Disconnected, name() + " is not connected");
+}
+
+void Stage::connect() {
+  if (!transport_->isOpen()) transport_->open();
+  decoder_.reset();
+  connected_ = true;
+  const auto info = request(apt::reqHwInfo(config_.address), apt::id::kHwGetInfo);
+  if (auto i = apt::parseHwInfo(info))
+    info_ = *i;
+  else
+    throw DeviceError(DeviceError::Kind::Protocol, name() + " sent a malformed HW_GET_INFO");
+  request(apt::reqChanEnableState(config_.address, config_.channel), apt::id::kModGetChanEnableState);
+  const auto vp = request(apt::reqVelParams(config_.address, config_.channel), apt::id::kMotGetVelParams);
+  if (auto p = apt::parseVelParams(vp)) vel_ = *p;
+  poll();
+}
+
+void Stage::disconnect() {
+  if (transport_ && transport_->isOpen()) transport_->close();
+  connected_ = false;
+}
+
+void Stage::reconnect() {
+  transport_->close();
+  connected_ = false;
+  state_ = AxisState{};
+  connect();
+}
+
+void Stage::identify() {
+  requireConnected();
+  send(apt::identify(config_.address));
+}
+
+void Stage::setEnabled(bool enabled) {
+  requireConnected();
+  send(apt::setChanEnableState(config_.address, config_.channel, enabled));
+  request(apt::reqChanEnableState(config_.address, config_.channel), apt::id::kModGetChanEnableState);
+  if (state_.enabled != enabled)
+    throw DeviceError(DeviceError::Kind::Protocol, name() + " did not " + (enabled ? "enable" : "disable") +
+                                                       " channel " + std::to_string(config_.channel));
+}
+
+AxisState Stage::poll() {
+  requireConnected();
+  if (config_.controller.kind == apt::MotorKind::Stepper)
+    request(apt::reqStatusUpdate(config_.address, config_.channel), apt::id::kMotGetStatusUpdate);
+  else
+    request(apt::reqDcStatusUpdate(config_.address, config_.channel), apt::id::kMotGetDcStatusUpdate);
+  return state_;
+}
+
+double Stage::moveDuration(double distance) const {
+  const double v = std::max(units_.aptToVelocity(vel_.max_velocity), 1e-9);
+  const double a = std::max(units_.aptToAcceleration(vel_.acceleration), 1e-9);
+  const double d = std::abs(distance);
+  // Trapezoid: d >= v^2/a -> v/a + d/v; triangle otherwise -> 2 sqrt(d/a).
+  return d >= v * v / a ? v / a + d / v : 2.0 * std::sqrt(d / a);
+}
+
+void Stage::checkTarget(double target, const std::string& what) const {
+  const std::string unit = config_.stage.unit();
+  if (!std::isfinite(target)) throw DeviceError(DeviceError::Kind::Usage, what + ": target is not a finite number");
+  if (target < config_.soft_min - 1e-9 || target > config_.soft_max + 1e-9)
+    throw DeviceError(DeviceError::Kind::SoftLimit,
+                      what + " to " + fmt(target, unit) + " refused: outside the soft limits [" +
+                          fmt(config_.soft_min, unit) + ", " + fmt(config_.soft_max, unit) + "] of " + name() +
+                          "; nothing was sent");
+}
+
+void Stage::requireReady() {
+  if (!state_.known) poll();
+  if (!state_.enabled)
+    throw DeviceError(DeviceError::Kind::Disabled,
+                      name() + ": channel " + std::to_string(config_.channel) + " is disabled: enable it first");
+  if (!state_.homed)
+    throw DeviceError(DeviceError::Kind::NotHomed,
+                      name() + " is not homed: home it first (positions are meaningless before)");
+}
+
+void Stage::waitMotionEnd(double timeout_s, const std::string& what) {
+  const auto m = waitFor(
+      [](const apt::Message& r) {
+        return r.id == apt::id::kMotMoveCompleted || r.id == apt::id::kMotMoveStopped || r.id == apt::id::kMotMoveHomed;
+      },
+      timeout_s, what);
+  if (m.id == apt::id::kMotMoveStopped && what != "MOT_MOVE_STOP") {
+    poll();
+    throw DeviceError(DeviceError::Kind::Protocol,
+                      name() + ": " + what + " ended early at " + fmt(state_.position, config_.stage.unit()) +
+                          (state_.forward_limit || state_.reverse_limit ? " (limit switch)" : " (stopped)"));
+  }
+  if (m.data.empty()) poll();  // header-only completion (old firmware): fetch the position
+}
+
+void Stage::home() {
+  requireConnected();
+  if (!state_.known) poll();
+  const double span = config_.stage.continuous ? 360.0 : config_.stage.travel_max - config_.stage.travel_min;
+  const double timeout = 1.5 * span / std::max(config_.stage.home_velocity, 1e-6) + config_.move_timeout_margin_s;
+  send(apt::moveHome(config_.address, config_.channel));
+  state_.homing = true;
+  waitFor([](const apt::Message& m) { return m.id == apt::id::kMotMoveHomed; }, timeout, "MOT_MOVE_HOME");
+  poll();
+}
+
+double Stage::startMoveAbsolute(double position) {
+  requireConnected();
+  checkTarget(position, "move");
+  requireReady();
+  const double duration = moveDuration(position - state_.position);
+  send(apt::moveAbsolute(config_.address, config_.channel, units_.positionToCounts(position)));
+  pending_what_ = "MOT_MOVE_ABSOLUTE";
+  state_.moving = true;
+  return duration;
+}
+
+double Stage::startMoveRelative(double distance) {
+  requireConnected();
+  if (!std::isfinite(distance))
+    throw DeviceError(DeviceError::Kind::Usage, "relative move: distance is not a finite number");
+  requireReady();
+  poll();
+  checkTarget(state_.position + distance, "relative move by " + fmt(distance, config_.stage.unit()));
+  const double duration = moveDuration(distance);
+  send(apt::moveRelative(config_.address, config_.channel, units_.positionToCounts(distance)));
+  pending_what_ = "MOT_MOVE_RELATIVE";
+  state_.moving = true;
+  return duration;
+}
+
+void Stage::waitForMotion(double timeout_s) {
+  waitMotionEnd(timeout_s, pending_what_);
+}
+
+void Stage::moveAbsolute(double position) {
+  const double t = startMoveAbsolute(position);
+  waitForMotion(1.5 * t + config_.move_timeout_margin_s);
+}
+
+void Stage::moveRelative(double distance) {
+  const double t = startMoveRelative(distance);
+  waitForMotion(1.5 * t + config_.move_timeout_margin_s);
+}
+
+void Stage::jog(apt::JogDirection direction) {
+  requireConnected();
+  const JogSettings j = jogSettings();
+  if (j.continuous)
+    throw DeviceError(DeviceError::Kind::SoftLimit,
+                      name() + " is in continuous jog mode, which cannot honour soft limits; set single-step jogs");
+  requireReady();
+  poll();
+  const double sign = direction == apt::JogDirection::Forward ? 1.0 : -1.0;
+  checkTarget(state_.position + sign * j.step, std::string("jog ") + (sign > 0 ? "forward" : "reverse"));
+  const double v = std::max(j.max_velocity, 1e-9), a = std::max(j.acceleration, 1e-9);
+  const double t = j.step >= v * v / a ? v / a + j.step / v : 2.0 * std::sqrt(j.step / a);
+  send(apt::moveJog(config_.address, config_.channel, direction));
+  waitMotionEnd(1.5 * t + config_.move_timeout_margin_s, "MOT_MOVE_JOG");
+}
+
+void Stage::sendStop(bool immediate) {
+  requireConnected();
+  send(apt::moveStop(config_.address, config_.channel, immediate ? apt::StopMode::Immediate : apt::StopMode::Profiled));
+}
+
+void Stage::stop(bool immediate) {
+  sendStop(immediate);
+  const double v = std::max(std::abs(state_.velocity), units_.aptToVelocity(vel_.max_velocity));
+  const double a = std::max(units_.aptToAcceleration(vel_.acceleration), 1e-9);
+  waitFor([](const apt::Message& m) { return m.id == apt::id::kMotMoveStopped; }, v / a + config_.move_timeout_margin_s,
+          "MOT_MOVE_STOP");
+  poll();
+}
+
+VelocitySettings Stage::velocity() {
+  requireConnected();
+  const auto m = request(apt::reqVelParams(config_.address, config_.channel), apt::id::kMotGetVelParams);
+  if (auto p = apt::parseVelParams(m)) vel_ = *p;
+  return {units_.aptToVelocity(vel_.max_velocity), units_.aptToAcceleration(vel_.acceleration)};
+}
+
+void Stage::setVelocity(const VelocitySettings& v) {
+  requireConnected();
+  if (!(v.max_velocity > 0) || !(v.acceleration > 0) || v.max_velocity > config_.stage.max_velocity * 1.0001 ||
+      v.acceleration > config_.stage.max_acceleration * 1.0001)
+    throw DeviceError(DeviceError::Kind::Usage,
+                      "velocity " + fmt(v.max_velocity, config_.stage.unit() + "/s") + ", acceleration " +
+                          fmt(v.acceleration, config_.stage.unit() + "/s^2") + " outside (0, " +
+                          fmt(config_.stage.max_velocity, "") + "] / (0, " + fmt(config_.stage.max_acceleration, "") +
+                          "] of the " + config_.stage.name);
+  apt::VelParams p{config_.channel, 0, units_.accelerationToApt(v.acceleration), units_.velocityToApt(v.max_velocity)};
+  send(apt::setVelParams(config_.address, p));
+  velocity();  // read back what the controller accepted
+}
+
+JogSettings Stage::jogSettings() {
+  requireConnected();
+  const auto m = request(apt::reqJogParams(config_.address, config_.channel), apt::id::kMotGetJogParams);
+  const auto p = apt::parseJogParams(m);
+  if (!p) throw DeviceError(DeviceError::Kind::Protocol, name() + " sent malformed jog parameters");
+  return {p->mode == apt::JogMode::Continuous, units_.countsToPosition(p->step_size),
+          units_.aptToVelocity(p->max_velocity), units_.aptToAcceleration(p->acceleration),
+          p->stop_mode == apt::StopMode::Immediate};
+}
+
+void Stage::setJogSettings(const JogSettings& j) {
+  requireConnected();
+  if (!(j.step > 0) || !(j.max_velocity > 0) || !(j.acceleration > 0) ||
+      j.max_velocity > config_.stage.max_velocity * 1.0001)
+    throw DeviceError(
+        DeviceError::Kind::Usage,
+        "jog settings need a positive step, velocity and acceleration within the " + config_.stage.name + "'s limits");
+  apt::JogParams p{config_.channel,
+                   j.continuous ? apt::JogMode::Continuous : apt::JogMode::SingleStep,
+                   units_.positionToCounts(j.step),
+                   0,
+                   units_.accelerationToApt(j.acceleration),
+                   units_.velocityToApt(j.max_velocity),
+                   j.immediate_stop ? apt::StopMode::Immediate : apt::StopMode::Profiled};
+  send(apt::setJogParams(config_.address, p));
+}
+
+std::vector<std::string> emergencyStop(const std::vector<Stage*>& axes) {
+  std::vector<std::string> problems;
+  std::vector<Stage*> sent;
+  for (Stage* s : axes) {  // first every STOP, as fast as possible
+    try {
+      s->sendStop(true);
+      sent.push_back(s);
+    } catch (const std::exception& e) {
+      problems.push_back(e.what());
+    }
+  }
+  for (Stage* s : sent) {  // then confirm each
+    try {
+      s->poll();
+    } catch (const std::exception& e) {
+      problems.push_back(e.what());
+    }
+  }
+  return problems;
+}
+
+}  // namespace fovea::devices
