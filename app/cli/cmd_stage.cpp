@@ -1,0 +1,264 @@
+// fovea-cli stage (--virtual MODEL | --serial SERIAL) [--channel N] [--trace FILE] [--json]
+//                 COMMAND [ARG]
+// COMMAND: info, enable, disable, home, move-abs MM, move-rel MM, jog forward|reverse,
+// stop [--immediate], position. Rotation stages take and report degrees instead of mm.
+//
+// Exit codes: 0 done; 2 invalid arguments or a move outside the soft limits (nothing is
+// sent); 3 the device does not answer (timeout), is not on the bus, or vanished; 1 device
+// state problems (not homed, channel disabled, limit switch hit, malformed reply).
+//
+// Soft limits: those of the scene's stage binding with the device's serial (element limits
+// minus home offset, within the stage travel), else the stage's travel; --soft-limits A,B
+// overrides.
+//
+// Virtual devices: every invocation starts a fresh emulator (simulated clock, so moves
+// complete instantly) in a defined power-on state: channel enabled, homed, and at the
+// scene's nominal pose when a stage binding matches (element coordinate 0 = stage reading
+// -home_offset, e.g. 12.5 mm for the prototype's HOE stages), else at 0 (the home switch). MODEL is a stage (MTS25-Z8,
+// Z825B, DDSM50, K10CR1) or a controller (KDC101, TDC001, KBD101); the scene binding with that model supplies serial
+// and soft limits.
+// --virtual-fault mute makes the emulator swallow every message (to exercise timeouts).
+#include <cmath>
+#include <iostream>
+#include <optional>
+
+#include "app/cli/cli_common.h"
+#include "devices/stage/stage.h"
+#include "devices/stage/stage_binding.h"
+#include "devices/transport/libusb_transport.h"
+#include "devices/virtual/virtual_transport.h"
+
+namespace fovea::cli {
+namespace {
+
+using devices::DeviceError;
+
+struct StageArgs {
+  std::string virtual_model, serial, trace, command, arg, scene, fault, soft_limits;
+  int channel = 1;
+  bool json = false, immediate = false;
+  double timeout_s = 2.0;
+};
+
+int exitCodeFor(DeviceError::Kind k) {
+  switch (k) {
+    case DeviceError::Kind::SoftLimit:
+    case DeviceError::Kind::Usage:
+      return 2;
+    case DeviceError::Kind::Timeout:
+    case DeviceError::Kind::NotFound:
+    case DeviceError::Kind::Disconnected:
+    case DeviceError::Kind::Io:
+      return 3;
+    default:
+      return 1;
+  }
+}
+
+double parseDistance(const StageArgs& a, const std::string& unit) {
+  if (a.arg.empty()) usageError(a.command + " needs a distance in " + unit);
+  return parseNumberList(a.arg, a.command + " " + unit, 1, 1)[0];
+}
+
+nlohmann::json stateJson(const devices::Stage& s, const devices::AxisState& st) {
+  const std::string unit = s.config().stage.unit();
+  nlohmann::json j{{"unit", unit},
+                   {"known", st.known},
+                   {"position", st.position},
+                   {"position_" + unit, st.position},
+                   {"homed", st.homed},
+                   {"enabled", st.enabled},
+                   {"moving", st.moving},
+                   {"forward_limit", st.forward_limit},
+                   {"reverse_limit", st.reverse_limit},
+                   {"status_bits", st.bits}};
+  return j;
+}
+
+void run(const StageArgs& a) {
+  if (a.virtual_model.empty() == a.serial.empty()) usageError("give exactly one of --virtual MODEL or --serial SERIAL");
+  if (a.channel < 1 || a.channel > 4) usageError("--channel: expected 1 to 4, got " + std::to_string(a.channel));
+  if (!(a.timeout_s > 0) || !std::isfinite(a.timeout_s)) usageError("--timeout: expected a positive number of seconds");
+  static const std::vector<std::string> commands = {"info",     "enable", "disable", "home",    "move-abs",
+                                                    "move-rel", "jog",    "stop",    "position"};
+  if (std::find(commands.begin(), commands.end(), a.command) == commands.end())
+    usageError("unknown stage command '" + a.command +
+               "' (info, enable, disable, home, move-abs MM, move-rel MM, jog forward|reverse, stop, position)");
+  if (!a.fault.empty() && a.fault != "mute") usageError("--virtual-fault: only 'mute' is known");
+
+  const Scene scene = loadSceneOrExit(a.scene);
+  std::optional<StageBinding> binding;
+  std::unique_ptr<devices::Transport> transport;
+  std::optional<apt::ControllerModel> controller;
+  std::optional<apt::StageModel> stage;
+  std::shared_ptr<devices::VirtualAptController> emulator;
+
+  if (!a.virtual_model.empty()) {
+    for (const auto& b : scene.stages)
+      if (!binding && (b.stage_model == a.virtual_model || b.controller == a.virtual_model)) binding = b;
+    auto clock = std::make_shared<devices::SimulatedClock>();
+    try {
+      emulator = binding ? devices::makeVirtualController(binding->stage_model, binding->serial, clock)
+                         : devices::makeVirtualController(a.virtual_model, "", clock);
+    } catch (const DeviceError& e) {
+      usageError(std::string("--virtual: ") + e.what());
+    }
+    auto cfg = emulator->config();
+    if (binding) {
+      if (auto c = apt::findController(binding->controller)) cfg.controller = *c;
+      // A bound virtual stage powers up homed at the scene's nominal pose: element
+      // coordinate 0, i.e. stage reading -home_offset (kept inside the travel).
+      cfg.position =
+          std::clamp(devices::elementToStage(*binding, 0.0), cfg.stage.continuous ? -1e9 : cfg.stage.travel_min,
+                     cfg.stage.continuous ? 1e9 : cfg.stage.travel_max);
+    }
+    emulator = std::make_shared<devices::VirtualAptController>(cfg, clock);
+    emulator->setMute(a.fault == "mute");
+    controller = emulator->config().controller;
+    stage = emulator->config().stage;
+    transport = std::make_unique<devices::VirtualTransport>(emulator, clock);
+  } else {
+    for (const auto& b : scene.stages)
+      if (!binding && b.serial == a.serial) binding = b;
+    controller = binding ? apt::findController(binding->controller) : apt::controllerForSerial(a.serial);
+    if (!controller)
+      usageError("--serial " + a.serial +
+                 ": not a Thorlabs controller serial this tool knows (27.. KDC101, 83.. TDC001, 28.. KBD101, 55.. "
+                 "K10CR1) and no scene binding names it");
+    stage = apt::findStage(binding ? binding->stage_model : controller->default_stage);
+    if (!stage) usageError("--serial " + a.serial + ": unknown stage model in the scene binding");
+    transport = std::make_unique<devices::LibusbTransport>(a.serial);
+  }
+
+  devices::StageConfig config = devices::defaultStageConfig(*controller, *stage);
+  if (binding) {
+    try {
+      config = devices::stageConfigForBinding(*binding);
+    } catch (const DeviceError& e) {
+      inputError(e.what());
+    }
+  }
+  if (!a.soft_limits.empty()) {
+    const auto l = parseNumberList(a.soft_limits, "--soft-limits", 2, 2);
+    config.soft_min = std::min(l[0], l[1]);
+    config.soft_max = std::max(l[0], l[1]);
+  }
+  config.channel = static_cast<std::uint8_t>(a.channel);
+  config.reply_timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
+
+  std::shared_ptr<devices::TraceSink> trace;
+  if (!a.trace.empty()) {
+    try {
+      trace = std::make_shared<devices::FileTrace>(a.trace);
+    } catch (const std::exception& e) {
+      inputError(e.what());
+    }
+  }
+  const std::string unit = stage->unit();
+  // Absolute targets are checked before anything touches the device.
+  std::optional<double> target;
+  if (a.command == "move-abs" || a.command == "move-rel") target = parseDistance(a, unit);
+  std::optional<apt::JogDirection> jog;
+  if (a.command == "jog") {
+    if (a.arg == "forward")
+      jog = apt::JogDirection::Forward;
+    else if (a.arg == "reverse")
+      jog = apt::JogDirection::Reverse;
+    else
+      usageError("jog: expected 'forward' or 'reverse', got '" + a.arg + "'");
+  }
+
+  devices::Stage s(std::move(transport), config, trace);
+  nlohmann::json out;
+  try {
+    if (a.command == "move-abs" && (*target < config.soft_min || *target > config.soft_max)) {
+      // Same check and message as Stage::startMoveAbsolute, before even opening the link.
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "move to %.4f %s refused: outside the soft limits [%.4f, %.4f] %s; nothing was sent", *target,
+                    unit.c_str(), config.soft_min, config.soft_max, unit.c_str());
+      throw DeviceError(DeviceError::Kind::SoftLimit, buf);
+    }
+    s.connect();
+    if (a.command == "enable")
+      s.setEnabled(true);
+    else if (a.command == "disable")
+      s.setEnabled(false);
+    else if (a.command == "home")
+      s.home();
+    else if (a.command == "move-abs")
+      s.moveAbsolute(*target);
+    else if (a.command == "move-rel")
+      s.moveRelative(*target);
+    else if (a.command == "jog")
+      s.jog(*jog);
+    else if (a.command == "stop")
+      s.stop(a.immediate);
+    const devices::AxisState st = s.poll();
+    out = stateJson(s, st);
+    if (a.command == "info") {
+      const auto hw = s.hardwareInfo();
+      const auto vel = s.velocity();
+      out["hardware"] = {{"model", hw.model},
+                         {"serial", std::to_string(hw.serial)},
+                         {"firmware", std::to_string(hw.fw_major) + "." + std::to_string(hw.fw_interim) + "." +
+                                          std::to_string(hw.fw_minor)},
+                         {"notes", hw.notes},
+                         {"channels", hw.channels}};
+      out["velocity"] = {{"max_" + unit + "_per_s", vel.max_velocity},
+                         {"acceleration_" + unit + "_per_s2", vel.acceleration}};
+    }
+  } catch (const DeviceError& e) {
+    throw CliError(exitCodeFor(e.kind()), e.what());
+  }
+  out["command"] = a.command;
+  out["device"] = {{"kind", "stage-controller"},
+                   {"model", controller->name},
+                   {"serial", emulator ? emulator->config().serial : a.serial},
+                   {"virtual", emulator != nullptr},
+                   {"stage_model", stage->name},
+                   {"channel", a.channel}};
+  if (binding)
+    out["binding"] = {{"element", binding->element}, {"axis", binding->axis}, {"home_offset", binding->home_offset}};
+  out["soft_limits_" + unit] = {config.soft_min, config.soft_max};
+  if (a.json) {
+    printJson(out);
+    return;
+  }
+  std::printf("%s %s%s (%s): %s %.4f %s, %s, %s%s\n", controller->name.c_str(),
+              out["device"]["serial"].get<std::string>().c_str(), emulator ? " virtual" : "", stage->name.c_str(),
+              a.command == "position" ? "position" : (a.command + " done, position").c_str(),
+              out["position"].get<double>(), unit.c_str(), out["homed"].get<bool>() ? "homed" : "not homed",
+              out["enabled"].get<bool>() ? "enabled" : "disabled", out["moving"].get<bool>() ? ", moving" : "");
+  if (out.contains("hardware"))
+    std::printf("  hardware %s serial %s firmware %s, %s\n", out["hardware"]["model"].get<std::string>().c_str(),
+                out["hardware"]["serial"].get<std::string>().c_str(),
+                out["hardware"]["firmware"].get<std::string>().c_str(),
+                out["hardware"]["notes"].get<std::string>().c_str());
+}
+
+void install(CLI::App& app) {
+  auto* cmd = app.add_subcommand("stage", "Drive one motorised stage (APT protocol) on USB or on the virtual bench");
+  auto a = std::make_shared<StageArgs>();
+  auto* v = cmd->add_option("--virtual", a->virtual_model,
+                            "virtual device: stage or controller model (MTS25-Z8, K10CR1, KDC101, ...)");
+  auto* s = cmd->add_option("--serial", a->serial, "serial number of a USB controller");
+  v->excludes(s);
+  cmd->add_option("--channel", a->channel, "controller channel (default 1)");
+  cmd->add_option("--trace", a->trace, "write every APT message as 'TX|RX HH HH ...' lines to FILE");
+  cmd->add_flag("--json", a->json, "print the result as JSON");
+  cmd->add_flag("--immediate", a->immediate, "stop: immediate instead of profiled");
+  cmd->add_option("--scene", a->scene, "scene with the stage bindings (default: the prototype bench)");
+  cmd->add_option("--timeout", a->timeout_s, "seconds to wait for each reply (default 2)");
+  cmd->add_option("--soft-limits", a->soft_limits, "override the soft limits: MIN,MAX in mm (deg)");
+  cmd->add_option("--virtual-fault", a->fault, "make the virtual device misbehave: mute");
+  cmd->add_option("COMMAND", a->command, "info|enable|disable|home|move-abs|move-rel|jog|stop|position")->required();
+  cmd->add_option("ARG", a->arg, "distance in mm (deg) for move-abs/move-rel, forward|reverse for jog");
+  cmd->positionals_at_end(false);
+  cmd->callback([a] { run(*a); });
+}
+
+const Registrar reg{"stage", &install};
+
+}  // namespace
+}  // namespace fovea::cli

@@ -1,0 +1,150 @@
+// fovea-cli devices / stage contracts: JSON keys, the --trace line format, exit codes 2
+// (soft limits, nothing sent) and 3 (silent or missing device), degrees for rotation stages.
+#include <QtTest>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+Run cli(const QStringList& args) {
+  QProcess p;
+  p.start(FOVEA_CLI_PATH, args);
+  p.waitForFinished(60000);
+  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput().toStdString(),
+          p.readAllStandardError().toStdString()};
+}
+QString tmp(const char* name) {
+  const QString dir = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp");
+  QDir().mkpath(dir);
+  return dir + "/cli_stage_" + name;
+}
+std::vector<std::string> lines(const QString& path) {
+  std::ifstream in(path.toStdString());
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+bool hasLine(const std::vector<std::string>& ls, const std::string& prefix) {
+  for (const auto& l : ls)
+    if (l.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+}  // namespace
+
+class TestCliStage : public QObject {
+  Q_OBJECT
+ private slots:
+  void devicesJson() {
+    const Run r = cli({"devices", "--json"});
+    QVERIFY2(r.code == 0, r.err.c_str());
+    const auto j = nlohmann::json::parse(r.out);
+    QVERIFY(j["devices"].is_array());
+    int virtual_stages = 0;
+    for (const auto& d : j["devices"]) {
+      for (const char* key : {"kind", "model", "serial"}) QVERIFY(d[key].is_string());
+      QVERIFY(d["virtual"].is_boolean());
+      if (d["virtual"].get<bool>() && d["kind"] == "stage-controller") ++virtual_stages;
+    }
+    QCOMPARE(virtual_stages, 5);  // one per stage binding of the prototype bench
+    QCOMPARE(j["devices"].back()["model"].get<std::string>(), std::string("K10CR1"));
+  }
+
+  void moveWithTrace() {
+    const QString trace = tmp("move.trace");
+    const Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "move-abs", "15"});
+    QVERIFY2(r.code == 0, r.err.c_str());
+    const auto j = nlohmann::json::parse(r.out);
+    QCOMPARE(j["position_mm"].get<double>(), 15.0);
+    QCOMPARE(j["device"]["virtual"].get<bool>(), true);
+    QCOMPARE(j["device"]["serial"].get<std::string>(), std::string("27000001"));
+    const auto ls = lines(trace);
+    QVERIFY(ls.size() >= 8);
+    const std::regex format("^(TX|RX)( [0-9A-F]{2})+$");
+    for (const auto& l : ls) QVERIFY2(std::regex_match(l, format), l.c_str());
+    QCOMPARE(ls.front(), std::string("TX 05 00 00 00 50 01"));  // HW_REQ_INFO first
+    // 15 mm x 34 304 = 514 560 = 0x0007DA00 -> LE 00 DA 07 00.
+    const std::string move = "TX 53 04 06 00 D0 01 01 00 00 DA 07 00";
+    const auto at = std::find(ls.begin(), ls.end(), move);
+    QVERIFY2(at != ls.end(), "no MOT_MOVE_ABSOLUTE line");
+    QVERIFY((at + 1)->rfind("RX 64 04 0E 00 81 50 01 00 00 DA 07 00", 0) == 0);  // MOVE_COMPLETED at 15 mm
+  }
+
+  void softLimitExit2SendsNoMove() {
+    const QString trace = tmp("limit.trace");
+    Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "move-abs", "22"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.find("soft limits") != std::string::npos, r.err.c_str());
+    QVERIFY(lines(trace).empty());
+    // Relative: the position is read, but no move message leaves.
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "move-rel", "-9"});
+    QCOMPARE(r.code, 2);
+    const auto ls = lines(trace);
+    QVERIFY(hasLine(ls, "TX 90 04"));
+    QVERIFY(!hasLine(ls, "TX 48 04") && !hasLine(ls, "TX 53 04") && !hasLine(ls, "TX 6A 04"));
+    // An explicit override widens the window: now the same move runs.
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--soft-limits", "0,25", "move-abs", "22"});
+    QCOMPARE(r.code, 0);
+  }
+
+  void silentOrMissingDeviceExit3() {
+    Run r = cli({"stage", "--virtual", "MTS25-Z8", "--virtual-fault", "mute", "--timeout", "0.5", "position"});
+    QCOMPARE(r.code, 3);
+    QVERIFY2(r.err.find("did not answer") != std::string::npos, r.err.c_str());
+    r = cli({"stage", "--serial", "27999999", "position"});
+    QCOMPARE(r.code, 3);
+    QVERIFY2(r.err.find("27999999") != std::string::npos, r.err.c_str());
+  }
+
+  void rotationStageInDegrees() {
+    Run r = cli({"stage", "--virtual", "K10CR1", "--json", "move-abs", "12.5"});
+    QVERIFY2(r.code == 0, r.err.c_str());
+    auto j = nlohmann::json::parse(r.out);
+    QVERIFY(std::abs(j["position_deg"].get<double>() - 12.5) < 1e-5);
+    QVERIFY(!j.contains("position_mm"));
+    QCOMPARE(j["unit"].get<std::string>(), std::string("deg"));
+    r = cli({"stage", "--virtual", "K10CR1", "move-abs", "30"});  // scene limits +-25 deg
+    QCOMPARE(r.code, 2);
+  }
+
+  void jogStopHomeEnable() {
+    const QString trace = tmp("ops.trace");
+    Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "jog", "reverse"});
+    QVERIFY2(r.code == 0, r.err.c_str());
+    QVERIFY(hasLine(lines(trace), "TX 6A 04 01 02 50 01"));
+    QVERIFY(std::abs(nlohmann::json::parse(r.out)["position_mm"].get<double>() - 12.4) < 1e-4);  // 12.5 - 0.1 step
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "stop", "--immediate"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(hasLine(lines(trace), "TX 65 04 01 01 50 01"));
+    QVERIFY(hasLine(lines(trace), "RX 66 04 0E 00 81 50"));  // MOVE_STOPPED
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "home"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(hasLine(lines(trace), "TX 43 04 01 00 50 01"));
+    QVERIFY(hasLine(lines(trace), "RX 44 04 01 00 01 50"));  // MOVE_HOMED
+    QCOMPARE(nlohmann::json::parse(r.out)["position_mm"].get<double>(), 0.0);
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "disable"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(hasLine(lines(trace), "TX 10 02 01 02 50 01"));
+    QCOMPARE(nlohmann::json::parse(r.out)["enabled"].get<bool>(), false);
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "info"});
+    QCOMPARE(r.code, 0);
+    QCOMPARE(nlohmann::json::parse(r.out)["hardware"]["model"].get<std::string>(), std::string("KDC101"));
+  }
+
+  void badArguments() {
+    QCOMPARE(cli({"stage", "--virtual", "MTS25-Z8", "move-abs", "nan"}).code, 2);
+    QCOMPARE(cli({"stage", "--virtual", "MTS25-Z8", "jog", "sideways"}).code, 2);
+    QCOMPARE(cli({"stage", "--virtual", "NOPE", "position"}).code, 2);
+    QCOMPARE(cli({"stage", "position"}).code, 2);
+    QCOMPARE(cli({"stage", "--virtual", "MTS25-Z8", "--serial", "27000001", "position"}).code, 2);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliStage)
+#include "tst_cli_stage.moc"
