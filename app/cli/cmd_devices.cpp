@@ -49,6 +49,12 @@ void install(CLI::App& app) {
                       {"axis", b.axis},
                       {"channel", b.channel}});
     }
+    // The virtual bench's camera (frames from a renderer on the bench clock).
+    list.push_back({{"kind", "camera"},
+                    {"model", "virtual-eye-camera"},
+                    {"serial", "VCAM0001"},
+                    {"virtual", true},
+                    {"description", "virtual camera at the eye position"}});
     if (*json) {
       nlohmann::json out{{"devices", list}};
       if (!usb_error.empty()) out["usb_error"] = usb_error;
@@ -59,7 +65,7 @@ void install(CLI::App& app) {
     for (const auto& d : list) {
       std::cout << (d["virtual"].get<bool>() ? "virtual  " : "hardware ") << d["kind"].get<std::string>() << "  "
                 << d["model"].get<std::string>() << "  " << d["serial"].get<std::string>();
-      if (d.contains("element"))
+      if (d.contains("element") && d.contains("stage_model"))
         std::cout << "  (" << d["stage_model"].get<std::string>() << " -> " << d["element"].get<std::string>() << "."
                   << d["axis"].get<std::string>() << ")";
       std::cout << "\n";

@@ -212,6 +212,7 @@ void Stage::waitMotionEnd(double timeout_s, const std::string& what) {
         return r.id == apt::id::kMotMoveCompleted || r.id == apt::id::kMotMoveStopped || r.id == apt::id::kMotMoveHomed;
       },
       timeout_s, what);
+  settled_at_ = transport_->now() + config_.settle_s;
   if (m.id == apt::id::kMotMoveStopped && what != "MOT_MOVE_STOP") {
     poll();
     throw DeviceError(DeviceError::Kind::Protocol,
@@ -229,6 +230,7 @@ void Stage::home() {
   send(apt::moveHome(config_.address, config_.channel));
   state_.homing = true;
   waitFor([](const apt::Message& m) { return m.id == apt::id::kMotMoveHomed; }, timeout, "MOT_MOVE_HOME");
+  settled_at_ = transport_->now() + config_.settle_s;
   poll();
 }
 
@@ -298,6 +300,7 @@ void Stage::stop(bool immediate) {
   const double a = std::max(units_.aptToAcceleration(vel_.acceleration), 1e-9);
   waitFor([](const apt::Message& m) { return m.id == apt::id::kMotMoveStopped; }, v / a + config_.move_timeout_margin_s,
           "MOT_MOVE_STOP");
+  settled_at_ = transport_->now() + config_.settle_s;
   poll();
 }
 

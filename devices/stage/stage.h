@@ -32,6 +32,7 @@ struct StageConfig {
   double soft_min = 0.0, soft_max = 0.0;          // stage coordinates (mm or deg)
   std::chrono::milliseconds reply_timeout{2000};  // requests (info, status, params)
   double move_timeout_margin_s = 3.0;             // added to 1.5x the profile time
+  double settle_s = 0.05;                         // ringing after a motion completion (the camera stale-frame rule)
 };
 // Soft limits default to the stage's travel (or +-180 deg for continuous rotation).
 StageConfig defaultStageConfig(const apt::ControllerModel& controller, const apt::StageModel& stage);
@@ -83,6 +84,9 @@ class Stage {
   void sendStop(bool immediate);          // e-stop: the STOP message only, no wait
   AxisState poll();                       // requests a status update
   AxisState state() const { return state_; }
+  // Link-clock time from which the axis counts as settled: the arrival of its last motion
+  // completion plus settle_s. Cameras discard frames exposed before it (captureSettled).
+  double settledAt() const { return settled_at_; }
   VelocitySettings velocity();
   void setVelocity(const VelocitySettings& v);
   JogSettings jogSettings();
@@ -115,6 +119,7 @@ class Stage {
   apt::VelParams vel_;
   bool connected_ = false;
   std::string pending_what_ = "move";
+  double settled_at_ = 0.0;
   std::function<void(const AxisState&)> on_state_;
 };
 

@@ -57,6 +57,7 @@ class VirtualAptController {
   // Inspection (tests, the studio's virtual-bench view).
   const VirtualControllerConfig& config() const { return config_; }
   double position() const;
+  double positionAt(double t_s) const { return profile_.position(t_s); }  // within the current motion
   bool homed() const { return homed_; }
   bool enabled() const { return enabled_; }
   bool moving() const;

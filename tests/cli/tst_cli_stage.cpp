@@ -46,14 +46,20 @@ class TestCliStage : public QObject {
     QVERIFY2(r.code == 0, r.err.c_str());
     const auto j = nlohmann::json::parse(r.out);
     QVERIFY(j["devices"].is_array());
-    int virtual_stages = 0;
+    int virtual_stages = 0, virtual_cameras = 0;
+    std::string last_stage_model;
     for (const auto& d : j["devices"]) {
       for (const char* key : {"kind", "model", "serial"}) QVERIFY(d[key].is_string());
       QVERIFY(d["virtual"].is_boolean());
-      if (d["virtual"].get<bool>() && d["kind"] == "stage-controller") ++virtual_stages;
+      if (d["virtual"].get<bool>() && d["kind"] == "stage-controller") {
+        ++virtual_stages;
+        last_stage_model = d["model"].get<std::string>();
+      }
+      if (d["virtual"].get<bool>() && d["kind"] == "camera") ++virtual_cameras;
     }
     QCOMPARE(virtual_stages, 5);  // one per stage binding of the prototype bench
-    QCOMPARE(j["devices"].back()["model"].get<std::string>(), std::string("K10CR1"));
+    QCOMPARE(virtual_cameras, 1);
+    QCOMPARE(last_stage_model, std::string("K10CR1"));
   }
 
   void moveWithTrace() {
