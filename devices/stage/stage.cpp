@@ -100,7 +100,11 @@ apt::Message Stage::waitFor(const std::function<bool(const apt::Message&)>& matc
     if (remaining <= 0)
       throw DeviceError(DeviceError::Kind::Timeout,
                         name() + " did not answer " + what + " within " + fmt(timeout_s, "s"));
-    const auto slice = std::min(remaining, 0.25);
+    if (estop_requested_.exchange(false) && connected_) {
+      send(apt::moveStop(config_.address, config_.channel, apt::StopMode::Immediate));
+      state_.moving = false;
+    }
+    const auto slice = std::min(remaining, 0.05);
     std::vector<std::uint8_t> bytes;
     try {
       bytes = transport_->read(std::chrono::milliseconds(static_cast<long>(std::ceil(slice * 1000))));

@@ -9,6 +9,7 @@
 //  - Every wait has a timeout ending in DeviceError(Timeout) naming the device and message.
 //  - A vanished link (unplug) throws DeviceError(Disconnected) and marks the axis position
 //    unknown; reconnect() reopens the link and re-reads the state.
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -82,7 +83,10 @@ class Stage {
   void jog(apt::JogDirection direction);  // one single-step jog, waits for completion
   void stop(bool immediate);              // waits for MOVE_STOPPED
   void sendStop(bool immediate);          // e-stop: the STOP message only, no wait
-  AxisState poll();                       // requests a status update
+  // Thread-safe: the thread that owns this Stage sends an immediate stop within 50 ms,
+  // even in the middle of a wait (the link itself is only touched by its owner thread).
+  void requestEmergencyStop() { estop_requested_ = true; }
+  AxisState poll();  // requests a status update
   AxisState state() const { return state_; }
   // Link-clock time from which the axis counts as settled: the arrival of its last motion
   // completion plus settle_s. Cameras discard frames exposed before it (captureSettled).
@@ -120,6 +124,7 @@ class Stage {
   bool connected_ = false;
   std::string pending_what_ = "move";
   double settled_at_ = 0.0;
+  std::atomic<bool> estop_requested_{false};
   std::function<void(const AxisState&)> on_state_;
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // Time for the virtual bench: a simulated clock that jumps (tests: instant, deterministic)
 // or the steady wall clock (the studio: moves take their real time).
+#include <atomic>
 #include <chrono>
 #include <thread>
 
@@ -13,16 +14,19 @@ class Clock {
   virtual void waitUntil(double t_s) = 0;  // simulated: jump; steady: sleep
 };
 
+// Thread-safe: several axis threads of one virtual bench may share it (time only moves on).
 class SimulatedClock : public Clock {
  public:
-  double now() const override { return t_; }
+  double now() const override { return t_.load(); }
   void waitUntil(double t_s) override {
-    if (t_s > t_) t_ = t_s;
+    double cur = t_.load();
+    while (t_s > cur && !t_.compare_exchange_weak(cur, t_s)) {
+    }
   }
-  void advance(double dt_s) { waitUntil(t_ + dt_s); }
+  void advance(double dt_s) { waitUntil(t_.load() + dt_s); }
 
  private:
-  double t_ = 0.0;
+  std::atomic<double> t_{0.0};
 };
 
 class SteadyClock : public Clock {

@@ -38,17 +38,59 @@ double VirtualAptController::minTravel() const {
 double VirtualAptController::maxTravel() const {
   return config_.stage.travel_max;
 }
-double VirtualAptController::position() const {
+double VirtualAptController::positionLocked() const {
   return profile_.position(now_);
 }
-bool VirtualAptController::moving() const {
+bool VirtualAptController::movingLocked() const {
   return motion_ != Motion::None && profile_.activeAt(now_);
+}
+
+using Lock = std::lock_guard<std::recursive_mutex>;
+double VirtualAptController::position() const {
+  Lock lock(mutex_);
+  return positionLocked();
+}
+bool VirtualAptController::moving() const {
+  Lock lock(mutex_);
+  return movingLocked();
+}
+double VirtualAptController::positionAt(double t_s) const {
+  Lock lock(mutex_);
+  return profile_.position(t_s);
+}
+bool VirtualAptController::homed() const {
+  Lock lock(mutex_);
+  return homed_;
+}
+bool VirtualAptController::enabled() const {
+  Lock lock(mutex_);
+  return enabled_;
+}
+int VirtualAptController::identifyCount() const {
+  Lock lock(mutex_);
+  return identify_count_;
+}
+std::vector<apt::Message> VirtualAptController::received() const {
+  Lock lock(mutex_);
+  return received_;
+}
+apt::VelParams VirtualAptController::velParams() const {
+  Lock lock(mutex_);
+  return vel_;
+}
+apt::JogParams VirtualAptController::jogParams() const {
+  Lock lock(mutex_);
+  return jog_;
+}
+void VirtualAptController::setMute(bool mute) {
+  Lock lock(mutex_);
+  mute_ = mute;
 }
 
 apt::ChannelStatus VirtualAptController::status() const {
   apt::ChannelStatus s;
   s.channel = 1;
-  const double x = position();
+  const double x = positionLocked();
   s.position = units_.positionToCounts(x);
   const double v = profile_.velocity(now_);
   if (config_.controller.kind == apt::MotorKind::Stepper) {
@@ -62,8 +104,8 @@ apt::ChannelStatus VirtualAptController::status() const {
   std::uint32_t b = kMotorConnected;
   if (enabled_) b |= kChannelEnabled;
   if (homed_) b |= kHomed;
-  if (motion_ == Motion::Home && moving()) b |= kHoming;
-  if (moving()) {
+  if (motion_ == Motion::Home && movingLocked()) b |= kHoming;
+  if (movingLocked()) {
     const bool jog = motion_ == Motion::JogStep || motion_ == Motion::JogContinuous;
     if (v > 0) b |= jog ? kJoggingForward : kMovingForward;
     if (v < 0) b |= jog ? kJoggingReverse : kMovingReverse;
@@ -86,7 +128,8 @@ void VirtualAptController::send(const apt::Message& m) {
 }
 
 void VirtualAptController::receive(std::span<const std::uint8_t> bytes) {
-  advanceTo(clock_->now());
+  Lock lock(mutex_);
+  advanceLocked(clock_->now());
   decoder_.feed(bytes);
   while (auto m = decoder_.next()) {
     received_.push_back(*m);
@@ -96,13 +139,15 @@ void VirtualAptController::receive(std::span<const std::uint8_t> bytes) {
 }
 
 std::vector<std::uint8_t> VirtualAptController::takeOutput() {
-  advanceTo(clock_->now());
+  Lock lock(mutex_);
+  advanceLocked(clock_->now());
   std::vector<std::uint8_t> out;
   out.swap(out_);
   return out;
 }
 
 double VirtualAptController::nextEventTime() const {
+  Lock lock(mutex_);
   if (!out_.empty()) return now_;
   double t = kInf;
   if (motion_ != Motion::None) t = std::min(t, std::max(now_, profile_.endTime()));
@@ -111,6 +156,11 @@ double VirtualAptController::nextEventTime() const {
 }
 
 void VirtualAptController::advanceTo(double t_s) {
+  Lock lock(mutex_);
+  advanceLocked(t_s);
+}
+
+void VirtualAptController::advanceLocked(double t_s) {
   for (;;) {
     double t_motion = motion_ != Motion::None ? profile_.endTime() : kInf;
     double t_update = updates_ ? next_update_ : kInf;
@@ -165,20 +215,20 @@ void VirtualAptController::startMove(double target, double v_max, double accel, 
     limit_hit_ = clamped != target;
     target = clamped;
   }
-  const double from = position();
+  const double from = positionLocked();
   profile_ = MotionProfile::trapezoid(now_, from, target, std::max(v_max, 1e-9), std::max(accel, 1e-9));
   motion_ = kind;
   if (profile_.endTime() <= now_) finishMotion();  // already there: reply at once
 }
 
 void VirtualAptController::stop(bool immediate) {
-  if (!moving()) {
+  if (!movingLocked()) {
     motion_ = Motion::Stopping;
-    profile_ = MotionProfile::rest(now_, position());
+    profile_ = MotionProfile::rest(now_, positionLocked());
     finishMotion();
     return;
   }
-  const double x = position(), v = profile_.velocity(now_);
+  const double x = positionLocked(), v = profile_.velocity(now_);
   const double a = std::max(units_.aptToAcceleration(vel_.acceleration), 1e-9);
   profile_ = immediate ? MotionProfile::rest(now_, x) : MotionProfile::decelerate(now_, x, v, a);
   if (!config_.stage.continuous && !immediate) {
@@ -215,8 +265,8 @@ void VirtualAptController::handle(const apt::Message& m) {
     }
     case id::kModSetChanEnableState:
       enabled_ = m.param2 == 0x01;
-      if (!enabled_ && moving()) {  // motor off: it stops where it is
-        profile_ = MotionProfile::rest(now_, position());
+      if (!enabled_ && movingLocked()) {  // motor off: it stops where it is
+        profile_ = MotionProfile::rest(now_, positionLocked());
         motion_ = Motion::None;
       }
       break;
@@ -264,17 +314,18 @@ void VirtualAptController::handle(const apt::Message& m) {
       break;
     case id::kMotMoveRelative:
       if (auto p = apt::parseMoveRelative(m); p && enabled_)
-        startMove(position() + units_.countsToPosition(p->value), vmax, acc, Motion::Move);
+        startMove(positionLocked() + units_.countsToPosition(p->value), vmax, acc, Motion::Move);
       break;
     case id::kMotMoveJog:
       if (enabled_) {
         const double dir = m.param2 == static_cast<std::uint8_t>(apt::JogDirection::Forward) ? 1.0 : -1.0;
         const double jv = units_.aptToVelocity(jog_.max_velocity), ja = units_.aptToAcceleration(jog_.acceleration);
         if (jog_.mode == apt::JogMode::Continuous) {
-          const double end = config_.stage.continuous ? position() + dir * 1e6 : (dir > 0 ? maxTravel() : minTravel());
+          const double end =
+              config_.stage.continuous ? positionLocked() + dir * 1e6 : (dir > 0 ? maxTravel() : minTravel());
           startMove(end, jv, ja, Motion::JogContinuous);
         } else {
-          startMove(position() + dir * units_.countsToPosition(jog_.step_size), jv, ja, Motion::JogStep);
+          startMove(positionLocked() + dir * units_.countsToPosition(jog_.step_size), jv, ja, Motion::JogStep);
         }
       }
       break;

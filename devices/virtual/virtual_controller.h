@@ -19,6 +19,7 @@
 //  - Motion commands on a disabled channel are ignored, as on the hardware.
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -52,22 +53,26 @@ class VirtualAptController {
   void advanceTo(double t_s);
 
   // Fault injection: a mute controller takes bytes and never answers.
-  void setMute(bool mute) { mute_ = mute; }
+  void setMute(bool mute);
 
-  // Inspection (tests, the studio's virtual-bench view).
+  // Inspection (tests, the studio's virtual-bench view). Thread-safe: the emulator is
+  // driven by its link's owner thread while views read it.
   const VirtualControllerConfig& config() const { return config_; }
   double position() const;
-  double positionAt(double t_s) const { return profile_.position(t_s); }  // within the current motion
-  bool homed() const { return homed_; }
-  bool enabled() const { return enabled_; }
+  double positionAt(double t_s) const;  // within the current motion
+  bool homed() const;
+  bool enabled() const;
   bool moving() const;
-  int identifyCount() const { return identify_count_; }
-  const std::vector<apt::Message>& received() const { return received_; }
-  apt::VelParams velParams() const { return vel_; }
-  apt::JogParams jogParams() const { return jog_; }
+  int identifyCount() const;
+  std::vector<apt::Message> received() const;
+  apt::VelParams velParams() const;
+  apt::JogParams jogParams() const;
 
  private:
   enum class Motion { None, Move, Home, JogStep, JogContinuous, Stopping };
+  double positionLocked() const;
+  bool movingLocked() const;
+  void advanceLocked(double t_s);
   void handle(const apt::Message& m);
   void send(const apt::Message& m);
   void startMove(double target, double v_max, double accel, Motion kind);
@@ -77,6 +82,7 @@ class VirtualAptController {
   double minTravel() const;
   double maxTravel() const;
 
+  mutable std::recursive_mutex mutex_;
   VirtualControllerConfig config_;
   std::shared_ptr<Clock> clock_;
   apt::UnitConverter units_;

@@ -1,0 +1,63 @@
+#pragma once
+// One motorised axis on its own thread: the thread owns the Stage (and so the transport and
+// its handle), runs submitted commands in order and polls the state when idle, publishing
+// snapshots. Other threads (the GUI) only submit, read snapshots and request an e-stop.
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "devices/stage/stage.h"
+#include "model/scene/scene.h"
+
+namespace fovea::devices {
+
+struct AxisSnapshot {
+  std::string element, axis, controller, serial, stage_model, unit;
+  bool is_virtual = false;
+  bool connected = false;
+  bool busy = false;              // a command is running
+  AxisState state;                // stage coordinates
+  double element_position = 0.0;  // state.position + home_offset (valid when state.known)
+  std::string last_error;
+};
+
+class AxisWorker {
+ public:
+  using Command = std::function<void(Stage&)>;
+  AxisWorker(std::unique_ptr<Stage> stage, StageBinding binding, bool is_virtual,
+             std::chrono::milliseconds idle_poll = std::chrono::milliseconds(200));
+  ~AxisWorker();
+  AxisWorker(const AxisWorker&) = delete;
+  AxisWorker& operator=(const AxisWorker&) = delete;
+
+  // Runs on the worker thread; the future carries the command's exception, if any.
+  std::future<void> submit(Command command);
+  // Immediate stop: queued commands are dropped, the running one is interrupted.
+  void emergencyStop();
+  AxisSnapshot snapshot() const;
+  void setListener(std::function<void(const AxisSnapshot&)> listener);
+  const StageBinding& binding() const { return binding_; }
+
+ private:
+  void run();
+  void publish(Stage& s, const std::string& error);
+
+  std::unique_ptr<Stage> stage_;
+  StageBinding binding_;
+  bool is_virtual_;
+  std::chrono::milliseconds idle_poll_;
+  mutable std::mutex mutex_;
+  std::condition_variable cv_;
+  std::deque<std::pair<Command, std::promise<void>>> queue_;
+  AxisSnapshot snapshot_;
+  std::function<void(const AxisSnapshot&)> listener_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace fovea::devices
