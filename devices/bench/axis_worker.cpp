@@ -5,8 +5,12 @@
 namespace fovea::devices {
 
 AxisWorker::AxisWorker(std::unique_ptr<Stage> stage, StageBinding binding, bool is_virtual,
-                       std::chrono::milliseconds idle_poll)
-    : stage_(std::move(stage)), binding_(std::move(binding)), is_virtual_(is_virtual), idle_poll_(idle_poll) {
+                       std::chrono::milliseconds idle_poll, std::chrono::milliseconds reconnect_interval)
+    : stage_(std::move(stage)),
+      binding_(std::move(binding)),
+      is_virtual_(is_virtual),
+      idle_poll_(idle_poll),
+      reconnect_interval_(reconnect_interval) {
   snapshot_.element = binding_.element;
   snapshot_.axis = binding_.axis;
   snapshot_.controller = binding_.controller;
@@ -110,7 +114,16 @@ void AxisWorker::run() {
       } catch (const std::exception& e) {
         error = e.what();
       }
+    } else if (ever_connected_ && std::chrono::steady_clock::now() - last_attempt_ >= reconnect_interval_) {
+      // Lost link: try to get it back (polling hot-plug; a replugged cube returns here).
+      last_attempt_ = std::chrono::steady_clock::now();
+      try {
+        s.reconnect();
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
     }
+    ever_connected_ = ever_connected_ || s.connected();
     publish(s, error);
   }
   // Shutdown: fail whatever is still queued.

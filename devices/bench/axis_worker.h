@@ -29,8 +29,11 @@ struct AxisSnapshot {
 class AxisWorker {
  public:
   using Command = std::function<void(Stage&)>;
+  // idle_poll: status poll period while idle. reconnect_interval: after a link loss, how
+  // often the idle worker tries to reopen it (a replugged cube comes back by itself).
   AxisWorker(std::unique_ptr<Stage> stage, StageBinding binding, bool is_virtual,
-             std::chrono::milliseconds idle_poll = std::chrono::milliseconds(200));
+             std::chrono::milliseconds idle_poll = std::chrono::milliseconds(200),
+             std::chrono::milliseconds reconnect_interval = std::chrono::milliseconds(1000));
   ~AxisWorker();
   AxisWorker(const AxisWorker&) = delete;
   AxisWorker& operator=(const AxisWorker&) = delete;
@@ -50,7 +53,9 @@ class AxisWorker {
   std::unique_ptr<Stage> stage_;
   StageBinding binding_;
   bool is_virtual_;
-  std::chrono::milliseconds idle_poll_;
+  std::chrono::milliseconds idle_poll_, reconnect_interval_;
+  bool ever_connected_ = false;  // worker thread only
+  std::chrono::steady_clock::time_point last_attempt_{};
   mutable std::mutex mutex_;
   std::condition_variable cv_;
   std::deque<std::pair<Command, std::promise<void>>> queue_;

@@ -25,10 +25,13 @@ Bench::Bench(const Scene& scene, BenchOptions options, std::optional<std::vector
       // Power-on at the scene's nominal pose (element coordinate 0), homed.
       vc.position = std::clamp(elementToStage(b, 0.0), config.soft_min, config.soft_max);
       axis.emulator = std::make_shared<VirtualAptController>(vc, options.virtual_clock);
-      transport = std::make_unique<VirtualTransport>(axis.emulator, options.virtual_clock);
+      auto link = std::make_unique<VirtualTransport>(axis.emulator, options.virtual_clock);
+      axis.link = link.get();
+      transport = std::move(link);
     }
     auto stage = std::make_unique<Stage>(std::move(transport), config);
-    axis.worker = std::make_unique<AxisWorker>(std::move(stage), b, !present, options.idle_poll);
+    axis.worker =
+        std::make_unique<AxisWorker>(std::move(stage), b, !present, options.idle_poll, options.reconnect_interval);
     axes_.push_back(std::move(axis));
   }
 }
@@ -56,6 +59,12 @@ bool Bench::anyVirtual() const {
 std::shared_ptr<VirtualAptController> Bench::virtualController(const std::string& element, const std::string& axis) {
   for (auto& a : axes_)
     if (a.worker->binding().element == element && a.worker->binding().axis == axis) return a.emulator;
+  return nullptr;
+}
+
+VirtualTransport* Bench::virtualLink(const std::string& element, const std::string& axis) {
+  for (auto& a : axes_)
+    if (a.worker->binding().element == element && a.worker->binding().axis == axis) return a.link;
   return nullptr;
 }
 

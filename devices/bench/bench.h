@@ -17,6 +17,7 @@ struct BenchOptions {
   bool use_hardware = true;              // bind to USB controllers found by serial
   std::shared_ptr<Clock> virtual_clock;  // default: the steady clock (real-time moves)
   std::chrono::milliseconds idle_poll{200};
+  std::chrono::milliseconds reconnect_interval{1000};
 };
 
 class Bench {
@@ -29,6 +30,7 @@ class Bench {
   AxisWorker* find(const std::string& element, const std::string& axis);
   bool anyVirtual() const;
   std::shared_ptr<VirtualAptController> virtualController(const std::string& element, const std::string& axis);
+  VirtualTransport* virtualLink(const std::string& element, const std::string& axis);  // unplug simulation
 
   std::vector<std::future<void>> connectAll();
   // Moves an element coordinate (mm or deg, the scene's frame): stage target = value -
@@ -41,6 +43,7 @@ class Bench {
   struct Axis {
     std::unique_ptr<AxisWorker> worker;
     std::shared_ptr<VirtualAptController> emulator;  // null for hardware
+    VirtualTransport* link = nullptr;                // owned by the worker's Stage
   };
   std::vector<Axis> axes_;
 };
