@@ -62,6 +62,26 @@ class TestCliStage : public QObject {
     QCOMPARE(last_stage_model, std::string("K10CR1"));
   }
 
+  void devicesListsARecordedUsbController() {
+    // A KDC101 described for umockdev (sysfs + descriptors): listed as hardware, not virtual.
+    const QString runner = QStandardPaths::findExecutable("umockdev-run");
+    if (runner.isEmpty()) QSKIP("umockdev-run is not installed (scripts/install-deps.sh)");
+    QProcess p;
+    p.start(runner, {"-d", QString(FOVEA_SOURCE_DIR) + "/tests/devices/data/kdc101.umockdev", "--", FOVEA_CLI_PATH,
+                     "devices", "--json"});
+    QVERIFY(p.waitForFinished(60000));
+    QCOMPARE(p.exitCode(), 0);
+    const auto j = nlohmann::json::parse(p.readAllStandardOutput().toStdString());
+    int hardware = 0;
+    for (const auto& d : j["devices"])
+      if (!d["virtual"].get<bool>() && d["kind"] == "stage-controller") {
+        ++hardware;
+        QCOMPARE(d["serial"].get<std::string>(), std::string("27000001"));
+        QCOMPARE(d["model"].get<std::string>(), std::string("KDC101"));
+      }
+    QCOMPARE(hardware, 1);
+  }
+
   void moveWithTrace() {
     const QString trace = tmp("move.trace");
     const Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "move-abs", "15"});

@@ -3,6 +3,8 @@
 // enumeration / opening a missing device failing cleanly.
 #include <QtTest>
 
+#include <mutex>
+
 #include "devices/transport/device_error.h"
 #include "devices/transport/ftdi.h"
 #include "devices/transport/libusb_transport.h"
@@ -70,6 +72,22 @@ class TestUsbTransport : public QObject {
       QCOMPARE(list.size(), std::size_t{1});
       QCOMPARE(list[0].serial, std::string("27000001"));
       QCOMPARE(list[0].model, std::string("KDC101"));
+      // The hot-plug monitor reports the controller present at start as connected.
+      std::mutex m;
+      std::vector<std::string> arrived;
+      {
+        UsbHotplugMonitor monitor([&](TransportEvent e, const DeviceInfo& d) {
+          std::lock_guard lock(m);
+          if (e == TransportEvent::Connected) arrived.push_back(d.serial);
+        });
+        QTRY_VERIFY_WITH_TIMEOUT(
+            [&] {
+              std::lock_guard lock(m);
+              return !arrived.empty();
+            }(),
+            5000);
+      }
+      QCOMPARE(arrived.front(), std::string("27000001"));
       return;
     }
     const QString runner = QStandardPaths::findExecutable("umockdev-run");
