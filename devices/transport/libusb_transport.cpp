@@ -2,6 +2,7 @@
 
 #include <libusb.h>
 
+#include <algorithm>
 #include <array>
 #include <map>
 
@@ -233,9 +234,18 @@ void LibusbTransport::ioThread() {
       out.swap(tx_);
     }
     for (auto& chunk : out) {
-      int sent = 0;
-      rc = libusb_bulk_transfer(handle, ftdi::kEndpointOut, chunk.data(), static_cast<int>(chunk.size()), &sent, 1000);
-      if (rc == LIBUSB_ERROR_NO_DEVICE || rc == LIBUSB_ERROR_IO || rc == LIBUSB_ERROR_PIPE) gone = true;
+      // RTS/CTS may hold the bridge back: a timed-out transfer can be partial, so resend the rest.
+      std::size_t done = 0;
+      while (done < chunk.size() && !gone && !stop_) {
+        int sent = 0;
+        rc = libusb_bulk_transfer(handle, ftdi::kEndpointOut, chunk.data() + done,
+                                  static_cast<int>(chunk.size() - done), &sent, 1000);
+        done += static_cast<std::size_t>(std::max(sent, 0));
+        if (rc == LIBUSB_ERROR_NO_DEVICE || rc == LIBUSB_ERROR_IO || rc == LIBUSB_ERROR_PIPE)
+          gone = true;
+        else if (rc != 0 && rc != LIBUSB_ERROR_TIMEOUT)
+          break;  // unexpected: drop the rest of this chunk
+      }
     }
     int got = 0;
     rc = libusb_bulk_transfer(handle, ftdi::kEndpointIn, buffer.data(), static_cast<int>(buffer.size()), &got, 20);
