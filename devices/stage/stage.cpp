@@ -229,6 +229,9 @@ void Stage::waitMotionEnd(double timeout_s, const std::string& what) {
 void Stage::home() {
   requireConnected();
   if (!state_.known) poll();
+  if (!state_.enabled)  // the controller would ignore the command and the wait would time out
+    throw DeviceError(DeviceError::Kind::Disabled, name() + ": channel " + std::to_string(config_.channel) +
+                                                       " is disabled: enable it before homing");
   const double span = config_.stage.continuous ? 360.0 : config_.stage.travel_max - config_.stage.travel_min;
   const double timeout = 1.5 * span / std::max(config_.stage.home_velocity, 1e-6) + config_.move_timeout_margin_s;
   send(apt::moveHome(config_.address, config_.channel));

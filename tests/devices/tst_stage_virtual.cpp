@@ -220,7 +220,9 @@ class TestStageVirtual : public QObject {
     r.stage->setEnabled(false);
     QVERIFY(!r.stage->state().enabled);
     QVERIFY_THROWS_EXCEPTION(DeviceError, r.stage->moveAbsolute(3.0));
+    QVERIFY_THROWS_EXCEPTION(DeviceError, r.stage->home());
     QVERIFY(!r.traceHas("TX 53 04"));
+    QVERIFY(!r.traceHas("TX 43 04"));
     r.stage->setEnabled(true);
     r.stage->poll();
     r.stage->moveAbsolute(3.0);
