@@ -302,7 +302,14 @@ void Stage::sendStop(bool immediate) {
 }
 
 void Stage::stop(bool immediate) {
-  sendStop(immediate);
+  const bool was_moving = state_.moving || !state_.known;
+  sendStop(immediate);  // first, whatever the state: stopping must never wait on a query
+  if (!was_moving) {
+    // Idle axis: not every firmware answers a stop with MOVE_STOPPED; the status says enough.
+    settled_at_ = transport_->now() + config_.settle_s;
+    poll();
+    return;
+  }
   const double v = std::max(std::abs(state_.velocity), units_.aptToVelocity(vel_.max_velocity));
   const double a = std::max(units_.aptToAcceleration(vel_.acceleration), 1e-9);
   waitFor([](const apt::Message& m) { return m.id == apt::id::kMotMoveStopped; }, v / a + config_.move_timeout_margin_s,
