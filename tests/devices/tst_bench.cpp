@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "devices/bench/bench.h"
+#include "devices/bench/target_follower.h"
 #include "model/scene/scene_io.h"
 
 using namespace fovea;
@@ -90,6 +91,41 @@ class TestBench : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(std::abs(hx->snapshot().element_position - 3.0) < 1e-4, 2000);
     bench.moveElement("hoe", "x", -1.0).get();
     QVERIFY(std::abs(bench.virtualController("hoe", "x")->position() - 11.5) < 1e-4);
+  }
+
+  void followGazeCoalescesTargets() {
+    // A gaze slider dragged from 0 to 10 deg in 100 steps while the HOE moves in real time:
+    // the axis ends at the last target, with far fewer moves than slider events.
+    Scene scene = prototype();
+    scene.stages.resize(2);  // hoe.x, hoe.y
+    BenchOptions o;
+    o.idle_poll = std::chrono::milliseconds(20);
+    Bench bench(scene, o, std::vector<DeviceInfo>{});
+    for (auto& f : bench.connectAll()) f.get();
+    // Illustrative map: HOE x follows 0.3 mm per degree of yaw, y 0.3 mm per degree of pitch.
+    GazeFollower follow(
+        bench.axes(),
+        [](double yaw, double pitch) {
+          return std::map<GazeFollower::Key, double>{{{"hoe", "x"}, 0.3 * yaw}, {{"hoe", "y"}, 0.3 * pitch}};
+        },
+        0.005);
+    for (int i = 1; i <= 100; ++i) {
+      follow.setGaze(0.1 * i, 0.0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(bench.find("hoe", "x")->snapshot().element_position - 3.0) < 1e-4, 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(!bench.virtualController("hoe", "x")->moving(), 5000);
+    const int moves = follow.follower("hoe", "x")->movesCommanded();
+    QVERIFY2(moves >= 2 && moves < 50, qPrintable(QString::number(moves)));
+    QCOMPARE(*follow.follower("hoe", "x")->lastCommanded(), 3.0);
+    // y stayed within the deadband of 0: one move at most, no motion.
+    QVERIFY(follow.follower("hoe", "y")->movesCommanded() <= 1);
+    QVERIFY(std::abs(bench.virtualController("hoe", "y")->position() - 12.5) < 1e-6);
+    // A target outside the soft limits (element 9 mm) is refused and reported.
+    follow.setGaze(30.0, 0.0);
+    QTRY_VERIFY_WITH_TIMEOUT(bench.find("hoe", "x")->snapshot().last_error.find("soft limits") != std::string::npos,
+                             5000);
+    QVERIFY(std::abs(bench.virtualController("hoe", "x")->position() - 15.5) < 1e-4);  // still at element 3 mm
   }
 
   void emergencyStopInterruptsARunningMove() {
