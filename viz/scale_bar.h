@@ -1,0 +1,42 @@
+#pragma once
+// A scale bar in millimetres at the bottom right of a renderer: a bar of a round length
+// (1, 2 or 5 x 10^n mm) about 120 px long, valid at the camera's focal plane (perspective)
+// or everywhere (parallel projection). Updated before each render.
+
+#include <vtkNew.h>
+
+class vtkActor2D;
+class vtkCallbackCommand;
+class vtkObject;
+class vtkPoints;
+class vtkRenderer;
+class vtkTextActor;
+
+namespace fovea::viz {
+
+// Millimetres per pixel at the focal plane of the renderer's active camera.
+double millimetresPerPixel(vtkRenderer* renderer);
+// The largest 1, 2, 5 x 10^n not above `limit` (limit > 0).
+double roundScaleLength(double limit);
+
+class ScaleBar {
+ public:
+  explicit ScaleBar(vtkRenderer* renderer);
+  ~ScaleBar();
+  ScaleBar(const ScaleBar&) = delete;
+  ScaleBar& operator=(const ScaleBar&) = delete;
+
+  double lengthMm() const { return length_mm_; }
+  void update();
+
+ private:
+  static void onStart(vtkObject*, unsigned long, void* clientData, void*);
+  vtkRenderer* renderer_;
+  vtkNew<vtkPoints> points_;
+  vtkNew<vtkActor2D> bar_;
+  vtkNew<vtkTextActor> label_;
+  vtkNew<vtkCallbackCommand> callback_;
+  double length_mm_ = 0.0;
+};
+
+}  // namespace fovea::viz
