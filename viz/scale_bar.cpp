@@ -14,6 +14,7 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper2D.h>
 #include <vtkProperty2D.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -58,8 +59,14 @@ ScaleBar::ScaleBar(vtkRenderer* renderer) : renderer_(renderer) {
   label_->GetTextProperty()->SetColor(1, 1, 1);
   label_->GetTextProperty()->SetJustificationToCentered();
   label_->PickableOff();
-  renderer_->AddViewProp(bar_);
-  renderer_->AddViewProp(label_);
+  overlay_->SetLayer(1);
+  overlay_->InteractiveOff();
+  if (vtkRenderWindow* window = renderer_->GetRenderWindow()) {
+    if (window->GetNumberOfLayers() < 2) window->SetNumberOfLayers(2);
+    window->AddRenderer(overlay_);
+  }
+  overlay_->AddViewProp(bar_);
+  overlay_->AddViewProp(label_);
   callback_->SetClientData(this);
   callback_->SetCallback(&ScaleBar::onStart);
   renderer_->AddObserver(vtkCommand::StartEvent, callback_);
@@ -67,8 +74,7 @@ ScaleBar::ScaleBar(vtkRenderer* renderer) : renderer_(renderer) {
 
 ScaleBar::~ScaleBar() {
   renderer_->RemoveObserver(callback_);
-  renderer_->RemoveViewProp(bar_);
-  renderer_->RemoveViewProp(label_);
+  if (vtkRenderWindow* window = overlay_->GetRenderWindow()) window->RemoveRenderer(overlay_);
 }
 
 void ScaleBar::onStart(vtkObject*, unsigned long, void* clientData, void*) {

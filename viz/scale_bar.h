@@ -1,7 +1,8 @@
 #pragma once
 // A scale bar in millimetres at the bottom right of a renderer: a bar of a round length
 // (1, 2 or 5 x 10^n mm) about 120 px long, valid at the camera's focal plane (perspective)
-// or everywhere (parallel projection). Updated before each render.
+// or everywhere (parallel projection). Updated before each render; drawn in an overlay
+// renderer (layer 1) of the same window so the translucent passes never touch it.
 
 #include <vtkNew.h>
 
@@ -32,6 +33,7 @@ class ScaleBar {
  private:
   static void onStart(vtkObject*, unsigned long, void* clientData, void*);
   vtkRenderer* renderer_;
+  vtkNew<vtkRenderer> overlay_;  // own layer: kept out of the scene's depth peeling
   vtkNew<vtkPoints> points_;
   vtkNew<vtkActor2D> bar_;
   vtkNew<vtkTextActor> label_;

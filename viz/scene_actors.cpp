@@ -116,7 +116,8 @@ void addHoe(const Scene& scene, SceneLayer& layer) {
     auto actor = makeActor(box(w, h, t, {0, 0, z}), wavelengthColor(l.recording.wavelength_nm), 0.4, hf);
     layer.add(actor, hoeLayerId(static_cast<int>(i)));
   }
-  // The carrier's outline around the stack, and the substrate on the world side (-z local).
+  // The carrier's outline around the stack, and the substrate on the world side: local +z,
+  // which is bench +z (towards the world) at zero rotation (scene.h).
   const double margin = 0.5;
   auto outline = makeActor(polyline({{-w / 2 - margin, -h / 2 - margin, z_max},
                                      {w / 2 + margin, -h / 2 - margin, z_max},
@@ -129,7 +130,7 @@ void addHoe(const Scene& scene, SceneLayer& layer) {
   layer.add(outline, "hoe");
   if (scene.hoe.substrate_thickness_mm > 0.0) {
     const double s = scene.hoe.substrate_thickness_mm;
-    layer.add(makeActor(box(w, h, s, {0, 0, z_min - s / 2}), colors::kSubstrate, 0.35, hf), "hoe");
+    layer.add(makeActor(box(w, h, s, {0, 0, z_max + s / 2}), colors::kSubstrate, 0.35, hf), "hoe");
   }
 }
 

@@ -158,8 +158,8 @@ void SceneView::showStandardView(StandardView view) {
     case StandardView::Side:  // from the projector's side (+x) looking at -x
       dir = {1, 0, 0};
       break;
-    case StandardView::Isometric:  // from the projector's side, above, slightly from the world side
-      dir = Eigen::Vector3d(1.0, 0.75, 0.45).normalized();
+    case StandardView::Isometric:  // from the world side, above and towards the projector
+      dir = Eigen::Vector3d(0.8, 0.6, 1.0).normalized();
       break;
     case StandardView::EyeView: {
       const EyePlacement e = placeEye(scene_);
@@ -186,7 +186,7 @@ void SceneView::resetCamera() {
   double b[6];
   ren->ComputeVisiblePropBounds(b);
   if (b[0] <= b[1]) ren->ResetCamera(b);
-  ren->GetActiveCamera()->Zoom(1.15);
+  ren->GetActiveCamera()->Zoom(1.25);  // the bounding sphere frames loosely
   ren->ResetCameraClippingRange();
   requestRender();
 }
