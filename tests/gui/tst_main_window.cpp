@@ -3,7 +3,10 @@
 // current scene, QSaveFile saves, and a screenshot that shows the scene's actors.
 #include <QtTest>
 
+#include <QAbstractButton>
+#include <QDockWidget>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QTreeWidgetItem>
 #include <QUndoStack>
 
@@ -73,6 +76,21 @@ bool cyanish(int r, int g, int b) {
 // (The scale bar's pure white, r == b, is excluded.)
 bool eyeballish(int r, int g, int b) {
   return r > 150 && g > 140 && b > 110 && r - b >= 8 && r - b < 90;
+}
+
+// Answers the next modal message box with `button`, recording its text in `asked`.
+void answerNextMessageBox(QMessageBox::StandardButton button, QString* asked) {
+  auto* timer = new QTimer;
+  timer->setInterval(20);
+  QObject::connect(timer, &QTimer::timeout, [timer, button, asked] {
+    auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+    if (!box) return;
+    *asked = box->text();
+    timer->stop();
+    timer->deleteLater();
+    box->button(button)->click();
+  });
+  timer->start();
 }
 
 }  // namespace
@@ -243,6 +261,40 @@ class TestMainWindow : public QObject {
     QCOMPARE(w->document()->scene().eye.gaze_deg[0], 10.0);
   }
 
+  void quittingWithUnsavedChangesAsks() {
+    w->selectElement("eye");
+    QCOMPARE(w->propertyEditor()->commitText("eye.relief_mm", "30"), QString());
+    QVERIFY(w->isWindowModified());
+    QVERIFY(w->windowTitle().startsWith("prototype-bench.json (embedded)[*]"));
+    QString asked;
+    answerNextMessageBox(QMessageBox::Cancel, &asked);
+    QVERIFY(!w->close());
+    QCOMPARE(asked, QString("prototype-bench.json (embedded) has unsaved changes. Save them?"));
+    QVERIFY(w->isVisible());
+    QCOMPARE(w->document()->scene().eye.relief_mm, 30.0);
+    asked.clear();
+    answerNextMessageBox(QMessageBox::Discard, &asked);
+    QVERIFY(w->close());
+    QVERIFY(!asked.isEmpty());
+  }
+
+  void settingsPersist() {
+    // QSettings live under the test's scratch XDG_CONFIG_HOME (see main()).
+    w->setPersistentSettings(true);
+    const auto path = tmpDir() / "recent.json";
+    QVERIFY(w->saveTo(QString::fromStdString(path.string()), false));
+    w->findChild<QDockWidget*>("MessagesDock")->hide();
+    QVERIFY(w->close());  // nothing unsaved: no question, settings written
+    studio::MainWindow again;
+    again.setPersistentSettings(true);
+    again.restoreSettings();
+    QCOMPARE(again.recentFiles().value(0), QString::fromStdString(path.string()));
+    again.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&again));
+    QVERIFY(!again.findChild<QDockWidget*>("MessagesDock")->isVisible());
+    QVERIFY(again.findChild<QDockWidget*>("PropertiesDock")->isVisible());
+  }
+
   void screenshotShowsTheScene() {
     viz::SceneView* view = w->sceneView();
     view->showStandardView(viz::StandardView::Isometric);
@@ -264,7 +316,12 @@ class TestMainWindow : public QObject {
 
 int main(int argc, char** argv) {
   viz::installDefaultSurfaceFormat();  // before the QApplication, as fovea-studio does
+  const auto config = tmpDir() / "config";
+  std::filesystem::remove_all(config);
+  qputenv("XDG_CONFIG_HOME", QByteArray::fromStdString(config.string()));
   QApplication app(argc, argv);
+  QApplication::setOrganizationName("FoveatedARStudioTest");
+  QApplication::setApplicationName("tst_main_window");
   TestMainWindow test;
   return QTest::qExec(&test, argc, argv);
 }
