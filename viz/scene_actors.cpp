@@ -253,6 +253,36 @@ void addLens(const Scene& scene, SceneLayer& layer) {
   layer.add(actor, "beam_shaping_lens");
 }
 
+// Translation stages as their travel: a bar along the driven element's local axis from the
+// low to the high soft limit (relative to the element's nominal pose), with end stops.
+// Rotation stages and the gaze camera (not part of the bench drawing) get no actor.
+void addStages(const Scene& scene, SceneLayer& layer) {
+  for (std::size_t i = 0; i < scene.stages.size(); ++i) {
+    const StageBinding& st = scene.stages[i];
+    const Pose* pose = st.element == "hoe"                 ? &scene.hoe.pose
+                       : st.element == "foveal_display"    ? &scene.foveal_display.pose
+                       : st.element == "projector"         ? &scene.projector.pose
+                       : st.element == "beam_shaping_lens" ? &scene.lens.pose
+                                                           : nullptr;
+    const int axis = st.axis == "x" ? 0 : st.axis == "y" ? 1 : st.axis == "z" ? 2 : -1;
+    if (!pose || axis < 0) continue;
+    const Frame f = frameOf(*pose);
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+    a[axis] = st.soft_limits[0];
+    b[axis] = st.soft_limits[1];
+    const QString id = stageId(static_cast<int>(i));
+    auto bar = makeActor(polyline({a, b}, false), colors::kStage, 1.0, f);
+    bar->GetProperty()->SetLineWidth(3.0);
+    bar->GetProperty()->LightingOff();
+    layer.add(bar, id);
+    for (const Eigen::Vector3d& end : {a, b}) {
+      Frame stop = f;
+      stop.origin = f.toBench(end);
+      layer.add(makeActor(sphereCap(0.8, 180.0), colors::kStage, 1.0, stop), id);
+    }
+  }
+}
+
 }  // namespace
 
 std::array<double, 3> wavelengthColor(double nm) {
@@ -286,6 +316,7 @@ void buildSceneActors(const Scene& scene, SceneLayer& layer) {
   addEye(scene, layer);
   addFovealDisplay(scene, layer);
   addLens(scene, layer);
+  addStages(scene, layer);
 }
 
 }  // namespace fovea::viz

@@ -10,6 +10,7 @@
 //   Foveal display: the micro-OLED panel and its image combiner on the eye's axis.
 //   Beam-shaping lens: a lens body from its focal length, index and thickness (ghosted
 //   when disabled).
+//   Translation stages: the travel between the soft limits along the driven axis.
 
 #include <array>
 
@@ -32,6 +33,7 @@ inline constexpr std::array<double, 3> kMicroOled{0.05, 0.75, 0.75};
 inline constexpr std::array<double, 3> kCombiner{0.60, 0.85, 1.00};
 inline constexpr std::array<double, 3> kLens{0.65, 0.80, 1.00};
 inline constexpr std::array<double, 3> kSubstrate{0.75, 0.75, 0.80};
+inline constexpr std::array<double, 3> kStage{0.85, 0.35, 0.85};
 inline constexpr std::array<double, 3> kSelection{1.00, 1.00, 0.00};
 }  // namespace colors
 

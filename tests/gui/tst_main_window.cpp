@@ -10,6 +10,8 @@
 #include <QTreeWidgetItem>
 #include <QUndoStack>
 
+#include <vtkProp.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -130,6 +132,28 @@ class TestMainWindow : public QObject {
                            "foveal_display", "beam_shaping_lens"})
       QVERIFY2(!w->sceneView()->sceneLayer().propsOf(id).empty(), id);
     QVERIFY(w->sceneView()->scene() == s);
+    // Real sizes: the 44 x 36 mm HOE, the HOE's x stage travelling -8..+8 mm (end stops of
+    // 0.8 mm radius); the gaze camera's rotation stage is not drawn.
+    auto bounds = [&](const char* id) {
+      std::array<double, 6> b{1e9, -1e9, 1e9, -1e9, 1e9, -1e9};
+      for (vtkProp* p : w->sceneView()->sceneLayer().propsOf(id)) {
+        const double* pb = p->GetBounds();
+        for (int i = 0; i < 3; ++i) {
+          b[2 * i] = std::min(b[2 * i], pb[2 * i]);
+          b[2 * i + 1] = std::max(b[2 * i + 1], pb[2 * i + 1]);
+        }
+      }
+      return b;
+    };
+    const auto hoe = bounds("hoe_layers[1]");
+    QCOMPARE(hoe[0], -22.0);
+    QCOMPARE(hoe[1], 22.0);
+    QCOMPARE(hoe[2], -18.0);
+    QCOMPARE(hoe[3], 18.0);
+    const auto stage = bounds("stages[0]");
+    QVERIFY2(std::abs(stage[0] + 8.8) < 1e-3 && std::abs(stage[1] - 8.8) < 1e-3,  // tessellated stops
+             qPrintable(QString("stage x from %1 to %2").arg(stage[0]).arg(stage[1])));
+    QVERIFY(w->sceneView()->sceneLayer().propsOf("stages[4]").empty());
     QVERIFY(w->messageLog()->entries().first().startsWith("info: Opened the default scene: Optical bench prototype"));
   }
 
@@ -211,8 +235,12 @@ class TestMainWindow : public QObject {
     QTest::mouseClick(view, Qt::LeftButton, {}, eye->toPoint());
     QCOMPARE(w->sceneTree()->selectedElement(), QString("eye"));
     QCOMPARE(w->propertyEditor()->element(), QString("eye"));
-    // The micro-OLED, 30 mm above the HOE centre.
-    const auto oled = view->widgetPositionOf(toVec(w->document()->scene().foveal_display.pose.position_mm));
+    // The micro-OLED seen from above, clicked on its back away from its stage bars (which
+    // run through its centre along local x and y).
+    view->showStandardView(viz::StandardView::Top);
+    view->renderToImage();
+    const Frame panel = frameOf(w->document()->scene().foveal_display.pose);
+    const auto oled = view->widgetPositionOf(panel.toBench({3.9, 2.2, -1.0}));
     QVERIFY(oled.has_value());
     QTest::mouseClick(view, Qt::LeftButton, {}, oled->toPoint());
     QCOMPARE(w->sceneTree()->selectedElement(), QString("foveal_display"));
