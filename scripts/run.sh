@@ -13,5 +13,5 @@ if [ -n "${DISPLAY:-}" ]; then
   exec "$studio" "$@"
 fi
 shot="${FOVEA_SCREENSHOT:-$PWD/build/default/fovea-studio-screenshot.png}"
-xvfb-run -a -s "-screen 0 1920x1080x24" "$studio" "$@" --screenshot "$shot" --size 1600x1000
+xvfb-run -a -s "-screen 0 1920x1080x24" "$studio" "$@" --screenshot "$shot" --size 1600x1000 >/dev/null
 echo "Screenshot of the studio: $shot"

@@ -1,0 +1,303 @@
+#include "app/studio/main_window.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QSaveFile>
+#include <QSettings>
+#include <QStatusBar>
+#include <QUndoStack>
+
+#include "app/embedded_scene.h"
+#include "app/studio/about_text.h"
+#include "app/studio/window_capture.h"
+#include "model/scene/scene_io.h"
+#include "viz/scene_view.h"
+#include "widgets/message_log.h"
+#include "widgets/property_editor.h"
+#include "widgets/scene_document.h"
+#include "widgets/scene_tree.h"
+
+// The resources live in the static fovea_app library: register them explicitly.
+static void initStudioResources() {
+  Q_INIT_RESOURCE(resources);
+}
+
+namespace fovea::studio {
+
+namespace {
+constexpr int kMaxRecent = 8;
+const char* kSceneFilter = "Scene files (*.json);;All files (*)";
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+  initStudioResources();
+  setObjectName("MainWindow");
+  setWindowIcon(QIcon(":/icons/fovea-studio.svg"));
+  document_ = new widgets::SceneDocument(this);
+  view_ = new viz::SceneView(this);
+  view_->setObjectName("SceneView");
+  setCentralWidget(view_);
+  createDocks();
+  createMenus();
+  statusBar()->showMessage(tr("Drag: orbit · Shift+drag or middle: pan · wheel or right-drag: zoom · click: select"));
+
+  connect(document_, &widgets::SceneDocument::sceneChanged, this, [this] { view_->setScene(document_->scene()); });
+  connect(document_, &widgets::SceneDocument::sceneReplaced, this, [this] {
+    view_->setScene(document_->scene(), true);
+    selectElement({});
+  });
+  connect(document_, &widgets::SceneDocument::modifiedChanged, this, [this] { updateTitle(); });
+  connect(document_, &widgets::SceneDocument::filePathChanged, this, [this] { updateTitle(); });
+  connect(tree_, &widgets::SceneTree::elementSelected, this, &MainWindow::selectElement);
+  connect(view_, &viz::SceneView::elementPicked, this, &MainWindow::selectElement);
+  connect(properties_, &widgets::PropertyEditor::editRefused, this,
+          [this](const QString&, const QString& message) { log_->warning(tr("edit refused: %1").arg(message)); });
+  connect(document_->undoStack(), &QUndoStack::indexChanged, this, [this] {
+    const QUndoStack* s = document_->undoStack();
+    if (s->index() > 0) statusBar()->showMessage(s->text(s->index() - 1), 4000);
+  });
+  resize(1400, 900);
+  openEmbeddedDefault();
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::createDocks() {
+  tree_ = new widgets::SceneTree(document_, this);
+  addPanel(tree_, tr("Scene"), "SceneTreeDock", Qt::LeftDockWidgetArea);
+  properties_ = new widgets::PropertyEditor(document_, this);
+  addPanel(properties_, tr("Properties"), "PropertiesDock", Qt::RightDockWidgetArea);
+  log_ = new widgets::MessageLog(this);
+  addPanel(log_, tr("Messages"), "MessagesDock", Qt::BottomDockWidgetArea);
+  resizeDocks({findChild<QDockWidget*>("SceneTreeDock"), findChild<QDockWidget*>("PropertiesDock")}, {300, 380},
+              Qt::Horizontal);
+  resizeDocks({findChild<QDockWidget*>("MessagesDock")}, {130}, Qt::Vertical);
+}
+
+QDockWidget* MainWindow::addPanel(QWidget* panel, const QString& title, const QString& objectName,
+                                  Qt::DockWidgetArea area) {
+  auto* dock = new QDockWidget(title, this);
+  dock->setObjectName(objectName);
+  dock->setWidget(panel);
+  addDockWidget(area, dock);
+  if (panelsMenu_) panelsMenu_->addAction(dock->toggleViewAction());
+  return dock;
+}
+
+void MainWindow::createMenus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(tr("&New"), QKeySequence::New, this, &MainWindow::newScene);
+  file->addAction(tr("&Open…"), QKeySequence::Open, this, &MainWindow::openDialog);
+  recentMenu_ = file->addMenu(tr("Open &Recent"));
+  connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
+  file->addSeparator();
+  file->addAction(tr("&Save"), QKeySequence::Save, this, &MainWindow::save);
+  file->addAction(tr("Save &As…"), QKeySequence::SaveAs, this, &MainWindow::saveAsDialog);
+  file->addSeparator();
+  file->addAction(tr("Export Screens&hot…"), QKeySequence(tr("Ctrl+E")), this, &MainWindow::exportScreenshotDialog);
+  file->addSeparator();
+  file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
+  undo->setShortcut(QKeySequence::Undo);
+  QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
+  redo->setShortcut(QKeySequence::Redo);
+  edit->addAction(undo);
+  edit->addAction(redo);
+
+  viewMenu_ = menuBar()->addMenu(tr("&View"));
+  using SV = viz::StandardView;
+  auto addView = [this](const QString& name, const QString& keys, SV v) {
+    viewMenu_->addAction(name, QKeySequence(keys), this, [this, v] { view_->showStandardView(v); });
+  };
+  addView(tr("&Isometric"), tr("Ctrl+0"), SV::Isometric);
+  addView(tr("&Top"), tr("Ctrl+1"), SV::Top);
+  addView(tr("&Side"), tr("Ctrl+2"), SV::Side);
+  addView(tr("&Eye's View"), tr("Ctrl+3"), SV::EyeView);
+  viewMenu_->addAction(tr("&Reset Camera"), QKeySequence(tr("Home")), this, [this] { view_->resetCamera(); });
+  viewMenu_->addSeparator();
+  panelsMenu_ = viewMenu_->addMenu(tr("&Panels"));
+  for (QDockWidget* dock : findChildren<QDockWidget*>()) panelsMenu_->addAction(dock->toggleViewAction());
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&About Foveated AR Studio"), this, &MainWindow::showAbout);
+  help->addAction(tr("About &Qt"), qApp, &QApplication::aboutQt);
+}
+
+void MainWindow::openEmbeddedDefault() {
+  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), std::string(kEmbeddedSceneName));
+  if (!r.ok()) {  // cannot happen: a test keeps the embedded scene valid
+    for (const auto& e : r.errors) log_->error(QString::fromStdString(e));
+    return;
+  }
+  document_->resetTo(*r.scene, {}, QString::fromUtf8(kEmbeddedSceneName.data(), kEmbeddedSceneName.size()));
+  log_->info(tr("Opened the default scene: %1").arg(QString::fromStdString(sceneSummary(*r.scene))));
+}
+
+bool MainWindow::openFile(const QString& path, bool interactive) {
+  SceneLoadResult r = loadSceneFile(path.toStdString());
+  for (const auto& w : r.warnings) log_->warning(QString::fromStdString(w));
+  if (!r.ok()) {
+    QStringList problems;
+    for (const auto& e : r.errors) {
+      problems << QString::fromStdString(e);
+      log_->error(problems.back());
+    }
+    log_->error(
+        tr("%1 was not opened (%n problem(s)); the current scene is unchanged.", "", problems.size()).arg(path));
+    if (interactive) {
+      QMessageBox box(QMessageBox::Warning, tr("Cannot open scene"),
+                      tr("%1 has %n problem(s); the current scene is unchanged.", "", problems.size()).arg(path),
+                      QMessageBox::Ok, this);
+      box.setDetailedText(problems.join('\n'));
+      box.setInformativeText(problems.mid(0, 8).join('\n'));
+      box.exec();
+    }
+    return false;
+  }
+  document_->resetTo(*r.scene, QFileInfo(path).absoluteFilePath());
+  addRecent(QFileInfo(path).absoluteFilePath());
+  log_->info(tr("Opened %1: %2").arg(path, QString::fromStdString(sceneSummary(*r.scene))));
+  return true;
+}
+
+bool MainWindow::saveTo(const QString& path, bool interactive) {
+  QSaveFile out(path);
+  const std::string text = serializeScene(document_->scene());
+  QString error;
+  if (!out.open(QIODevice::WriteOnly))
+    error = out.errorString();
+  else if (out.write(text.data(), static_cast<qint64>(text.size())) != static_cast<qint64>(text.size()))
+    error = out.errorString();
+  else if (!out.commit())
+    error = out.errorString();
+  if (!error.isEmpty()) {
+    out.cancelWriting();
+    const QString message = tr("Saving %1 failed (%2); any existing file is unchanged.").arg(path, error);
+    log_->error(message);
+    if (interactive) QMessageBox::critical(this, tr("Save failed"), message);
+    return false;
+  }
+  document_->markSaved(QFileInfo(path).absoluteFilePath());
+  addRecent(QFileInfo(path).absoluteFilePath());
+  log_->info(tr("Saved %1").arg(path));
+  return true;
+}
+
+void MainWindow::newScene() {
+  if (!maybeDiscardChanges()) return;
+  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "new scene");
+  if (!r.ok()) return;
+  r.scene->name = "untitled";
+  document_->resetTo(*r.scene, {}, "untitled.json");
+  log_->info(tr("New scene from the prototype bench template"));
+}
+
+void MainWindow::openDialog() {
+  if (!maybeDiscardChanges()) return;
+  const QString dir = document_->filePath().isEmpty() ? QString() : QFileInfo(document_->filePath()).absolutePath();
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), dir, tr(kSceneFilter));
+  if (!path.isEmpty()) openFile(path);
+}
+
+bool MainWindow::save() {
+  if (document_->filePath().isEmpty()) return saveAsDialog();
+  return saveTo(document_->filePath());
+}
+
+bool MainWindow::saveAsDialog() {
+  QString suggestion = document_->filePath();
+  if (suggestion.isEmpty()) suggestion = document_->displayName().section(' ', 0, 0);
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save scene as"), suggestion, tr(kSceneFilter));
+  return !path.isEmpty() && saveTo(path);
+}
+
+void MainWindow::exportScreenshotDialog() {
+  const QString path =
+      QFileDialog::getSaveFileName(this, tr("Export screenshot"), "fovea-studio.png", tr("PNG images (*.png)"));
+  if (path.isEmpty()) return;
+  if (captureWindow().save(path, "PNG"))
+    log_->info(tr("Screenshot saved to %1").arg(path));
+  else
+    log_->error(tr("Could not write the screenshot %1").arg(path));
+}
+
+void MainWindow::showAbout() {
+  QMessageBox::about(this, tr("About Foveated AR Studio"), versionsHtml());
+}
+
+bool MainWindow::maybeDiscardChanges() {
+  if (!document_->isModified()) return true;
+  const auto answer = QMessageBox::warning(
+      this, tr("Unsaved changes"), tr("%1 has unsaved changes. Save them?").arg(document_->displayName()),
+      QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+  if (answer == QMessageBox::Save) return save();
+  return answer == QMessageBox::Discard;
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (!maybeDiscardChanges()) {
+    event->ignore();
+    return;
+  }
+  saveSettings();
+  event->accept();
+}
+
+void MainWindow::selectElement(const QString& id) {
+  selected_ = id;
+  tree_->setSelectedElement(id);
+  view_->setSelectedElement(id);
+  properties_->showElement(id);
+}
+
+QImage MainWindow::captureWindow() {
+  return captureWithOpenGl(this);
+}
+
+void MainWindow::updateTitle() {
+  setWindowTitle(document_->displayName() + "[*] — Foveated AR Studio");
+  setWindowModified(document_->isModified());
+}
+
+void MainWindow::addRecent(const QString& path) {
+  recent_.removeAll(path);
+  recent_.prepend(path);
+  while (recent_.size() > kMaxRecent) recent_.removeLast();
+  if (persistSettings_) QSettings().setValue("recentFiles", recent_);
+}
+
+void MainWindow::fillRecentMenu() {
+  recentMenu_->clear();
+  for (const QString& path : recent_) {
+    recentMenu_->addAction(QFileInfo(path).fileName() + "   " + QFileInfo(path).absolutePath(), this, [this, path] {
+      if (maybeDiscardChanges()) openFile(path);
+    });
+  }
+  if (recent_.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
+}
+
+void MainWindow::restoreSettings() {
+  if (!persistSettings_) return;
+  QSettings s;
+  restoreGeometry(s.value("window/geometry").toByteArray());
+  restoreState(s.value("window/state").toByteArray());
+  recent_ = s.value("recentFiles").toStringList();
+}
+
+void MainWindow::saveSettings() {
+  if (!persistSettings_) return;
+  QSettings s;
+  s.setValue("window/geometry", saveGeometry());
+  s.setValue("window/state", saveState());
+  s.setValue("recentFiles", recent_);
+}
+
+}  // namespace fovea::studio

@@ -1,0 +1,94 @@
+#pragma once
+// The studio's main window: the 3D scene view in the centre, docks around it (scene tree,
+// properties, messages; later features add theirs with addPanel()), menus with shortcuts,
+// an undo stack for every edit, QSettings for geometry, dock state and recent files.
+
+#include <QMainWindow>
+#include <QStringList>
+
+class QAction;
+class QMenu;
+class QDockWidget;
+
+namespace fovea {
+struct Scene;
+namespace viz {
+class SceneView;
+}
+namespace widgets {
+class SceneDocument;
+class SceneTree;
+class PropertyEditor;
+class MessageLog;
+}  // namespace widgets
+}  // namespace fovea
+
+namespace fovea::studio {
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Opens the embedded prototype bench (no file; "Save" asks for a name).
+  void openEmbeddedDefault();
+  // Loads a scene file. On any problem the current scene stays, every problem goes to the
+  // messages dock (and a dialog when `interactive`), and false is returned.
+  bool openFile(const QString& path, bool interactive = true);
+  // Saves through QSaveFile: a failed save leaves an existing file untouched.
+  bool saveTo(const QString& path, bool interactive = true);
+
+  // Adds a dockable panel with a toggle in the View menu; returns its dock.
+  QDockWidget* addPanel(QWidget* panel, const QString& title, const QString& objectName, Qt::DockWidgetArea area);
+
+  // Selects an element everywhere (tree, 3D view, property editor); empty clears.
+  void selectElement(const QString& id);
+  QString selectedElement() const { return selected_; }
+
+  // The whole window as the user sees it, with the 3D view's OpenGL content composited.
+  QImage captureWindow();
+
+  // Off by default in tests and screenshots: whether QSettings are read and written.
+  void setPersistentSettings(bool on) { persistSettings_ = on; }
+  void restoreSettings();
+
+  widgets::SceneDocument* document() const { return document_; }
+  viz::SceneView* sceneView() const { return view_; }
+  widgets::SceneTree* sceneTree() const { return tree_; }
+  widgets::PropertyEditor* propertyEditor() const { return properties_; }
+  widgets::MessageLog* messageLog() const { return log_; }
+  QStringList recentFiles() const { return recent_; }
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  void createDocks();
+  void createMenus();
+  void newScene();
+  void openDialog();
+  bool save();
+  bool saveAsDialog();
+  void exportScreenshotDialog();
+  void showAbout();
+  bool maybeDiscardChanges();
+  void updateTitle();
+  void addRecent(const QString& path);
+  void fillRecentMenu();
+  void saveSettings();
+
+  widgets::SceneDocument* document_ = nullptr;
+  viz::SceneView* view_ = nullptr;
+  widgets::SceneTree* tree_ = nullptr;
+  widgets::PropertyEditor* properties_ = nullptr;
+  widgets::MessageLog* log_ = nullptr;
+  QMenu* viewMenu_ = nullptr;
+  QMenu* panelsMenu_ = nullptr;
+  QMenu* recentMenu_ = nullptr;
+  QString selected_;
+  QStringList recent_;
+  bool persistSettings_ = false;
+};
+
+}  // namespace fovea::studio

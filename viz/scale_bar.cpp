@@ -1,0 +1,103 @@
+#include "viz/scale_bar.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <QString>
+
+#include <vtkActor2D.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper2D.h>
+#include <vtkProperty2D.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+
+namespace fovea::viz {
+
+double millimetresPerPixel(vtkRenderer* renderer) {
+  const int* size = renderer->GetSize();
+  if (size[1] <= 0) return 0.0;
+  vtkCamera* cam = renderer->GetActiveCamera();
+  // Visible height at the focal plane: 2 d tan(view angle / 2), or 2 x parallel scale.
+  const double height_mm = cam->GetParallelProjection()
+                               ? 2.0 * cam->GetParallelScale()
+                               : 2.0 * cam->GetDistance() * std::tan(cam->GetViewAngle() * std::numbers::pi / 360.0);
+  return height_mm / size[1];
+}
+
+double roundScaleLength(double limit) {
+  const double decade = std::pow(10.0, std::floor(std::log10(limit)));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * decade <= limit) return m * decade;
+  return decade;
+}
+
+ScaleBar::ScaleBar(vtkRenderer* renderer) : renderer_(renderer) {
+  vtkNew<vtkPolyData> data;
+  for (int i = 0; i < 6; ++i) points_->InsertNextPoint(0, 0, 0);
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType bar[2] = {0, 1}, tick_a[2] = {2, 3}, tick_b[2] = {4, 5};
+  lines->InsertNextCell(2, bar);
+  lines->InsertNextCell(2, tick_a);
+  lines->InsertNextCell(2, tick_b);
+  data->SetPoints(points_);
+  data->SetLines(lines);
+  vtkNew<vtkPolyDataMapper2D> mapper;
+  mapper->SetInputData(data);
+  bar_->SetMapper(mapper);
+  bar_->GetProperty()->SetColor(1, 1, 1);
+  bar_->GetProperty()->SetLineWidth(2.0);
+  bar_->PickableOff();
+  label_->GetTextProperty()->SetFontSize(14);
+  label_->GetTextProperty()->SetColor(1, 1, 1);
+  label_->GetTextProperty()->SetJustificationToCentered();
+  label_->PickableOff();
+  overlay_->SetLayer(1);
+  overlay_->InteractiveOff();
+  if (vtkRenderWindow* window = renderer_->GetRenderWindow()) {
+    if (window->GetNumberOfLayers() < 2) window->SetNumberOfLayers(2);
+    window->AddRenderer(overlay_);
+  }
+  overlay_->AddViewProp(bar_);
+  overlay_->AddViewProp(label_);
+  callback_->SetClientData(this);
+  callback_->SetCallback(&ScaleBar::onStart);
+  renderer_->AddObserver(vtkCommand::StartEvent, callback_);
+}
+
+ScaleBar::~ScaleBar() {
+  renderer_->RemoveObserver(callback_);
+  if (vtkRenderWindow* window = overlay_->GetRenderWindow()) window->RemoveRenderer(overlay_);
+}
+
+void ScaleBar::onStart(vtkObject*, unsigned long, void* clientData, void*) {
+  static_cast<ScaleBar*>(clientData)->update();
+}
+
+void ScaleBar::update() {
+  const double mmpp = millimetresPerPixel(renderer_);
+  const int* size = renderer_->GetSize();
+  if (!(mmpp > 0.0) || size[0] <= 0) return;
+  length_mm_ = roundScaleLength(120.0 * mmpp);
+  const double px = length_mm_ / mmpp;
+  const double x1 = size[0] - 30.0, x0 = x1 - px, y = 24.0;
+  points_->SetPoint(0, x0, y, 0);
+  points_->SetPoint(1, x1, y, 0);
+  points_->SetPoint(2, x0, y - 5, 0);
+  points_->SetPoint(3, x0, y + 5, 0);
+  points_->SetPoint(4, x1, y - 5, 0);
+  points_->SetPoint(5, x1, y + 5, 0);
+  points_->Modified();
+  const QString text = QString::number(length_mm_, 'g', 3) + " mm";
+  label_->SetInput(text.toUtf8().constData());
+  label_->SetDisplayPosition(static_cast<int>((x0 + x1) / 2), static_cast<int>(y + 8));
+}
+
+}  // namespace fovea::viz

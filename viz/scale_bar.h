@@ -1,0 +1,44 @@
+#pragma once
+// A scale bar in millimetres at the bottom right of a renderer: a bar of a round length
+// (1, 2 or 5 x 10^n mm) about 120 px long, valid at the camera's focal plane (perspective)
+// or everywhere (parallel projection). Updated before each render; drawn in an overlay
+// renderer (layer 1) of the same window so the translucent passes never touch it.
+
+#include <vtkNew.h>
+
+class vtkActor2D;
+class vtkCallbackCommand;
+class vtkObject;
+class vtkPoints;
+class vtkRenderer;
+class vtkTextActor;
+
+namespace fovea::viz {
+
+// Millimetres per pixel at the focal plane of the renderer's active camera.
+double millimetresPerPixel(vtkRenderer* renderer);
+// The largest 1, 2, 5 x 10^n not above `limit` (limit > 0).
+double roundScaleLength(double limit);
+
+class ScaleBar {
+ public:
+  explicit ScaleBar(vtkRenderer* renderer);
+  ~ScaleBar();
+  ScaleBar(const ScaleBar&) = delete;
+  ScaleBar& operator=(const ScaleBar&) = delete;
+
+  double lengthMm() const { return length_mm_; }
+  void update();
+
+ private:
+  static void onStart(vtkObject*, unsigned long, void* clientData, void*);
+  vtkRenderer* renderer_;
+  vtkNew<vtkRenderer> overlay_;  // own layer: kept out of the scene's depth peeling
+  vtkNew<vtkPoints> points_;
+  vtkNew<vtkActor2D> bar_;
+  vtkNew<vtkTextActor> label_;
+  vtkNew<vtkCallbackCommand> callback_;
+  double length_mm_ = 0.0;
+};
+
+}  // namespace fovea::viz

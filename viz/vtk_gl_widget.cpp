@@ -1,0 +1,244 @@
+#include "viz/vtk_gl_widget.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QSurfaceFormat>
+#include <QWheelEvent>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGenericRenderWindowInteractor.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkOpenGLState.h>
+#include <vtkRenderer.h>
+
+#include <cmath>
+
+namespace fovea::viz {
+
+void installDefaultSurfaceFormat() {
+  QSurfaceFormat fmt;
+  fmt.setRenderableType(QSurfaceFormat::OpenGL);
+  fmt.setVersion(3, 2);
+  fmt.setProfile(QSurfaceFormat::CoreProfile);
+  fmt.setSwapBehavior(QSurfaceFormat::DoubleBuffer);
+  fmt.setRedBufferSize(8);
+  fmt.setGreenBufferSize(8);
+  fmt.setBlueBufferSize(8);
+  fmt.setDepthBufferSize(24);
+  fmt.setStencilBufferSize(8);
+  fmt.setAlphaBufferSize(8);
+  fmt.setSamples(0);  // VTK renders into its own framebuffer; no multisampled default FBO
+  QSurfaceFormat::setDefaultFormat(fmt);
+}
+
+VtkGlWidget::VtkGlWidget(QWidget* parent) : QOpenGLWidget(parent) {
+  setFocusPolicy(Qt::StrongFocus);
+  setMouseTracking(true);
+  setMinimumSize(200, 150);
+
+  window_->SetOwnContext(false);
+  window_->SetFrameBlitModeToNoBlit();  // paintGL() blits into Qt's framebuffer itself
+  window_->SetMultiSamples(0);
+  window_->AddRenderer(renderer_);
+
+  callback_->SetClientData(this);
+  callback_->SetCallback(&VtkGlWidget::onVtkEvent);
+  window_->AddObserver(vtkCommand::WindowMakeCurrentEvent, callback_);
+  window_->AddObserver(vtkCommand::WindowIsCurrentEvent, callback_);
+  window_->AddObserver(vtkCommand::WindowSupportsOpenGLEvent, callback_);
+  window_->AddObserver(vtkCommand::WindowIsDirectEvent, callback_);
+
+  style_ = vtkSmartPointer<vtkInteractorStyleTrackballCamera>::New();
+  interactor_->SetRenderWindow(window_);
+  interactor_->SetInteractorStyle(style_);
+  // The interactor never renders by itself: its render requests come back to us.
+  interactor_->EnableRenderOff();
+  interactor_->AddObserver(vtkCommand::RenderEvent, callback_);
+  interactor_->Initialize();
+}
+
+VtkGlWidget::~VtkGlWidget() {
+  // Release VTK's GL resources while our context can still be made current.
+  if (glReady_) {
+    makeCurrent();
+    window_->Finalize();
+    doneCurrent();
+  }
+  window_->RemoveObserver(callback_);
+  interactor_->RemoveObserver(callback_);
+}
+
+vtkRenderer* VtkGlWidget::renderer() const {
+  return renderer_;
+}
+vtkGenericOpenGLRenderWindow* VtkGlWidget::renderWindow() const {
+  return window_;
+}
+vtkGenericRenderWindowInteractor* VtkGlWidget::interactor() const {
+  return interactor_;
+}
+
+void VtkGlWidget::onVtkEvent(vtkObject*, unsigned long eventId, void* clientData, void* callData) {
+  auto* self = static_cast<VtkGlWidget*>(clientData);
+  switch (eventId) {
+    case vtkCommand::WindowMakeCurrentEvent:
+      if (self->context() && QOpenGLContext::currentContext() != self->context()) self->makeCurrent();
+      break;
+    case vtkCommand::WindowIsCurrentEvent:
+      *static_cast<bool*>(callData) = self->context() != nullptr && QOpenGLContext::currentContext() == self->context();
+      break;
+    case vtkCommand::WindowSupportsOpenGLEvent:
+      *static_cast<int*>(callData) = 1;
+      break;
+    case vtkCommand::WindowIsDirectEvent:
+      *static_cast<int*>(callData) = 1;
+      break;
+    case vtkCommand::RenderEvent:
+      if (!self->inPaint_) self->update();
+      break;
+    default:
+      break;
+  }
+}
+
+int VtkGlWidget::toPixels(double logical) const {
+  return static_cast<int>(std::lround(logical * devicePixelRatioF()));
+}
+
+void VtkGlWidget::initializeGL() {
+  window_->SetReadyForRendering(true);
+  window_->SetIsCurrent(true);
+  window_->OpenGLInitContext();
+  window_->SetSize(toPixels(width()), toPixels(height()));
+  interactor_->SetSize(toPixels(width()), toPixels(height()));
+  glReady_ = true;
+}
+
+void VtkGlWidget::resizeGL(int w, int h) {
+  window_->SetSize(toPixels(w), toPixels(h));
+  interactor_->SetSize(toPixels(w), toPixels(h));
+  interactor_->ConfigureEvent();
+}
+
+void VtkGlWidget::paintGL() {
+  if (!glReady_) return;
+  inPaint_ = true;
+  const int w = toPixels(width()), h = toPixels(height());
+  window_->SetSize(w, h);
+  window_->SetIsCurrent(true);
+  window_->Render();
+  // Copy VTK's display framebuffer into Qt's framebuffer object for this widget.
+  vtkOpenGLState* state = window_->GetState();
+  state->PushFramebufferBindings();
+  state->vtkglBindFramebuffer(0x8CA9 /*GL_DRAW_FRAMEBUFFER*/, defaultFramebufferObject());
+  state->vtkglViewport(0, 0, w, h);
+  state->vtkglScissor(0, 0, w, h);
+  window_->BlitDisplayFramebuffer(0, 0, 0, w, h, 0, 0, w, h, 0x00004000 /*GL_COLOR_BUFFER_BIT*/, 0x2600 /*GL_NEAREST*/);
+  state->PopFramebufferBindings();
+  inPaint_ = false;
+}
+
+QImage VtkGlWidget::renderToImage() {
+  if (!isVisible()) return {};
+  return grabFramebuffer();  // calls paintGL() into an offscreen FBO with our context
+}
+
+void VtkGlWidget::setEventPosition(const QPointF& pos, Qt::KeyboardModifiers mods, int repeat) {
+  interactor_->SetSize(toPixels(width()), toPixels(height()));
+  interactor_->SetEventInformationFlipY(toPixels(pos.x()), toPixels(pos.y()), (mods & Qt::ControlModifier) ? 1 : 0,
+                                        (mods & Qt::ShiftModifier) ? 1 : 0, 0, repeat);
+  interactor_->SetAltKey((mods & Qt::AltModifier) ? 1 : 0);
+}
+
+void VtkGlWidget::mousePressEvent(QMouseEvent* e) {
+  setEventPosition(e->position(), e->modifiers());
+  switch (e->button()) {
+    case Qt::LeftButton:
+      interactor_->InvokeEvent(vtkCommand::LeftButtonPressEvent);
+      break;
+    case Qt::MiddleButton:
+      interactor_->InvokeEvent(vtkCommand::MiddleButtonPressEvent);
+      break;
+    case Qt::RightButton:
+      interactor_->InvokeEvent(vtkCommand::RightButtonPressEvent);
+      break;
+    default:
+      break;
+  }
+}
+
+void VtkGlWidget::mouseDoubleClickEvent(QMouseEvent* e) {
+  setEventPosition(e->position(), e->modifiers(), 1);
+  if (e->button() == Qt::LeftButton) interactor_->InvokeEvent(vtkCommand::LeftButtonDoubleClickEvent);
+}
+
+void VtkGlWidget::mouseReleaseEvent(QMouseEvent* e) {
+  setEventPosition(e->position(), e->modifiers());
+  switch (e->button()) {
+    case Qt::LeftButton:
+      interactor_->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
+      break;
+    case Qt::MiddleButton:
+      interactor_->InvokeEvent(vtkCommand::MiddleButtonReleaseEvent);
+      break;
+    case Qt::RightButton:
+      interactor_->InvokeEvent(vtkCommand::RightButtonReleaseEvent);
+      break;
+    default:
+      break;
+  }
+}
+
+void VtkGlWidget::mouseMoveEvent(QMouseEvent* e) {
+  setEventPosition(e->position(), e->modifiers());
+  interactor_->InvokeEvent(vtkCommand::MouseMoveEvent);
+}
+
+void VtkGlWidget::wheelEvent(QWheelEvent* e) {
+  setEventPosition(e->position(), e->modifiers());
+  const int delta = e->angleDelta().y();
+  if (delta > 0) interactor_->InvokeEvent(vtkCommand::MouseWheelForwardEvent);
+  if (delta < 0) interactor_->InvokeEvent(vtkCommand::MouseWheelBackwardEvent);
+  e->accept();
+}
+
+void VtkGlWidget::keyPressEvent(QKeyEvent* e) {
+  // Only the trackball style's harmless keys reach VTK: r (reset camera), w / s (wireframe /
+  // surface), f (fly to point). q / e would ask VTK to quit, 3 toggles stereo.
+  const QString text = e->text().toLower();
+  if (text.size() != 1 || !QStringLiteral("rwsf").contains(text)) {
+    QOpenGLWidget::keyPressEvent(e);
+    return;
+  }
+  const QPointF pos = mapFromGlobal(QCursor::pos());
+  setEventPosition(pos, e->modifiers());
+  const std::string sym = text.toStdString();
+  interactor_->SetKeyEventInformation((e->modifiers() & Qt::ControlModifier) ? 1 : 0,
+                                      (e->modifiers() & Qt::ShiftModifier) ? 1 : 0, sym[0], e->count(), sym.c_str());
+  interactor_->InvokeEvent(vtkCommand::KeyPressEvent);
+  interactor_->InvokeEvent(vtkCommand::CharEvent);
+}
+
+void VtkGlWidget::keyReleaseEvent(QKeyEvent* e) {
+  const QString text = e->text().toLower();
+  if (text.size() != 1 || !QStringLiteral("rwsf").contains(text)) {
+    QOpenGLWidget::keyReleaseEvent(e);
+    return;
+  }
+  interactor_->InvokeEvent(vtkCommand::KeyReleaseEvent);
+}
+
+void VtkGlWidget::enterEvent(QEnterEvent* e) {
+  interactor_->InvokeEvent(vtkCommand::EnterEvent);
+  QOpenGLWidget::enterEvent(e);
+}
+
+void VtkGlWidget::leaveEvent(QEvent* e) {
+  interactor_->InvokeEvent(vtkCommand::LeaveEvent);
+  QOpenGLWidget::leaveEvent(e);
+}
+
+}  // namespace fovea::viz

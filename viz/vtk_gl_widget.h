@@ -1,0 +1,73 @@
+#pragma once
+// Our Qt 6 <-> VTK bridge: a QOpenGLWidget hosting a vtkGenericOpenGLRenderWindow.
+// VTK's own Qt module in Debian bookworm is built against Qt 5, so we do not use it
+// (docs: /work/shared/docs/PLATFORM.md quirk 1). VTK renders into its own framebuffer with
+// Qt's context current; paintGL() blits that into the widget's defaultFramebufferObject().
+// Mouse, wheel and key events are forwarded to a vtkRenderWindowInteractor, and VTK's
+// render requests become QWidget::update().
+//
+// Call installDefaultSurfaceFormat() before the QApplication is created.
+
+#include <QOpenGLWidget>
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+class vtkGenericOpenGLRenderWindow;
+class vtkGenericRenderWindowInteractor;
+class vtkRenderer;
+class vtkInteractorStyle;
+class vtkCallbackCommand;
+class vtkObject;
+
+namespace fovea::viz {
+
+// An OpenGL 3.2 core profile with depth and stencil buffers, as VTK's OpenGL2 backend needs.
+void installDefaultSurfaceFormat();
+
+class VtkGlWidget : public QOpenGLWidget {
+  Q_OBJECT
+ public:
+  explicit VtkGlWidget(QWidget* parent = nullptr);
+  ~VtkGlWidget() override;
+
+  vtkRenderer* renderer() const;
+  vtkGenericOpenGLRenderWindow* renderWindow() const;
+  vtkGenericRenderWindowInteractor* interactor() const;
+
+  // Asks for a repaint (VTK renders inside paintGL()).
+  void requestRender() { update(); }
+  // Renders now (makes the context current) and returns the rendered image, the same
+  // pixels the user sees. Empty when OpenGL is unavailable.
+  QImage renderToImage();
+
+ protected:
+  void initializeGL() override;
+  void resizeGL(int w, int h) override;
+  void paintGL() override;
+
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseDoubleClickEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+  void keyReleaseEvent(QKeyEvent* event) override;
+  void enterEvent(QEnterEvent* event) override;
+  void leaveEvent(QEvent* event) override;
+
+ private:
+  static void onVtkEvent(vtkObject* caller, unsigned long eventId, void* clientData, void* callData);
+  void setEventPosition(const QPointF& pos, Qt::KeyboardModifiers mods, int repeat = 0);
+  int toPixels(double logical) const;
+
+  vtkNew<vtkGenericOpenGLRenderWindow> window_;
+  vtkNew<vtkRenderer> renderer_;
+  vtkNew<vtkGenericRenderWindowInteractor> interactor_;
+  vtkSmartPointer<vtkInteractorStyle> style_;
+  vtkNew<vtkCallbackCommand> callback_;
+  bool inPaint_ = false;
+  bool glReady_ = false;
+};
+
+}  // namespace fovea::viz

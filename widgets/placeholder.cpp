@@ -1,2 +1,0 @@
-// Keeps this library non-empty until its first real file lands; delete it then.
-namespace fovea { int widgetsPlaceholder() { return 0; } }

@@ -1,0 +1,58 @@
+#pragma once
+// Property editor of the selected scene element: one typed field per property with its
+// unit and range. A value is applied when editing finishes, through SceneDocument::applyEdit
+// (an undoable command); a value the scene rules refuse stays in the field, marked red, with
+// the rule's message shown under it, and the model is left unchanged.
+
+#include <QHash>
+#include <QPointer>
+#include <QWidget>
+
+#include <vector>
+
+#include "widgets/scene_properties.h"
+
+class QGridLayout;
+class QLabel;
+
+namespace fovea::widgets {
+
+class SceneDocument;
+
+class PropertyEditor : public QWidget {
+  Q_OBJECT
+ public:
+  explicit PropertyEditor(SceneDocument* document, QWidget* parent = nullptr);
+
+  void showElement(const QString& id);
+  const QString& element() const { return element_; }
+
+  // For tests and scripting: the field of a property key, and its current message.
+  QWidget* fieldFor(const QString& key) const;
+  QString messageFor(const QString& key) const;
+  // Commits `text` to the property as if typed and confirmed; returns the refusal (or empty).
+  QString commitText(const QString& key, const QString& text);
+
+ signals:
+  void editRefused(const QString& key, const QString& message);
+
+ private:
+  struct Row {
+    PropertySpec spec;
+    QPointer<QWidget> field;
+    QPointer<QLabel> message;
+  };
+  void rebuild();
+  void refreshValues();
+  void commit(int row, const QVariant& value);
+  void setMessage(Row& row, const QString& message);
+
+  SceneDocument* document_;
+  QString element_;
+  QLabel* title_ = nullptr;
+  QWidget* form_ = nullptr;
+  QGridLayout* grid_ = nullptr;
+  std::vector<Row> rows_;
+};
+
+}  // namespace fovea::widgets
