@@ -33,6 +33,7 @@ class TestHoeTrace : public QObject {
   void recordingGeometryIsBraggMatchedAndFocused() {
     // Every point of every recorded layer, probed by its own reference at its own wavelength,
     // is on Bragg (xi = 0) and sends its ray through the signal focus (the pupil centre).
+    double worst_miss_mm = 0.0, eta_min = 1.0, eta_max = 0.0;
     for (bool conjugate : {false, true}) {
       Scene s = prototype();
       for (auto& l : s.hoe_layers) l.recording.phase_conjugate = conjugate;
@@ -54,6 +55,9 @@ class TestHoeTrace : public QObject {
             QVERIFY(d.grating.reflection());
             QVERIFY2(d.grating.kogelnik.xi < 1e-9, qPrintable(QString::number(d.grating.kogelnik.xi)));
             const double miss_mm = distanceToRay(focus, point, f.axes * d.out_dir);
+            worst_miss_mm = std::max(worst_miss_mm, miss_mm);
+            eta_min = std::min(eta_min, d.grating.kogelnik.efficiency);
+            eta_max = std::max(eta_max, d.grating.kogelnik.efficiency);
             QVERIFY2(miss_mm < 1e-3, qPrintable(QString("(%1, %2): %3 mm").arg(u).arg(v).arg(miss_mm)));
             // On Bragg the efficiency is Kogelnik's tanh^2(nu) with nu = kappa d / sqrt(c_R |c_S|).
             const double nu = std::numbers::pi * layer.n1 * layer.thickness_um /
@@ -63,6 +67,8 @@ class TestHoeTrace : public QObject {
         }
       }
     }
+    qInfo("recording geometry: worst miss of the focus %.3g mm, s efficiency %.3f .. %.3f", worst_miss_mm, eta_min,
+          eta_max);
   }
 
   void phaseConjugateRecordingWritesTheSameFringes() {
