@@ -141,7 +141,12 @@ TraceResult evaluateGaze(const Scene& scene, std::vector<TracedRay> rays, const 
 
   for (std::size_t i = 0; i < rays.size(); ++i) {
     TracedRay& r = rays[i];
-    const std::size_t w = per_lambda ? std::min(i / per_lambda, wavelengths.size() - 1) : 0;
+    // diffractScene() writes one block per wavelength; match by value for any other list.
+    std::size_t w = per_lambda ? std::min(i / per_lambda, wavelengths.size() - 1) : 0;
+    if (!wavelengths.empty() && wavelengths[w] != r.wavelength_nm)
+      for (std::size_t k = 0; k < wavelengths.size(); ++k)
+        if (wavelengths[k] == r.wavelength_nm) w = k;
+    if (wavelengths.empty() || wavelengths[w] != r.wavelength_nm) continue;  // not a traced wavelength
     WavelengthTrace& wt = res.per_wavelength[w];
     ++res.rays;
     ++wt.rays;
