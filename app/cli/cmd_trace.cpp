@@ -1,0 +1,96 @@
+// fovea-cli trace SCENE: projector -> recorded HOE stack -> eye; retinal FOV (issue 4 contract).
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "app/cli/cli_common.h"
+#include "model/physics/trace.h"
+
+namespace fovea::cli {
+namespace {
+
+nlohmann::json fovJson(const FovDeg& f) {
+  return {{"horizontal", f.horizontal}, {"vertical", f.vertical}, {"diagonal", f.diagonal}};
+}
+
+struct TraceArgs {
+  std::string scene;
+  std::string gaze, hoe_shift, polarization = "unpolarized";
+  double source_shift_mm = 0.0, wavelength_nm = 0.0, threshold = 0.1;
+  int rays = 4000;
+  bool json = false;
+};
+
+void install(CLI::App& app) {
+  auto* cmd = app.add_subcommand("trace", "Trace the projector through the recorded HOE into the eye: retinal FOV");
+  auto a = std::make_shared<TraceArgs>();
+  cmd->add_option("SCENE", a->scene, "scene file ('-' or '' = the embedded prototype bench)")->required();
+  cmd->add_option("--gaze-deg", a->gaze, "YAW[,PITCH] gaze in degrees (default: the scene's)");
+  cmd->add_option("--hoe-shift-mm", a->hoe_shift, "X[,Y] lateral HOE shift in its local frame (mm)");
+  cmd->add_option("--source-shift-mm", a->source_shift_mm, "projector point-source shift along bench z (mm)");
+  cmd->add_option("--wavelength-nm", a->wavelength_nm, "trace only this wavelength (default: all projector lasers)");
+  cmd->add_option("--rays", a->rays, "approximate rays per wavelength over the projector FOV (default 4000)");
+  cmd->add_option("--threshold", a->threshold, "efficiency threshold for the FOV (default 0.1)");
+  cmd->add_option("--polarization", a->polarization, "projector light: s, p or unpolarized (default)");
+  cmd->add_flag("--json", a->json,
+                "print {\"fov_deg\":{…},\"rays\",\"rays_in_pupil\",\"rays_efficient\",\"mean_efficiency\",…}");
+  cmd->callback([cmd, a] {
+    TraceOptions o;
+    if (!a->gaze.empty()) {
+      const auto g = parseNumberList(a->gaze, "--gaze-deg", 1, 2);
+      o.gaze_deg = std::array<double, 2>{g[0], g.size() > 1 ? g[1] : 0.0};
+    }
+    if (!a->hoe_shift.empty()) {
+      const auto s = parseNumberList(a->hoe_shift, "--hoe-shift-mm", 1, 2);
+      o.hoe_shift_mm = {s[0], s.size() > 1 ? s[1] : 0.0};
+    }
+    if (!std::isfinite(a->source_shift_mm)) usageError("--source-shift-mm: must be a finite number");
+    o.source_shift_mm = a->source_shift_mm;
+    if (cmd->count("--wavelength-nm")) {
+      if (!(std::isfinite(a->wavelength_nm) && a->wavelength_nm > 0.0))
+        usageError("--wavelength-nm: must be a positive number");
+      o.wavelength_nm = a->wavelength_nm;
+    }
+    if (a->rays < 1 || a->rays > 10'000'000) usageError("--rays: must lie in 1 .. 10000000");
+    o.rays = a->rays;
+    if (!(std::isfinite(a->threshold) && a->threshold >= 0.0 && a->threshold <= 1.0))
+      usageError("--threshold: must lie in [0, 1]");
+    o.efficiency_threshold = a->threshold;
+    const auto pol = parsePolarization(a->polarization);
+    if (!pol) usageError("--polarization: unknown polarisation '" + a->polarization + "' (s, p or unpolarized)");
+    o.polarization = *pol;
+
+    const Scene scene = loadSceneOrExit(a->scene == "-" ? std::string() : a->scene);
+    const TraceResult r = traceScene(scene, o);
+    nlohmann::json out{{"fov_deg", fovJson(r.fov_deg)},
+                       {"rays", r.rays},
+                       {"rays_in_pupil", r.rays_in_pupil},
+                       {"rays_efficient", r.rays_efficient},
+                       {"mean_efficiency", r.mean_efficiency},
+                       {"rays_on_hoe", r.rays_on_hoe},
+                       {"mean_efficiency_on_hoe", r.mean_efficiency_on_hoe},
+                       {"gaze_deg", r.gaze_deg},
+                       {"hoe_shift_mm", o.hoe_shift_mm},
+                       {"source_shift_mm", o.source_shift_mm},
+                       {"efficiency_threshold", o.efficiency_threshold},
+                       {"polarization", polarizationName(o.polarization)}};
+    nlohmann::json per = nlohmann::json::array();
+    for (const auto& w : r.per_wavelength)
+      per.push_back({{"wavelength_nm", w.wavelength_nm},
+                     {"fov_deg", fovJson(w.fov_deg)},
+                     {"rays", w.rays},
+                     {"rays_in_pupil", w.rays_in_pupil},
+                     {"rays_efficient", w.rays_efficient},
+                     {"mean_efficiency", w.mean_efficiency}});
+    out["per_wavelength"] = per;
+    if (a->json) return printJson(out);
+    std::cout << "FOV " << r.fov_deg.horizontal << " x " << r.fov_deg.vertical << " deg (diagonal "
+              << r.fov_deg.diagonal << "), " << r.rays_efficient << " of " << r.rays << " rays efficient, "
+              << r.rays_in_pupil << " in the pupil, mean efficiency " << r.mean_efficiency << "\n";
+  });
+}
+
+const Registrar reg{"trace", &install};
+
+}  // namespace
+}  // namespace fovea::cli

@@ -1,0 +1,27 @@
+#include "model/physics/eye_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace fovea {
+
+PupilCrossing crossPupil(const EyePlacement& eye, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) {
+  PupilCrossing c;
+  const double dn = dir.dot(eye.gaze);
+  if (!(dn < 0.0)) return c;  // not travelling into the eye
+  const double t = (eye.pupil_center - origin).dot(eye.gaze) / dn;
+  if (!(t > 0.0)) return c;
+  c.point = origin + t * dir;
+  c.radius_mm = (c.point - eye.pupil_center).norm();
+  c.in_pupil = c.radius_mm <= eye.pupil_radius_mm;
+  return c;
+}
+
+std::array<double, 2> fieldAngleDeg(const Eigen::Matrix3d& eye_axes, const Eigen::Vector3d& dir) {
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  const Eigen::Vector3d v = eye_axes.transpose() * (-dir.normalized());
+  return {std::atan2(v.x(), v.z()) / kDeg, std::asin(std::clamp(v.y(), -1.0, 1.0)) / kDeg};
+}
+
+}  // namespace fovea

@@ -1,0 +1,94 @@
+#pragma once
+// Tracing the peripheral display: projector rays -> recorded HOE stack (Kogelnik, every layer on
+// every wavelength) -> eye pupil -> retinal FOV. Shared contract (BRIEF.md): the names and
+// meanings below are fixed; members may be added.
+//
+// Model (docs/physics.md):
+//  - rays: projectorRays() over the projector FOV, ~`rays` per wavelength, from the projector
+//    position shifted by source_shift_mm along bench z;
+//  - the plate moves by hoe_shift_mm along its local x, y; the fringes move with it (each plate
+//    point keeps the grating recorded at it with the plate at its nominal pose); the eye and
+//    the projector stay (the eye is placed from the nominal HOE pose, placeEye());
+//  - the layers are met in depth order along the probe; all sit in the plate plane for the
+//    geometry (their µm offsets only order them). Layer i sees the power left in the zero
+//    order of the layers before it (chained); its diffracted power leaves without further
+//    interaction. A ray's efficiency is the sum of the diffracted powers that leave the stack
+//    (not evanescent, not trapped by TIR); its out_direction is that of the layer diffracting
+//    most (cross-talk of the other layers is counted in the efficiency, not in the direction);
+//  - a ray enters the eye when its straight path after the HOE crosses the pupil disc; its
+//    visual angle is the arrival direction in the eye frame (fieldAngleDeg());
+//  - FOV over the accepted rays (in the pupil, efficiency >= threshold):
+//      horizontal = max - min of the field yaw, vertical = max - min of the field pitch,
+//      diagonal   = the larger angle between the two rays extreme along yaw + pitch and the
+//                   two rays extreme along yaw - pitch (true 3-D angle between directions).
+//  - mean_efficiency: mean efficiency of the rays entering the pupil (0 if none).
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "model/physics/grating.h"
+#include "model/scene/scene.h"
+
+namespace fovea {
+
+struct TraceOptions {
+  std::optional<std::array<double, 2>> gaze_deg;  // yaw, pitch; default: scene.eye.gaze_deg
+  std::array<double, 2> hoe_shift_mm{0.0, 0.0};   // lateral HOE shift (HOE local x, y)
+  double source_shift_mm = 0.0;                   // projector point-source shift along bench z
+  std::optional<double> wavelength_nm;            // trace only this wavelength (default: all projector wavelengths)
+  int rays = 4000;                                // approximate rays per wavelength over the projector FOV
+  double efficiency_threshold = 0.1;              // rays below it do not count for the FOV
+  bool keep_rays = false;                         // fill TraceResult::ray_list (drawing)
+  Polarization polarization = Polarization::Unpolarized;  // projector light (scene has no polarisation)
+};
+
+struct FovDeg {
+  double horizontal = 0, vertical = 0, diagonal = 0;
+};
+
+struct TracedRay {
+  Eigen::Vector3d source, hoe_point, out_direction;  // bench frame, mm; unit direction after the HOE
+  double wavelength_nm = 0, efficiency = 0;          // efficiency summed over the layers that diffract it
+  bool hits_hoe = false, in_pupil = false, evanescent = false;
+  std::array<double, 2> field_deg{0, 0};  // visual angle (yaw, pitch) relative to the gaze
+  // Additions:
+  Eigen::Vector3d projector_direction = Eigen::Vector3d::Zero();  // unit direction leaving the projector
+  bool exits = false;          // some diffracted light leaves the stack (out_direction valid)
+  bool towards_eye = false;    // out_direction heads to the eye side of the plate
+  bool tir = false;            // the dominant order is trapped by total internal reflection
+  int layer = -1;              // index of the dominant layer in scene.hoe_layers (-1: none)
+  double xi = 0, nu = 0;       // Kogelnik parameters of the dominant layer
+  double pupil_radius_mm = 0;  // where it crosses the pupil plane, from the pupil centre
+  std::array<int, 2> pixel{0, 0};
+};
+
+struct WavelengthTrace {
+  double wavelength_nm = 0;
+  FovDeg fov_deg;
+  int rays = 0, rays_in_pupil = 0, rays_efficient = 0;
+  double mean_efficiency = 0;
+};
+
+struct TraceResult {
+  FovDeg fov_deg;
+  int rays = 0, rays_in_pupil = 0, rays_efficient = 0;
+  double mean_efficiency = 0;
+  std::vector<TracedRay> ray_list;  // only with keep_rays
+  // Additions:
+  int rays_on_hoe = 0;
+  double mean_efficiency_on_hoe = 0;  // mean over the rays that hit the plate
+  std::array<double, 2> gaze_deg{0, 0};
+  std::vector<WavelengthTrace> per_wavelength;
+};
+
+TraceResult traceScene(const Scene& scene, const TraceOptions& options);
+
+// The two stages of traceScene(), for interactive gaze updates: the HOE part does not depend
+// on the gaze, so diffractScene() once, then evaluateGaze() per gaze (pupil test + FOV only).
+std::vector<TracedRay> diffractScene(const Scene& scene, const TraceOptions& options);
+TraceResult evaluateGaze(const Scene& scene, std::vector<TracedRay> rays, const TraceOptions& options);
+
+}  // namespace fovea
