@@ -39,7 +39,8 @@ struct FilmSetup {
   double kx_grating = 0.0, kz_grating = 0.0;  // K_x/k0, K_z/k0
   double k0_um = 0.0;                         // 2π/λ in 1/µm
   bool te = true;
-  cd gap_admittance;  // V of the zero-thickness gap medium (W_gap = I)
+  bool uniform_x = false;  // K_x = 0
+  cd gap_admittance;       // V of the zero-thickness gap medium (W_gap = I)
 };
 
 // Fourier coefficients c_h, |h| ≤ hmax, of 1/(n0 + n1 cos u)² by the trapezoidal rule, which
@@ -87,7 +88,10 @@ SMatrix sliceSMatrix(const FilmSetup& s, const RcwaProblem& p, double z_um, doub
   eps[hmax - 1] = eps[hmax + 1] = n0 * n1;
   eps[hmax - 2] = eps[hmax + 2] = 0.25 * n1 * n1;
   const double phase = s.kz_grating * s.k0_um * z_um;
-  const MatrixXcd E = toeplitz(eps, hmax, n, phase);
+  // K_x = 0: every harmonic of the profile lands on the single order, i.e. the slice is the
+  // homogeneous medium ε(z) (its own 1/ε exactly, no factorisation question).
+  const cd n_local = n0 + n1 * std::cos(phase);
+  const MatrixXcd E = s.uniform_x ? MatrixXcd::Constant(1, 1, n_local * n_local) : toeplitz(eps, hmax, n, phase);
   const auto kxd = s.kx.asDiagonal();
 
   MatrixXcd a, finv, f;
@@ -96,8 +100,12 @@ SMatrix sliceSMatrix(const FilmSetup& s, const RcwaProblem& p, double z_um, doub
     a.diagonal() -= s.kx.cwiseAbs2().cast<cd>();  // TE: γ² from E − Kx² (kx real)
   } else {
     // TM with Li's rules: A = [[1/ε]]^{-1} (I − Kx [[ε]]^{-1} Kx).
-    const std::vector<cd> inv = inversePermittivityHarmonics(n0, n1, hmax);
-    f = toeplitz(inv, hmax, n, phase);
+    if (s.uniform_x) {
+      f = MatrixXcd::Constant(1, 1, 1.0 / (n_local * n_local));
+    } else {
+      const std::vector<cd> inv = inversePermittivityHarmonics(n0, n1, hmax);
+      f = toeplitz(inv, hmax, n, phase);
+    }
     finv = f.partialPivLu().inverse();
     const MatrixXcd einvkx = E.partialPivLu().solve(MatrixXcd(kxd));
     a = finv * (MatrixXcd::Identity(n, n) - kxd * einvkx);
@@ -243,6 +251,7 @@ RcwaResult solveRcwa(const RcwaProblem& p, const RcwaOptions& o) {
   s.kz_grating = kzg;
   s.k0_um = 2.0 * kPi / (p.wavelength_nm * 1e-3);
   s.te = p.polarization == RcwaPolarization::TE;
+  s.uniform_x = uniform_x;
   s.gap_admittance = s.te ? cd(-1.0) : cd(1.0);
   s.kx.resize(s.size);
   for (Index i = 0; i < s.size; ++i) s.kx(i) = p.kx_over_k0 - double(int(i) - s.n_orders) * kxg;
