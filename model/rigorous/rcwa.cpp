@@ -43,16 +43,23 @@ struct FilmSetup {
   cd gap_admittance;       // V of the zero-thickness gap medium (W_gap = I)
 };
 
-// Fourier coefficients c_h, |h| ≤ hmax, of 1/(n0 + n1 cos u)² by the trapezoidal rule, which
+// Permittivity at fringe phase u = K·r: (n0 + n1 cos u)², or Kogelnik's linearised
+// n0² + 2 n0 n1 cos u when asked (diagnostic: separates the two-wave error from the O(n1²) terms).
+cd localPermittivity(const RcwaProblem& p, double u) {
+  if (p.linearised_permittivity) return p.n0 * p.n0 + 2.0 * p.n0 * p.n1 * std::cos(u);
+  const cd n = p.n0 + p.n1 * std::cos(u);
+  return n * n;
+}
+
+// Fourier coefficients c_h, |h| ≤ hmax, of 1/ε(u) by the trapezoidal rule, which
 // converges geometrically for this analytic periodic function (ratio ≈ n1/(2 n0) per harmonic).
-std::vector<cd> inversePermittivityHarmonics(cd n0, double n1, int hmax) {
+std::vector<cd> inversePermittivityHarmonics(const RcwaProblem& p, int hmax) {
   const int samples = 4 * hmax + 64;
   std::vector<cd> c(2 * hmax + 1, cd(0.0));
   std::vector<cd> f(samples);
   for (int k = 0; k < samples; ++k) {
     const double u = 2.0 * kPi * k / samples;
-    const cd n = n0 + n1 * std::cos(u);
-    f[k] = 1.0 / (n * n);
+    f[k] = 1.0 / localPermittivity(p, u);
   }
   for (int h = -hmax; h <= hmax; ++h) {
     cd s(0.0);
@@ -87,11 +94,15 @@ SMatrix sliceSMatrix(const FilmSetup& s, const RcwaProblem& p, double z_um, doub
   eps[hmax] = n0 * n0 + 0.5 * n1 * n1;
   eps[hmax - 1] = eps[hmax + 1] = n0 * n1;
   eps[hmax - 2] = eps[hmax + 2] = 0.25 * n1 * n1;
+  if (p.linearised_permittivity) {
+    eps[hmax] = n0 * n0;
+    eps[hmax - 2] = eps[hmax + 2] = 0.0;
+  }
   const double phase = s.kz_grating * s.k0_um * z_um;
   // K_x = 0: every harmonic of the profile lands on the single order, i.e. the slice is the
   // homogeneous medium ε(z) (its own 1/ε exactly, no factorisation question).
-  const cd n_local = n0 + n1 * std::cos(phase);
-  const MatrixXcd E = s.uniform_x ? MatrixXcd::Constant(1, 1, n_local * n_local) : toeplitz(eps, hmax, n, phase);
+  const cd eps_local = localPermittivity(p, phase);
+  const MatrixXcd E = s.uniform_x ? MatrixXcd::Constant(1, 1, eps_local) : toeplitz(eps, hmax, n, phase);
   const auto kxd = s.kx.asDiagonal();
 
   MatrixXcd a, finv, f;
@@ -101,9 +112,9 @@ SMatrix sliceSMatrix(const FilmSetup& s, const RcwaProblem& p, double z_um, doub
   } else {
     // TM with Li's rules: A = [[1/ε]]^{-1} (I − Kx [[ε]]^{-1} Kx).
     if (s.uniform_x) {
-      f = MatrixXcd::Constant(1, 1, 1.0 / (n_local * n_local));
+      f = MatrixXcd::Constant(1, 1, 1.0 / eps_local);
     } else {
-      const std::vector<cd> inv = inversePermittivityHarmonics(n0, n1, hmax);
+      const std::vector<cd> inv = inversePermittivityHarmonics(p, hmax);
       f = toeplitz(inv, hmax, n, phase);
     }
     finv = f.partialPivLu().inverse();
@@ -175,6 +186,28 @@ SMatrix substrateSMatrix(const VectorXcd& v_sub, cd v_gap) {
   s.s21 = (2.0 * a.cwiseInverse()).asDiagonal();
   s.s22 = (-(b.cwiseQuotient(a))).asDiagonal();
   return s;
+}
+
+// 1-D stack (K_x = 0): scalar S-matrices, the same formulas as sliceSMatrix/starProduct with
+// 1×1 blocks (W = 1; TE V = −γ, TM V = γ/ε; gap V_g = ∓1), without dynamic-matrix overhead.
+struct ScalarS {
+  cd s11{0.0}, s12{1.0}, s21{1.0}, s22{0.0};
+};
+ScalarS scalarStar(const ScalarS& a, const ScalarS& b) {
+  const cd den = 1.0 - b.s11 * a.s22;
+  return {a.s11 + a.s12 * b.s11 * a.s21 / den, a.s12 * b.s12 / den, b.s21 * a.s21 / den,
+          b.s22 + b.s21 * a.s22 * b.s12 / den};
+}
+ScalarS scalarSlice(const FilmSetup& s, cd eps, double dz_um) {
+  const cd kx = s.kx(0);
+  const cd g = forwardRoot(eps - kx * kx);
+  const cd vinv_vg = s.te ? 1.0 / g : eps / g;  // V^{-1} V_gap
+  const cd A = 1.0 + vinv_vg, B = 1.0 - vinv_vg;
+  const cd X = std::exp(cd(0.0, 1.0) * g * (s.k0_um * dz_um));
+  const cd den = A - X * B / A * X * B;
+  const cd s11 = (X * B / A * X * A - B) / den;
+  const cd s12 = X * (A - B / A * B) / den;
+  return {s11, s12, s12, s11};
 }
 
 VectorXcd shiftPhases(const FilmSetup& s, double z_um) {
@@ -263,7 +296,17 @@ RcwaResult solveRcwa(const RcwaProblem& p, const RcwaOptions& o) {
     // zero thickness: nothing between cover and substrate
   } else if (invariant_z) {
     film = sliceSMatrix(s, p, 0.0, p.thickness_um);
-  } else if (uniform_x || o.explicit_slices) {
+  } else if (uniform_x) {
+    ScalarS acc;
+    for (int j = 0; j < slices; ++j) {
+      const double u = s.kz_grating * s.k0_um * (j + 0.5) * dz;
+      acc = scalarStar(acc, scalarSlice(s, localPermittivity(p, u), dz));
+    }
+    film.s11(0, 0) = acc.s11;
+    film.s12(0, 0) = acc.s12;
+    film.s21(0, 0) = acc.s21;
+    film.s22(0, 0) = acc.s22;
+  } else if (o.explicit_slices) {
     for (int j = 0; j < slices; ++j) film = starProduct(film, sliceSMatrix(s, p, (j + 0.5) * dz, dz));
   } else {
     // One decomposition, D-conjugates for the other slices, stack assembled by doubling:
@@ -321,6 +364,16 @@ RcwaResult solveRcwa(const RcwaProblem& p, const RcwaOptions& o) {
     (ord.reflected ? res.reflected_total : res.transmitted_total) += ord.efficiency;
   res.total_efficiency = res.reflected_total + res.transmitted_total;
   return res;
+}
+
+KogelnikOrder kogelnikDiffractedOrder(const RcwaProblem& p) {
+  const double slant = p.slant_deg * kPi / 180.0;
+  const double k_ratio = p.wavelength_nm / p.period_nm;
+  const double kxg = k_ratio * std::sin(slant), kzg = k_ratio * std::cos(slant);
+  if (std::abs(kxg) < 1e-12 * k_ratio) return {0, true};
+  const double n = p.n0.real();
+  const double kz_inc = std::sqrt(std::max(0.0, n * n - p.kx_over_k0 * p.kx_over_k0));
+  return {1, kz_inc - kzg < 0.0};
 }
 
 RcwaConvergedResult solveRcwaConverged(const RcwaProblem& problem, const RcwaConvergence& c) {

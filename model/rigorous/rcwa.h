@@ -54,6 +54,9 @@ struct RcwaProblem {
   double n_substrate = 1.5;      // exit medium (real)
   double kx_over_k0 = 0.0;       // tangential wave vector of the incident wave / k0
   RcwaPolarization polarization = RcwaPolarization::TE;
+  // Diagnostic: use Kogelnik's linearised ε = n0² + 2 n0 n1 cos K·r instead of (n0 + n1 cos)²,
+  // to separate the two-wave error of Kogelnik's theory from its dropped O(n1²) terms.
+  bool linearised_permittivity = false;
 
   // Incidence from the angle in the cover, or from the angle inside the film (Re n0), which is
   // what Kogelnik's probe angle is. Both just set kx_over_k0 (Snell's law: k_x is conserved).
@@ -95,13 +98,22 @@ struct RcwaResult {
 // orders < 0, slices < 1, Im n0 < 0).
 RcwaResult solveRcwa(const RcwaProblem& problem, const RcwaOptions& options = {});
 
+// The wave Kogelnik calls diffracted (σ = ρ − K) in RCWA's terms: order +1, on the reflected side
+// when its z-component inside the film, k_z,inc − K_z, is negative (Kogelnik's c_S < 0); order 0
+// reflected when K_x = 0 (the unslanted reflection grating is a 1-D stack).
+struct KogelnikOrder {
+  int order = 1;
+  bool reflected = false;
+};
+KogelnikOrder kogelnikDiffractedOrder(const RcwaProblem& problem);
+
 // Picks orders and slices for a requested accuracy: doubles the slices, then raises the orders,
 // until the efficiency of the target order (m, side) changes by less than `tolerance` (absolute)
 // between successive refinements, and the last refinement of the other parameter also held.
 struct RcwaConvergence {
   double tolerance = 1e-4;
   int target_order = 1;
-  bool target_reflected = false;
+  bool target_reflected = false;  // (see kogelnikDiffractedOrder for Kogelnik's wave)
   int min_orders = 2, max_orders = 60;
   int min_slices = 8, max_slices = 1 << 16;
 };
