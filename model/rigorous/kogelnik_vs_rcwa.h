@@ -35,6 +35,9 @@ struct KogelnikRcwaGrid {
   std::vector<double> detuning_xi{0.0, 1.5, 4.0};
   double rcwa_tolerance = 1e-4;  // absolute, on the diffracted efficiency
   int kogelnik_repeats = 2000;   // evaluations timed per point
+  // Also solve RCWA with Kogelnik's linearised ε = n0² + 2 n0 n1 cos K·r: the error against it
+  // is the two-wave/slowly-varying-envelope error alone, without the dropped O(n1²) terms.
+  bool with_linearised = true;
   // The few-point grid of `fovea-cli bench --quick` / CI-sized runs.
   static KogelnikRcwaGrid quick();
 };
@@ -51,10 +54,12 @@ struct KogelnikRcwaPoint {
   double rcwa_other_orders = 0.0;  // power in orders Kogelnik ignores (neither 0 T/R nor its wave)
   int rcwa_orders = 0, rcwa_slices = 0, rcwa_solves = 0;
   bool rcwa_converged = false;
-  double abs_error = 0.0;       // |η_Kogelnik − η_RCWA|
-  double kogelnik_ns = 0.0;     // one Kogelnik evaluation
-  double rcwa_ms = 0.0;         // converged RCWA (all solves of the convergence loop)
-  double rcwa_single_ms = 0.0;  // one RCWA solve at the converged orders and slices
+  double abs_error = 0.0;                   // |η_Kogelnik − η_RCWA|
+  double rcwa_linearised_efficiency = 0.0;  // RCWA with the linearised ε (when with_linearised)
+  double abs_error_linearised = 0.0;        // |η_Kogelnik − η_RCWA,linearised|
+  double kogelnik_ns = 0.0;                 // one Kogelnik evaluation
+  double rcwa_ms = 0.0;                     // converged RCWA (all solves of the convergence loop)
+  double rcwa_single_ms = 0.0;              // one RCWA solve at the converged orders and slices
 };
 
 using KogelnikEvaluator = std::function<KogelnikEvaluation(const PlanarCase&)>;
@@ -68,6 +73,8 @@ struct RhoBinSummary {
   double rho_min = 0.0, rho_max = 0.0;
   int points = 0;
   double max_error = 0.0, median_error = 0.0, mean_kogelnik_ns = 0.0, mean_rcwa_ms = 0.0;
+  double max_error_linearised = 0.0;
+  double max_error_weak = 0.0;  // over the points with ν ≤ π/2 (up to the first full conversion)
 };
 std::vector<RhoBinSummary> summariseByRho(const std::vector<KogelnikRcwaPoint>& points);
 
