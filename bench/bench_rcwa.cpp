@@ -98,6 +98,9 @@ static void BM_KogelnikVsRcwaMap(benchmark::State& state) {
     state.counters["points_" + tag] = s.points;
   }
   state.counters["points"] = double(pts.size());
+  int unconverged = 0;
+  for (const auto& p : pts) unconverged += p.rcwa_converged ? 0 : 1;
+  state.counters["rcwa_unconverged"] = unconverged;
   if (const char* dir = std::getenv("FOVEA_BENCH_OUT"); dir && state.range(0)) {
     std::ofstream(std::string(dir) + "/kogelnik_vs_rcwa.md") << kogelnikVsRcwaMarkdown(pts);
   }

@@ -92,7 +92,7 @@ std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, cons
           const double cos_slant = std::abs(std::cos(c.slant_deg * kPi / 180.0));
           const double periods_z = d * 1e3 * cos_slant / period_nm;
           conv.min_slices = std::max(8, int(std::ceil(16.0 * periods_z)));
-          conv.max_slices = std::max(conv.min_slices, 1 << 18);
+          conv.max_slices = std::max(conv.min_slices, conv.max_slices);
           t0 = Clock::now();
           const RcwaConvergedResult rc = solveRcwaConverged(prob, conv);
           pt.rcwa_ms = msSince(t0);

@@ -115,7 +115,7 @@ struct RcwaConvergence {
   int target_order = 1;
   bool target_reflected = false;  // (see kogelnikDiffractedOrder for Kogelnik's wave)
   int min_orders = 2, max_orders = 60;
-  int min_slices = 8, max_slices = 1 << 16;
+  int min_slices = 8, max_slices = 1 << 22;  // doubling makes 4 M slices cost ~22 star products
 };
 struct RcwaConvergedResult {
   RcwaResult result;

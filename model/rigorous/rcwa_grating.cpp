@@ -54,7 +54,7 @@ RcwaConvergedResult solveOne(const RcwaGratingRequest& q, RcwaPolarization pol) 
   // Start the staircase at 16 slices per fringe period along z (no convergence by aliasing).
   const double periods_z = q.thickness_um * 1e3 * std::abs(std::cos(q.slant_deg * kPi / 180.0)) / q.period_nm;
   c.min_slices = int(std::min(double(1 << 18), std::max(8.0, std::ceil(16.0 * periods_z))));
-  c.max_slices = std::max(c.min_slices, 1 << 18);
+  c.max_slices = std::max(c.min_slices, c.max_slices);
   if (q.orders) c.min_orders = c.max_orders = *q.orders;
   if (q.slices) c.min_slices = c.max_slices = *q.slices;
   return solveRcwaConverged(p, c);
