@@ -73,12 +73,16 @@ std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, cons
           pt.rho = rhoParameter(c);
           pt.klein_q = kleinQ(c);
 
-          // Kogelnik, timed over repeats (the sink keeps the loop from being optimised away).
+          // Kogelnik, timed as the fastest of 5 batches (the machine is shared: the minimum is the
+          // cost, the rest is interference). The sink keeps the loop from being optimised away.
           volatile double sink = 0.0;
-          const int reps = std::max(1, grid.kogelnik_repeats);
-          auto t0 = Clock::now();
-          for (int i = 0; i < reps; ++i) sink = sink + kog(c).efficiency;
-          pt.kogelnik_ns = msSince(t0) * 1e6 / reps;
+          const int reps = std::max(1, grid.kogelnik_repeats / 5);
+          pt.kogelnik_ns = 1e300;
+          for (int batch = 0; batch < 5; ++batch) {
+            const auto t0 = Clock::now();
+            for (int i = 0; i < reps; ++i) sink = sink + kog(c).efficiency;
+            pt.kogelnik_ns = std::min(pt.kogelnik_ns, msSince(t0) * 1e6 / reps);
+          }
           pt.kogelnik = kog(c);
 
           // RCWA, converged on Kogelnik's wave; slices start at 16 per fringe period along z so
@@ -93,12 +97,18 @@ std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, cons
           const double periods_z = d * 1e3 * cos_slant / period_nm;
           conv.min_slices = std::max(8, int(std::ceil(16.0 * periods_z)));
           conv.max_slices = std::max(conv.min_slices, conv.max_slices);
-          t0 = Clock::now();
+          auto t0 = Clock::now();
           const RcwaConvergedResult rc = solveRcwaConverged(prob, conv);
           pt.rcwa_ms = msSince(t0);
           t0 = Clock::now();
-          (void)solveRcwa(prob, {rc.orders, rc.slices, false});
-          pt.rcwa_single_ms = msSince(t0);
+          (void)solveRcwaConverged(prob, conv);  // second run: fastest of two, as above
+          pt.rcwa_ms = std::min(pt.rcwa_ms, msSince(t0));
+          pt.rcwa_single_ms = 1e300;
+          for (int rep = 0; rep < 2; ++rep) {
+            t0 = Clock::now();
+            (void)solveRcwa(prob, {rc.orders, rc.slices, false});
+            pt.rcwa_single_ms = std::min(pt.rcwa_single_ms, msSince(t0));
+          }
           pt.rcwa_efficiency = rc.result.efficiency(ko.order, ko.reflected);
           pt.rcwa_total = rc.result.total_efficiency;
           pt.rcwa_other_orders = pt.rcwa_total - pt.rcwa_efficiency;
