@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <random>
 
 #include "model/rigorous/rcwa.h"
 
@@ -315,6 +316,33 @@ class TestRcwa : public QObject {
                             .arg(conv.slices)
                             .arg(conv.result.efficiency(1, false))
                             .arg(fine)));
+  }
+
+  // Random lossless gratings (fixed seed), including grazing incidence, thick films, strong
+  // modulation and near-zero slants: finite, non-negative, energy conserved; absorbing: < 1.
+  void randomGratingsConserveEnergy() {
+    std::mt19937_64 rng(20261123);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < 60; ++i) {
+      RcwaProblem p;
+      p.n0 = 1.3 + 0.4 * u(rng);
+      p.n1 = 0.1 * u(rng);
+      p.thickness_um = std::pow(10.0, -1.0 + 3.0 * u(rng));  // 0.1 µm … 100 µm
+      p.period_nm = 150.0 + 2000.0 * u(rng);
+      p.slant_deg = i % 10 == 0 ? 1e-7 : 180.0 * u(rng);
+      p.wavelength_nm = 400.0 + 300.0 * u(rng);
+      p.n_cover = 1.0 + 0.7 * u(rng);
+      p.n_substrate = 1.0 + 0.7 * u(rng);
+      p.polarization = i % 2 ? RcwaPolarization::TE : RcwaPolarization::TM;
+      p.setCoverAngleDeg(i % 7 == 0 ? 89.9 : -85.0 + 170.0 * u(rng));
+      const RcwaResult r = solveRcwa(p, {3, 32, false});
+      for (const RcwaOrder& o : r.orders) QVERIFY(std::isfinite(o.efficiency) && o.efficiency >= 0.0);
+      QVERIFY2(std::abs(r.total_efficiency - 1.0) < 1e-8,
+               qPrintable(QString("case %1: %2").arg(i).arg(r.total_efficiency - 1.0)));
+      p.n0 = cd(p.n0.real(), 1e-3);
+      const double lossy = solveRcwa(p, {3, 32, false}).total_efficiency;
+      QVERIFY(std::isfinite(lossy) && lossy < 1.0 && lossy >= 0.0);
+    }
   }
 
   void badInput() {
