@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build imagemagick ccache pkg-config git
-  qt6-base-dev libqt6opengl6-dev libqt6svg6-dev qt6-charts-dev
+  qt6-base-dev libqt6opengl6-dev qt6-svg-dev qt6-charts-dev
   libvtk9-dev libopencv-dev libeigen3-dev libopenimageio-dev openimageio-tools
   libglm-dev libusb-1.0-0-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev libtbb-dev
