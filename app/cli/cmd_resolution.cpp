@@ -55,6 +55,8 @@ void install(CLI::App& app) {
                        {"foveal_cpd", optionalJson(s.foveal_cpd)},
                        {"peripheral_cpd", optionalJson(s.peripheral_cpd)},
                        {"optical_limit_cpd", optionalJson(s.optical_limit_cpd)},
+                       {"optical_limit_model_cpd", optionalJson(s.optical_limit_model_cpd)},
+                       {"optical_blur_arcmin", optionalJson(s.optical_blur_arcmin)},
                        {"perceived_cpd", s.perceived_cpd},
                        {"foveal_shown", s.foveal_shown}});
       out["samples"] = arr;

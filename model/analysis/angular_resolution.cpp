@@ -129,7 +129,12 @@ ResolutionResult analyzeResolution(const Scene& scene, const ResolutionOptions& 
     s.eccentricity_deg = lo + (hi - lo) * i / (n - 1);
     if (field) s.peripheral_cpd = peripheralCpd(s.eccentricity_deg);
     s.foveal_cpd = fovealCpd(s.eccentricity_deg);
-    if (s.foveal_cpd) s.optical_limit_cpd = opticalCpd(s.eccentricity_deg);
+    if (s.foveal_cpd) {
+      const FovealOpticsSample traced = tracedCombinerMtf30(scene, a, a + s.eccentricity_deg);
+      s.optical_limit_cpd = traced.mtf30_cpd;
+      s.optical_blur_arcmin = traced.rms_blur_arcmin;
+      s.optical_limit_model_cpd = opticalCpd(s.eccentricity_deg);
+    }
     s.foveal_shown = s.foveal_cpd && std::abs(s.eccentricity_deg) <= scene.foveation.blend_end_deg;
     if (s.foveal_shown)
       s.perceived_cpd = std::min({*s.foveal_cpd, *s.optical_limit_cpd, kEyeLimitCpd});

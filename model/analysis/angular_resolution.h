@@ -24,9 +24,10 @@
 // so centring needs x_f = (d_f + r) tan(a) / M (exact: r sin a - r cos a tan a = 0), and
 //   dN/deps = k_f (d_f + r - r cos a) sec^2(a + eps)   (per radian).
 //
-// Optical limit of the foveal combiner: the scene's MTF30 model, mtf30(theta) =
-// mtf30_on_axis * (1 - field_curvature_per_deg2 * theta^2) with theta = a + eps the field
-// angle at the on-axis combiner (Fig. S7 trend), floored at 0.
+// Optical limit of the foveal combiner: ray traced through the on-axis magnifier model of
+// foveal_optics.h (MTF30 with the eye pupil's diffraction). The scene's parametric model,
+// mtf30(theta) = mtf30_on_axis * (1 - field_curvature_per_deg2 * theta^2) with theta the
+// field angle at the on-axis combiner (Fig. S7 trend), is reported beside it.
 // Perceived: min(display, optical limit, eye limit 60 cpd) where the foveal inset is shown
 // (|eps| <= foveation.blend_end_deg and inside the micro-OLED field), otherwise
 // min(peripheral, 60 cpd).
@@ -35,6 +36,7 @@
 #include <optional>
 #include <vector>
 
+#include "model/analysis/foveal_optics.h"
 #include "model/scene/scene.h"
 
 namespace fovea {
@@ -49,9 +51,11 @@ struct ResolutionOptions {
 
 struct ResolutionSample {
   double eccentricity_deg = 0;
-  std::optional<double> foveal_cpd;         // empty outside the micro-OLED's field
-  std::optional<double> peripheral_cpd;     // empty where the line of sight misses the HOE / projection
-  std::optional<double> optical_limit_cpd;  // foveal combiner MTF30, empty outside the foveal field
+  std::optional<double> foveal_cpd;               // empty outside the micro-OLED's field
+  std::optional<double> peripheral_cpd;           // empty where the line of sight misses the HOE / projection
+  std::optional<double> optical_limit_cpd;        // foveal combiner MTF30 (ray traced), empty outside the foveal field
+  std::optional<double> optical_limit_model_cpd;  // the scene's parametric MTF30 model
+  std::optional<double> optical_blur_arcmin;      // traced RMS angular blur
   double perceived_cpd = 0;
   bool foveal_shown = false;  // the foveal inset is what the eye sees here
 };

@@ -66,8 +66,8 @@ class TestAngularResolution : public QObject {
     // Field of the micro-OLED image: +-atan(M w / 2 / d_f) = +-11.9 deg.
     const double half = std::atan(21.9 * 15.55 / 2 / 800.0) / kDeg;
     QVERIFY(std::abs(r.foveal_field_deg[1] - half) < 1e-9 && std::abs(r.foveal_field_deg[0] + half) < 1e-9);
-    QCOMPARE(*mid.optical_limit_cpd, 60.0);
-    QCOMPARE(mid.perceived_cpd, std::min({expected, 60.0, kEyeLimitCpd}));
+    QCOMPARE(*mid.optical_limit_model_cpd, 60.0);
+    QCOMPARE(mid.perceived_cpd, std::min({expected, *mid.optical_limit_cpd, kEyeLimitCpd}));
   }
 
   void gazeRecentresTheFovealImage() {
@@ -82,10 +82,34 @@ class TestAngularResolution : public QObject {
     // Optical limit falls with field angle (field curvature): lower than at zero gaze.
     double best_optical = 0;
     for (const auto& smp : r.samples)
-      if (smp.optical_limit_cpd) best_optical = std::max(best_optical, *smp.optical_limit_cpd);
+      if (smp.optical_limit_model_cpd) best_optical = std::max(best_optical, *smp.optical_limit_model_cpd);
     QVERIFY(best_optical < 60.0 * (1 - 0.0015 * 3.0 * 3.0) + 1e-9);
     // Outside the micro-OLED field there is no foveal value.
     QVERIFY(!r.samples.front().foveal_cpd.has_value());
+  }
+
+  void tracedCombinerIsDiffractionLimitedOnAxisAndFallsOffAxis() {
+    const Scene s = prototype();
+    const CombinerPrescription c = combinerPrescription(s);
+    // Mirror equation with M = v/u, v = d_f - b = 770 mm: f = v/(M-1), u = v/M.
+    QVERIFY(std::abs(c.focal_length_mm - 770.0 / 20.9) < 1e-9);
+    QVERIFY(std::abs(c.display_distance_mm - 770.0 / 21.9) < 1e-9);
+    // f/7 mirror, 5 mm pupil: on axis only a trace of spherical aberration remains.
+    const double diffraction = diffractionMtf30Cpd(5.0, 550.0);
+    const FovealOpticsSample on = tracedCombinerMtf30(s, 0, 0);
+    QVERIFY(on.mtf30_cpd <= diffraction + 1e-9);
+    QVERIFY(on.mtf30_cpd > 0.95 * diffraction);
+    QVERIFY(std::abs(on.best_focus_mm - 800.0) < 10.0);  // the eye focuses on the virtual image
+    // Symmetric in field, worse off axis (field curvature / astigmatism), monotonic.
+    double last = on.mtf30_cpd;
+    for (double f : {3.0, 6.0, 9.0, 12.0}) {
+      const double plus = tracedCombinerMtf30(s, 0, f).mtf30_cpd, minus = tracedCombinerMtf30(s, 0, -f).mtf30_cpd;
+      QVERIFY(std::abs(plus - minus) < 1e-6 * plus);
+      QVERIFY(plus < last);
+      last = plus;
+    }
+    // Diffraction MTF30 scales with the pupil diameter over the wavelength.
+    QVERIFY(std::abs(diffractionMtf30Cpd(2.5, 550.0) - diffraction / 2) < 1e-6 * diffraction);
   }
 
   void peripheralIsMirrorSymmetricForASymmetricBench() {
