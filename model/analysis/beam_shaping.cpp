@@ -58,6 +58,73 @@ LensGeometry lensGeometry(const Scene& scene, const PlacedLens& pl) {
   return g;
 }
 
+// Real surfaces of a stock lens: vertices on the lens axis (unit `axis`, pointing away from
+// the projector), signed radii (centre of curvature at vertex + R axis; 0 = plane).
+struct RealLens {
+  Eigen::Vector3d v1, v2, axis;
+  double r1 = 0, r2 = 0, clear_radius_mm = 0;
+};
+
+RealLens realLens(const LensGeometry& g, const StockLens& stock) {
+  RealLens l;
+  l.axis = g.normal;
+  l.v1 = g.center - 0.5 * stock.center_thickness_mm * g.normal;
+  l.v2 = g.center + 0.5 * stock.center_thickness_mm * g.normal;
+  l.clear_radius_mm = g.clear_radius_mm;
+  const double n = g.index_d, f = g.focal_d_mm, t = stock.center_thickness_mm;
+  if (stock.shape == "bi-convex") {
+    // Symmetric thick lens: 1/f = (n-1)(2/R - (n-1) t/(n R^2)), the larger root.
+    const double r = (n - 1) * f * (1 + std::sqrt(std::max(0.0, 1 - t / (n * f))));
+    l.r1 = r;
+    l.r2 = -r;
+  } else {
+    // Plano-convex, curved side towards the projector (the near-collimated side): the
+    // effective focal length is exactly R/(n-1), whatever the thickness.
+    l.r1 = (n - 1) * f;
+    l.r2 = 0;
+  }
+  return l;
+}
+
+// Intersects and refracts at one surface; false when the ray misses or totally reflects.
+bool refractAt(Eigen::Vector3d& p, Eigen::Vector3d& d, const Eigen::Vector3d& vertex, double radius,
+               const Eigen::Vector3d& axis, double n_from, double n_to, double clear_radius_mm) {
+  Eigen::Vector3d normal;
+  if (radius == 0) {
+    const double dn = d.dot(axis);
+    if (std::abs(dn) < 1e-12) return false;
+    p += ((vertex - p).dot(axis) / dn) * d;
+    normal = axis;
+  } else {
+    const Eigen::Vector3d c = vertex + radius * axis;
+    const Eigen::Vector3d oc = p - c;
+    const double b = oc.dot(d), cc = oc.squaredNorm() - radius * radius, disc = b * b - cc;
+    if (disc < 0) return false;
+    const double s = std::sqrt(disc);
+    // The cap next to the vertex: (x - c).axis has the sign opposite to the radius.
+    const Eigen::Vector3d x1 = p + (-b - s) * d, x2 = p + (-b + s) * d;
+    const bool first = ((x1 - c).dot(axis) < 0) == (radius > 0);
+    p = first ? x1 : x2;
+    normal = (p - c).normalized();
+  }
+  if (clear_radius_mm > 0) {
+    const Eigen::Vector3d off = p - vertex;
+    if ((off - off.dot(axis) * axis).norm() > clear_radius_mm) return false;
+  }
+  if (normal.dot(d) > 0) normal = -normal;
+  const double eta = n_from / n_to, cos_i = -normal.dot(d);
+  const double k = 1 - eta * eta * (1 - cos_i * cos_i);
+  if (k < 0) return false;
+  d = (eta * d + (eta * cos_i - std::sqrt(k)) * normal).normalized();
+  return true;
+}
+
+// Through both surfaces; `clear` = false skips the aperture (differential rays).
+bool traceRealLens(const RealLens& l, double n_glass, Eigen::Vector3d& p, Eigen::Vector3d& d, bool clear) {
+  const double ca = clear ? l.clear_radius_mm : 0.0;
+  return refractAt(p, d, l.v1, l.r1, l.axis, 1.0, n_glass, ca) && refractAt(p, d, l.v2, l.r2, l.axis, n_glass, 1.0, ca);
+}
+
 struct PixelSpot {
   bool on_hoe = false, through_lens = false;
   Eigen::Vector2d hoe_local{0, 0};
@@ -65,10 +132,20 @@ struct PixelSpot {
 };
 
 // One pixel's chief ray and Gaussian beam from the projector to the HOE plane.
+PixelSpot tracePixelReal(const Scene& scene, const BeamModel& beam, const Frame& proj, const Frame& hoe,
+                         const LensGeometry& lens, const StockLens& stock, double phi_h_deg, double phi_v_deg,
+                         double wavelength_nm, bool& through);
+
 PixelSpot tracePixel(const Scene& scene, const BeamModel& beam, const Frame& proj, const Frame& hoe,
                      const std::optional<LensGeometry>& lens, const std::optional<StockLens>& stock, double phi_h_deg,
-                     double phi_v_deg, double wavelength_nm) {
+                     double phi_v_deg, double wavelength_nm, bool thin_lens = true) {
   PixelSpot out;
+  if (lens && !thin_lens) {
+    bool through = false;
+    PixelSpot real =
+        tracePixelReal(scene, beam, proj, hoe, *lens, *stock, phi_h_deg, phi_v_deg, wavelength_nm, through);
+    if (through) return real;  // otherwise the chief ray missed the lens: unshaped below
+  }
   Eigen::Vector3d origin = proj.origin;
   Eigen::Vector3d u =
       (proj.axes * Eigen::Vector3d(std::tan(phi_h_deg * kDeg), std::tan(phi_v_deg * kDeg), 1.0)).normalized();
@@ -133,6 +210,76 @@ PixelSpot tracePixel(const Scene& scene, const BeamModel& beam, const Frame& pro
   return out;
 }
 
+// Real thick lens: the chief ray is traced exactly through both surfaces; the Gaussian
+// beam goes through the local first-order optics of that path, i.e. the 4x4 ray-transfer
+// (Jacobian) matrix from the projector exit to the lens' exit side, found by central
+// differences of real rays, applied to the complex curvature matrix:
+//   Q' = (C + D Q)(A + B Q)^-1,  Q = (1/q) I at the exit,  then free space Q(L) = Q (I + L Q)^-1.
+// Intensity covariance: Sigma = (1/4) (-(pi/lambda_eff) Im Q)^-1. This includes the lens'
+// tilt astigmatism and its zonal (spherical) aberration at the beam's height.
+PixelSpot tracePixelReal(const Scene& scene, const BeamModel& beam, const Frame& proj, const Frame& hoe,
+                         const LensGeometry& lens, const StockLens& stock, double phi_h_deg, double phi_v_deg,
+                         double wavelength_nm, bool& through) {
+  PixelSpot out;
+  through = false;
+  const RealLens rl = realLens(lens, stock);
+  const double n_glass = glassIndex(stock.glass, wavelength_nm);
+  const Eigen::Vector3d u =
+      (proj.axes * Eigen::Vector3d(std::tan(phi_h_deg * kDeg), std::tan(phi_v_deg * kDeg), 1.0)).normalized();
+  const Eigen::Vector3d ea = proj.y().cross(u).normalized(), eb = u.cross(ea);
+  Eigen::Vector3d p0 = proj.origin, d0 = u;
+  if (!traceRealLens(rl, n_glass, p0, d0, true)) return out;
+  through = true;
+  out.through_lens = true;
+  const Eigen::Vector3d ea2 = (ea - ea.dot(d0) * d0).normalized(), eb2 = d0.cross(ea2);
+  // Output coordinates (x, y, slope x, slope y) of a perturbed input ray.
+  auto outputState = [&](const Eigen::Vector4d& in, Eigen::Vector4d& state) {
+    Eigen::Vector3d p = proj.origin + in[0] * ea + in[1] * eb;
+    Eigen::Vector3d d = (u + in[2] * ea + in[3] * eb).normalized();
+    if (!traceRealLens(rl, n_glass, p, d, false)) return false;
+    const double s = (p0 - p).dot(d0) / d.dot(d0);
+    const Eigen::Vector3d y = p + s * d - p0;
+    state = {y.dot(ea2), y.dot(eb2), d.dot(ea2) / d.dot(d0), d.dot(eb2) / d.dot(d0)};
+    return true;
+  };
+  Eigen::Matrix4d J;
+  const double steps[4] = {1e-4, 1e-4, 1e-6, 1e-6};
+  for (int k = 0; k < 4; ++k) {
+    Eigen::Vector4d plus = Eigen::Vector4d::Zero(), minus = Eigen::Vector4d::Zero(), sp, sm;
+    plus[k] = steps[k];
+    minus[k] = -steps[k];
+    if (!outputState(plus, sp) || !outputState(minus, sm)) return out;
+    J.col(k) = (sp - sm) / (2 * steps[k]);
+  }
+  using M2 = Eigen::Matrix2cd;
+  const M2 A = J.block<2, 2>(0, 0).cast<cd>(), B = J.block<2, 2>(0, 2).cast<cd>();
+  const M2 C = J.block<2, 2>(2, 0).cast<cd>(), D = J.block<2, 2>(2, 2).cast<cd>();
+  const cd q0(-beam.z_waist_mm, beam.z_rayleigh_mm);
+  const M2 Q0 = M2::Identity() / q0;
+  M2 Q = (C + D * Q0) * (A + B * Q0).inverse();
+  // To the HOE plane along the chief ray.
+  const Eigen::Vector3d N = hoe.z();
+  const double uN = d0.dot(N);
+  if (std::abs(uN) < 1e-9) return out;
+  const double L = (hoe.origin - p0).dot(N) / uN;
+  if (L <= 0) return out;
+  Q = Q * (M2::Identity() + L * Q).inverse();
+  const Eigen::Vector3d x = p0 + L * d0;
+  const Eigen::Vector3d local = hoe.toLocal(x);
+  out.hoe_local = {local.x(), local.y()};
+  out.on_hoe = std::abs(local.x()) <= scene.hoe.size_mm[0] / 2 && std::abs(local.y()) <= scene.hoe.size_mm[1] / 2;
+  Eigen::Matrix2d im = Q.imag();
+  im = 0.5 * (im + im.transpose());
+  const Eigen::Matrix2d sigma = 0.25 * (-(std::numbers::pi / beam.lambda_eff_mm) * im).inverse();
+  Eigen::Matrix<double, 3, 2> E;
+  E.col(0) = ea2;
+  E.col(1) = eb2;
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d0 * N.transpose() / uN;
+  const Eigen::Matrix3d foot = P * E * sigma * E.transpose() * P.transpose();
+  out.rms_radius_mm = std::sqrt(std::max(0.0, foot.trace()));
+  return out;
+}
+
 double distanceOutsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
   bool inside = false;
   double best = std::numeric_limits<double>::infinity();
@@ -181,7 +328,7 @@ SpotReport evaluateSpots(const Scene& scene, const std::optional<PlacedLens>& le
       for (int j = 0; j < options.grid_vertical; ++j) {
         const double ph = fh * (-0.5 + (i + 0.5) / options.grid_horizontal);
         const double pv = fv * (-0.5 + (j + 0.5) / options.grid_vertical);
-        const PixelSpot s = tracePixel(scene, beam, proj, hoe, geom, stock, ph, pv, wl);
+        const PixelSpot s = tracePixel(scene, beam, proj, hoe, geom, stock, ph, pv, wl, options.thin_lens);
         if (!s.on_hoe) continue;
         ++r.pixels_on_hoe;
         if (s.through_lens) ++r.pixels_through_lens;
@@ -197,7 +344,7 @@ SpotReport evaluateSpots(const Scene& scene, const std::optional<PlacedLens>& le
   std::vector<Eigen::Vector2d> border;
   constexpr int kEdge = 12;
   auto add = [&](double u, double v) {
-    const PixelSpot s = tracePixel(scene, beam, proj, hoe, geom, stock, fh * u, fv * v, wl0);
+    const PixelSpot s = tracePixel(scene, beam, proj, hoe, geom, stock, fh * u, fv * v, wl0, options.thin_lens);
     border.push_back(s.hoe_local);
   };
   for (int k = 0; k < kEdge; ++k) add(-0.5 + double(k) / kEdge, -0.5);

@@ -11,7 +11,12 @@
 // larger, elliptical spot right at the exit (scan smear of the resonant MEMS, A.2.1) —
 // a single M^2 beam cannot also have it; it only affects the first few cm of throw.
 //
-// Lens: ideal thin lens at the lens' centre plane, with the chromatic focal length
+// Lens (default): the real stock lens — spherical/plane surfaces with the catalogue's
+// thickness, radii from the focal length (plano-convex: R = (n-1) f, curved side to the
+// projector; symmetric bi-convex: thick-lens formula), exact chief-ray refraction, and the
+// beam propagated through the local 4x4 ray-transfer matrix of that real path (see
+// tracePixelReal). Simpler alternative (SpotOptions::thin_lens):
+// ideal thin lens at the lens' centre plane, with the chromatic focal length
 // f(lambda) = f_d (n_d - 1)/(n(lambda) - 1) (N-BK7 Sellmeier). Chief rays bend by the
 // paraxial slope rule s' = s - h/f relative to the lens normal; the Gaussian beam sees
 // Coddington's oblique thin-lens powers (Young's astigmatism formulae):
@@ -54,6 +59,9 @@ struct PlacedLens {
 struct SpotOptions {
   int grid_horizontal = 9;  // pixel grid sampled over the projector field
   int grid_vertical = 5;
+  // false (default): real thick lens (exact surfaces; beam through the local 4x4 ray-
+  // transfer matrix of the real chief ray). true: ideal thin lens with Coddington powers.
+  bool thin_lens = false;
 };
 
 struct SpotReport {
