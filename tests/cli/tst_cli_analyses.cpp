@@ -62,6 +62,29 @@ class TestCliAnalyses : public QObject {
     QVERIFY(std::abs(j["improvement_percent"].get<double>() - 100 * (before - after) / before) < 1e-9);
   }
 
+  void optimizeLensIsCachedAndApplies() {
+    const QString out = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/shaped-scene.json";
+    QFile::remove(out);
+    const Run a = cli({"optimize-lens", "--starts", "1", "--json", "--no-cache"});
+    const Run b = cli({"optimize-lens", "--starts", "1", "--json", "--apply", out});
+    QCOMPARE(a.code, 0);
+    QCOMPARE(b.code, 0);
+    auto ja = nlohmann::json::parse(a.out.toStdString()), jb = nlohmann::json::parse(b.out.toStdString());
+    QCOMPARE(ja["cached"].get<bool>(), false);
+    QCOMPARE(jb["cached"].get<bool>(), true);  // unchanged scene and parameters: no recomputation
+    ja.erase("cached");
+    jb.erase("cached");
+    QCOMPARE(ja.dump(), jb.dump());
+    // The applied scene is valid and carries the lens.
+    const Run v = cli({"validate", out, "--json"});
+    QCOMPARE(v.code, 0);
+    QFile f(out);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const auto scene = nlohmann::json::parse(f.readAll().toStdString());
+    QCOMPARE(scene["beam_shaping_lens"]["enabled"].get<bool>(), true);
+    QCOMPARE(scene["beam_shaping_lens"]["focal_length_mm"].get<double>(), ja["focal_length_mm"].get<double>());
+  }
+
   void optimizeLensBadCatalogue() {
     const QString bad = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/bad_catalog.json";
     QFile f(bad);
