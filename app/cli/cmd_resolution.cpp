@@ -1,0 +1,84 @@
+// fovea-cli resolution SCENE [--gaze-deg A[,B]] --json: angular resolution vs eccentricity
+// (supplement A.5). foveal_cpd / optical_limit_cpd are null outside the micro-OLED field.
+#include <iomanip>
+#include <iostream>
+
+#include "app/cli/cli_common.h"
+#include "model/analysis/angular_resolution.h"
+
+namespace fovea::cli {
+namespace {
+
+nlohmann::json optionalJson(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+void install(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "resolution",
+      "Angular resolution (cpd) vs eccentricity for a gaze: foveal, peripheral, optical limit, perceived");
+  auto path = std::make_shared<std::string>();
+  auto gaze = std::make_shared<std::string>();
+  auto samples = std::make_shared<int>(241);
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("SCENE", *path, "scene file (default: the embedded prototype bench)");
+  cmd->add_option("--gaze-deg", *gaze, "gaze yaw[,pitch] in degrees (default: the scene's gaze)");
+  cmd->add_option("--samples", *samples, "eccentricity samples over the peripheral field")
+      ->check(CLI::Range(3, 100000));
+  cmd->add_flag("--json", *json, "print JSON");
+  cmd->callback([path, gaze, samples, json] {
+    const Scene scene = loadSceneOrExit(*path);
+    ResolutionOptions opt;
+    opt.samples = *samples;
+    if (!gaze->empty()) {
+      const auto g = parseNumberList(*gaze, "--gaze-deg", 1, 2);
+      opt.gaze_deg = std::array<double, 2>{g[0], g.size() > 1 ? g[1] : 0.0};
+    }
+    const ResolutionResult r = analyzeResolution(scene, opt);
+    if (r.samples.empty()) inputError("no line of sight reaches the HOE or the foveal image for this gaze");
+    if (*json) {
+      nlohmann::json out;
+      out["pixels_horizontal"] = r.pixels_horizontal;
+      out["gaze_deg"] = {r.gaze_yaw_deg, r.gaze_pitch_deg};
+      out["units"] = "cycles per degree (1 cycle = 2 pixels); angles in degrees";
+      out["projector_pixels_per_deg"] = r.projector_pixels_per_deg;
+      out["peripheral_field_deg"] = r.peripheral_field_deg;
+      out["foveal_field_deg"] = r.foveal_field_deg;
+      out["peripheral_pixel_integral"] = r.peripheral_pixel_integral;
+      out["peripheral_pixels_on_hoe"] = r.peripheral_pixels_on_hoe;
+      out["foveal_pixel_integral"] = r.foveal_pixel_integral;
+      out["foveal_pixels_horizontal"] = scene.foveal_display.pixels[0];
+      out["eye_limit_cpd"] = kEyeLimitCpd;
+      nlohmann::json arr = nlohmann::json::array();
+      for (const auto& s : r.samples)
+        arr.push_back({{"eccentricity_deg", s.eccentricity_deg},
+                       {"foveal_cpd", optionalJson(s.foveal_cpd)},
+                       {"peripheral_cpd", optionalJson(s.peripheral_cpd)},
+                       {"optical_limit_cpd", optionalJson(s.optical_limit_cpd)},
+                       {"optical_limit_model_cpd", optionalJson(s.optical_limit_model_cpd)},
+                       {"optical_blur_arcmin", optionalJson(s.optical_blur_arcmin)},
+                       {"perceived_cpd", s.perceived_cpd},
+                       {"foveal_shown", s.foveal_shown}});
+      out["samples"] = arr;
+      printJson(out);
+      return;
+    }
+    std::cout << "gaze " << r.gaze_yaw_deg << "," << r.gaze_pitch_deg << " deg; peripheral field "
+              << r.peripheral_field_deg[0] << ".." << r.peripheral_field_deg[1] << " deg; pixel integral "
+              << r.peripheral_pixel_integral << " of " << r.pixels_horizontal << " (" << r.peripheral_pixels_on_hoe
+              << " land on the HOE)\n";
+    std::cout << "ecc_deg  foveal  peripheral  optical  perceived (cpd)\n" << std::fixed << std::setprecision(2);
+    const std::size_t stride = std::max<std::size_t>(1, r.samples.size() / 30);
+    for (std::size_t i = 0; i < r.samples.size(); i += stride) {
+      const auto& s = r.samples[i];
+      std::cout << std::setw(7) << s.eccentricity_deg << std::setw(8) << s.foveal_cpd.value_or(0) << std::setw(12)
+                << s.peripheral_cpd.value_or(0) << std::setw(9) << s.optical_limit_cpd.value_or(0) << std::setw(11)
+                << s.perceived_cpd << "\n";
+    }
+  });
+}
+
+const Registrar reg{"resolution", &install};
+
+}  // namespace
+}  // namespace fovea::cli

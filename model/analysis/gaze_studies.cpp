@@ -1,0 +1,252 @@
+#include "model/analysis/gaze_studies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "model/scene/scene_geometry.h"
+#include "model/scene/scene_io.h"
+
+namespace fovea {
+
+double axisFov(const FovSample& f, GazeAxis axis) {
+  return axis == GazeAxis::Yaw ? f.horizontal_deg : f.vertical_deg;
+}
+
+namespace {
+
+FovQuery makeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double shift_mm) {
+  FovQuery q;
+  q.gaze_deg = axis == GazeAxis::Yaw ? std::array<double, 2>{gaze_deg, 0.0} : std::array<double, 2>{0.0, gaze_deg};
+  if (method == ShiftMethod::Hoe)
+    q.hoe_shift_mm =
+        axis == GazeAxis::Yaw ? std::array<double, 2>{shift_mm, 0.0} : std::array<double, 2>{0.0, shift_mm};
+  else
+    q.source_shift_mm = shift_mm;
+  return q;
+}
+
+double pupilPosition(const Scene& scene, double gaze_deg, GazeAxis axis) {
+  const EyePlacement e = axis == GazeAxis::Yaw ? placeEye(scene, gaze_deg, 0.0) : placeEye(scene, 0.0, gaze_deg);
+  return axis == GazeAxis::Yaw ? e.pupil_center.x() : e.pupil_center.y();
+}
+
+}  // namespace
+
+GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
+                         ShiftMethod method, const GazeStudyOptions& options) {
+  const double pupil = pupilPosition(scene, gaze_deg, axis);
+  const double pupil0 = pupilPosition(scene, 0.0, axis);
+  // Geometric guess: a HOE shift moves the Maxwellian focus with it, so follow the pupil.
+  // The source shift has no simple guess (it moves along z): bracket around zero, wider.
+  const double guess = method == ShiftMethod::Hoe ? pupil - pupil0 : 0.0;
+  const double half = method == ShiftMethod::Hoe ? options.shift_half_range_mm : 2.5 * options.shift_half_range_mm;
+  const int n = std::max(3, options.bracket_points + (method == ShiftMethod::Source ? 4 : 0));
+
+  double best_s = guess, best_f = -1e300;
+  FovSample best_fov;
+  auto evaluate = [&](double s) {
+    const FovSample f = eval(scene, makeQuery(gaze_deg, axis, method, s));
+    const double objective = axisFov(f, axis) + f.mean_efficiency;
+    // Strictly better, or equal and closer to the guess (plateaus: stay near the geometry).
+    if (objective > best_f || (objective == best_f && std::abs(s - guess) < std::abs(best_s - guess))) {
+      best_f = objective;
+      best_s = s;
+      best_fov = f;
+    }
+    return objective;
+  };
+  std::vector<double> grid(n), values(n);
+  for (int i = 0; i < n; ++i) {
+    grid[i] = guess - half + 2.0 * half * i / (n - 1);
+    values[i] = evaluate(grid[i]);
+  }
+  const int b = static_cast<int>(std::max_element(values.begin(), values.end()) - values.begin());
+  // Golden-section refinement inside the bracket around the best grid point.
+  double lo = grid[std::max(0, b - 1)], hi = grid[std::min(n - 1, b + 1)];
+  constexpr double kInvPhi = 0.6180339887498949;
+  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
+  double f1 = evaluate(x1), f2 = evaluate(x2);
+  for (int it = 0; it < options.golden_iterations; ++it) {
+    if (f1 >= f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - kInvPhi * (hi - lo);
+      f1 = evaluate(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + kInvPhi * (hi - lo);
+      f2 = evaluate(x2);
+    }
+  }
+  GazeSample out;
+  out.gaze_deg = gaze_deg;
+  out.shift_mm = best_s;
+  out.fov = best_fov;
+  out.pupil_position_mm = pupil;
+  return out;
+}
+
+StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& eval, double from_deg, double to_deg,
+                                        double step_deg, GazeAxis axis, ShiftMethod method,
+                                        const GazeStudyOptions& options, const StudyControl& control) {
+  StudyOutcome<GazeSweepResult> out;
+  if (!(step_deg > 0) || !(to_deg >= from_deg)) throw std::invalid_argument("gaze range: need from <= to and step > 0");
+  std::vector<double> gazes;
+  for (int i = 0;; ++i) {
+    const double g = from_deg + i * step_deg;
+    if (g > to_deg + 1e-9 * std::max(1.0, std::abs(to_deg))) break;
+    gazes.push_back(g);
+  }
+  // Samples, then the zero-gaze reference as the last job.
+  auto runs = runSamples<GazeSample>(
+      gazes.size() + 1,
+      [&](std::size_t i) {
+        return optimiseShift(scene, eval, i < gazes.size() ? gazes[i] : 0.0, axis, method, options);
+      },
+      control);
+  if (!runs.ok()) return out;
+  GazeSweepResult r;
+  r.axis = axis;
+  r.method = method;
+  const GazeSample reference = runs.value->back();
+  r.samples.assign(runs.value->begin(), runs.value->end() - 1);
+  const double threshold = axisFov(reference.fov, axis) - options.tolerance_deg;
+  auto good = [&](const GazeSample& s) { return axisFov(s.fov, axis) >= threshold; };
+
+  // Walk out from zero gaze on each side; refine the first failure by bisection.
+  EyeBox& eb = r.eyebox;
+  eb.reference_fov_deg = axisFov(reference.fov, axis);
+  auto border = [&](int direction) -> std::optional<std::pair<GazeSample, bool>> {
+    GazeSample inside = reference;
+    std::optional<GazeSample> outside;
+    std::vector<const GazeSample*> side;
+    for (const auto& s : r.samples)
+      if (direction > 0 ? s.gaze_deg > 0 : s.gaze_deg < 0) side.push_back(&s);
+    std::sort(side.begin(), side.end(),
+              [](const GazeSample* a, const GazeSample* b) { return std::abs(a->gaze_deg) < std::abs(b->gaze_deg); });
+    for (const GazeSample* s : side) {
+      if (good(*s)) {
+        inside = *s;
+      } else {
+        outside = *s;
+        break;
+      }
+    }
+    if (!outside) return std::make_pair(inside, false);
+    double g_in = inside.gaze_deg, g_out = outside->gaze_deg;
+    for (int k = 0; k < options.border_bisections; ++k) {
+      if (control.cancelled()) return std::nullopt;
+      const double mid = 0.5 * (g_in + g_out);
+      const GazeSample s = optimiseShift(scene, eval, mid, axis, method, options);
+      if (good(s)) {
+        inside = s;
+        g_in = mid;
+      } else {
+        g_out = mid;
+      }
+    }
+    return std::make_pair(inside, true);
+  };
+  auto borders = runSamples<std::optional<std::pair<GazeSample, bool>>>(
+      2, [&](std::size_t i) { return border(i == 0 ? -1 : +1); }, control);
+  if (!borders.ok() || !(*borders.value)[0] || !(*borders.value)[1]) return out;
+  const auto& [low, low_bounded] = *(*borders.value)[0];
+  const auto& [high, high_bounded] = *(*borders.value)[1];
+  eb.gaze_range_deg = {low.gaze_deg, high.gaze_deg};
+  eb.pupil_range_mm = {low.pupil_position_mm, high.pupil_position_mm};
+  eb.width_mm = high.pupil_position_mm - low.pupil_position_mm;
+  eb.travel_mm = {low.shift_mm, high.shift_mm};
+  eb.lower_bounded = low_bounded;
+  eb.upper_bounded = high_bounded;
+  out.status = StudyStatus::Completed;
+  out.value = std::move(r);
+  return out;
+}
+
+namespace {
+// Walks "a.b[2].c" through the JSON; returns the addressed value or throws naming the path.
+nlohmann::ordered_json& locate(nlohmann::ordered_json& root, const std::string& path) {
+  nlohmann::ordered_json* node = &root;
+  std::size_t i = 0;
+  auto fail = [&](const std::string& why) -> nlohmann::ordered_json& {
+    throw std::invalid_argument("parameter " + path + ": " + why);
+  };
+  if (path.empty()) return fail("empty path");
+  while (i < path.size()) {
+    if (path[i] == '[') {
+      const std::size_t close = path.find(']', i);
+      if (close == std::string::npos) return fail("missing ']'");
+      const std::string digits = path.substr(i + 1, close - i - 1);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+        return fail("bad index [" + digits + "]");
+      const std::size_t k = std::stoul(digits);
+      if (!node->is_array() || k >= node->size()) return fail("no element [" + digits + "] at " + path.substr(0, i));
+      node = &(*node)[k];
+      i = close + 1;
+    } else {
+      if (path[i] == '.') ++i;
+      const std::size_t end = path.find_first_of(".[", i);
+      const std::string key = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
+      if (key.empty()) return fail("empty name");
+      if (!node->is_object() || !node->contains(key)) return fail("no key \"" + key + "\" in the scene file format");
+      node = &(*node)[key];
+      i = end == std::string::npos ? path.size() : end;
+    }
+  }
+  return *node;
+}
+}  // namespace
+
+Scene withParameter(const Scene& scene, const std::string& path, double value) {
+  if (!std::isfinite(value)) throw std::invalid_argument("parameter " + path + ": value must be finite");
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(serializeScene(scene));
+  nlohmann::ordered_json& target = locate(j, path);
+  if (!target.is_number()) throw std::invalid_argument("parameter " + path + ": not a number (" + target.dump() + ")");
+  if (target.is_number_integer() || target.is_number_unsigned()) {
+    if (value != std::round(value)) throw std::invalid_argument("parameter " + path + ": must be an integer");
+    target = static_cast<long long>(value);
+  } else {
+    target = value;
+  }
+  SceneLoadResult r = parseScene(j.dump(), path + "=" + formatNumber(value));
+  if (!r.ok()) {
+    std::string msg;
+    for (const auto& e : r.errors) msg += (msg.empty() ? "" : "; ") + e;
+    throw std::invalid_argument(msg);
+  }
+  return *r.scene;
+}
+
+double parameterValue(const Scene& scene, const std::string& path) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(serializeScene(scene));
+  const nlohmann::ordered_json& target = locate(j, path);
+  if (!target.is_number()) throw std::invalid_argument("parameter " + path + ": not a number (" + target.dump() + ")");
+  return target.get<double>();
+}
+
+StudyOutcome<std::vector<SensitivitySample>> sensitivitySweep(const Scene& scene, const FovEvaluator& eval,
+                                                              const std::string& path, double from, double to,
+                                                              int steps, const StudyControl& control) {
+  if (steps < 1) throw std::invalid_argument("steps must be >= 1");
+  std::vector<double> values(steps);
+  std::vector<Scene> scenes;
+  scenes.reserve(steps);
+  for (int i = 0; i < steps; ++i) {
+    values[i] = steps == 1 ? from : from + (to - from) * i / (steps - 1);
+    scenes.push_back(withParameter(scene, path, values[i]));  // every value validated before any work
+  }
+  return runSamples<SensitivitySample>(
+      steps,
+      [&](std::size_t i) {
+        FovQuery q;
+        q.gaze_deg = scenes[i].eye.gaze_deg;
+        return SensitivitySample{values[i], eval(scenes[i], q)};
+      },
+      control);
+}
+
+}  // namespace fovea

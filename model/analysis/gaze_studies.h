@@ -1,0 +1,109 @@
+#pragma once
+// Gaze-dependent studies of the peripheral display (supplement A.3, A.4) and parameter
+// sensitivity sweeps, built on a field-of-view evaluator (normally traceScene, see
+// trace_evaluator.h; tests may pass a closed-form one).
+//
+// HOE travel x_p(alpha): for each gaze the lateral HOE shift (HOE local x for yaw, y for
+// pitch) that maximises the retinal FOV along the swept axis, with the mean efficiency as
+// a small tie-breaker on the FOV's plateau (objective = FOV_deg + mean_efficiency). The
+// FOV of a ray-sampled trace is a step function of the shift, so the search is a coarse
+// bracket (grid around the geometric guess: the pupil's lateral travel r sin(alpha)) then
+// golden-section refinement inside the best bracket.
+// Eye box: the pupil-centre positions (bench mm along the axis) over the contiguous gaze
+// range around zero gaze whose optimised FOV stays within tolerance_deg of the zero-gaze
+// FOV; its borders are refined by bisection of the gaze angle.
+// Source shift (A.4): the same, moving the projector point source along bench z instead.
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "model/analysis/study_runner.h"
+#include "model/scene/scene.h"
+
+namespace fovea {
+
+enum class GazeAxis { Yaw, Pitch };
+enum class ShiftMethod { Hoe, Source };
+
+struct FovSample {
+  double horizontal_deg = 0, vertical_deg = 0, diagonal_deg = 0;
+  double mean_efficiency = 0;
+  double efficiency_uniformity = 0;  // 1 - coefficient of variation of the efficiencies of rays reaching the pupil
+  int rays_in_pupil = 0;
+};
+
+struct FovQuery {
+  std::array<double, 2> gaze_deg{0, 0};
+  std::array<double, 2> hoe_shift_mm{0, 0};
+  double source_shift_mm = 0;
+};
+
+using FovEvaluator = std::function<FovSample(const Scene&, const FovQuery&)>;
+
+struct GazeStudyOptions {
+  double tolerance_deg = 1.0;        // eye-box criterion: FOV >= FOV(0) - tolerance
+  double shift_half_range_mm = 4.0;  // bracket half-width around the geometric guess
+  int bracket_points = 9;
+  int golden_iterations = 10;
+  int border_bisections = 6;
+};
+
+struct GazeSample {
+  double gaze_deg = 0;
+  double shift_mm = 0;  // optimal HOE shift (or source shift)
+  FovSample fov;
+  double pupil_position_mm = 0;  // pupil centre along the axis (bench x for yaw, y for pitch)
+};
+
+struct EyeBox {
+  double width_mm = 0;
+  std::array<double, 2> pupil_range_mm{0, 0};
+  std::array<double, 2> gaze_range_deg{0, 0};
+  std::array<double, 2> travel_mm{0, 0};              // optimal shift at the two borders
+  bool lower_bounded = false, upper_bounded = false;  // a border was found inside the studied range
+  double reference_fov_deg = 0;                       // FOV at zero gaze (with its optimal shift)
+};
+
+struct GazeSweepResult {
+  GazeAxis axis = GazeAxis::Yaw;
+  ShiftMethod method = ShiftMethod::Hoe;
+  std::vector<GazeSample> samples;
+  EyeBox eyebox;
+};
+
+// The FOV along the axis (horizontal for yaw, vertical for pitch).
+double axisFov(const FovSample& f, GazeAxis axis);
+
+// Optimal shift for one gaze (see header comment).
+GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
+                         ShiftMethod method, const GazeStudyOptions& options = {});
+
+// Gaze sweep from..to by step (inclusive), each with its optimal shift, plus the eye box
+// (borders refined between samples). Parallel over gaze samples; cancellable.
+StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& eval, double from_deg, double to_deg,
+                                        double step_deg, GazeAxis axis, ShiftMethod method,
+                                        const GazeStudyOptions& options = {}, const StudyControl& control = {});
+
+// Sets a number in the serialized scene at a JSON path ("eye.relief_mm",
+// "hoe_layers[1].shrinkage_percent", "hoe.rotation_deg[0]") and re-parses it, so every
+// path of the file format works and validation applies. Throws std::invalid_argument
+// naming the path or the validation errors.
+Scene withParameter(const Scene& scene, const std::string& path, double value);
+double parameterValue(const Scene& scene, const std::string& path);
+
+struct SensitivitySample {
+  double value = 0;
+  FovSample fov;
+};
+
+// FOV, mean efficiency and uniformity at the scene's gaze over values of one parameter.
+StudyOutcome<std::vector<SensitivitySample>> sensitivitySweep(const Scene& scene, const FovEvaluator& eval,
+                                                              const std::string& path, double from, double to,
+                                                              int steps, const StudyControl& control = {});
+
+}  // namespace fovea

@@ -1,0 +1,117 @@
+// fovea-cli analysis commands: the exact JSON contracts of resolution and optimize-lens,
+// argument errors, and the study commands' parameter validation.
+#include <QtTest>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+struct Run {
+  int code;
+  QByteArray out, err;
+};
+Run cli(const QStringList& args) {
+  QProcess p;
+  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+  env.insert("FOVEA_CACHE_DIR", qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/cli_analyses_cache");
+  p.setProcessEnvironment(env);
+  p.start(FOVEA_CLI_PATH, args);
+  p.waitForFinished(120000);
+  return {p.exitCode(), p.readAllStandardOutput(), p.readAllStandardError()};
+}
+}  // namespace
+
+class TestCliAnalyses : public QObject {
+  Q_OBJECT
+ private slots:
+  void resolutionContract() {
+    const Run r = cli({"resolution", "--gaze-deg", "10", "--json"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(r.err.isEmpty());  // no progress bar when piped
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["pixels_horizontal"].get<int>(), 1280);
+    QVERIFY(j["samples"].size() > 50);
+    bool saw_null = false, saw_foveal = false;
+    for (const auto& s : j["samples"]) {
+      for (const char* k : {"eccentricity_deg", "foveal_cpd", "peripheral_cpd", "optical_limit_cpd", "perceived_cpd"})
+        QVERIFY2(s.contains(k), k);
+      saw_null |= s["foveal_cpd"].is_null();
+      saw_foveal |= s["foveal_cpd"].is_number();
+      QVERIFY(s["perceived_cpd"].get<double>() <= 60.0);
+    }
+    QVERIFY(saw_null && saw_foveal);
+    // samples cover the peripheral field
+    QCOMPARE(j["samples"].front()["eccentricity_deg"].get<double>(), j["peripheral_field_deg"][0].get<double>());
+    QCOMPARE(j["samples"].back()["eccentricity_deg"].get<double>(), j["peripheral_field_deg"][1].get<double>());
+  }
+
+  void resolutionRejectsBadGaze() {
+    const Run r = cli({"resolution", "--gaze-deg", "abc", "--json"});
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains("--gaze-deg"));
+  }
+
+  void optimizeLensContract() {
+    const Run r = cli({"optimize-lens", "--starts", "1", "--json"});
+    QCOMPARE(r.code, 0);
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QVERIFY(j["focal_length_mm"].get<double>() > 0);
+    QCOMPARE(j["position_mm"].size(), std::size_t{3});
+    QVERIFY(j["tilt_deg"].is_number());
+    const double before = j["rms_spot_um"]["before"], after = j["rms_spot_um"]["after"];
+    QVERIFY(after < before);
+    QVERIFY(std::abs(j["improvement_percent"].get<double>() - 100 * (before - after) / before) < 1e-9);
+  }
+
+  void optimizeLensIsCachedAndApplies() {
+    const QString out = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/shaped-scene.json";
+    QFile::remove(out);
+    const Run a = cli({"optimize-lens", "--starts", "1", "--json", "--no-cache"});
+    const Run b = cli({"optimize-lens", "--starts", "1", "--json", "--apply", out});
+    QCOMPARE(a.code, 0);
+    QCOMPARE(b.code, 0);
+    auto ja = nlohmann::json::parse(a.out.toStdString()), jb = nlohmann::json::parse(b.out.toStdString());
+    QCOMPARE(ja["cached"].get<bool>(), false);
+    QCOMPARE(jb["cached"].get<bool>(), true);  // unchanged scene and parameters: no recomputation
+    ja.erase("cached");
+    jb.erase("cached");
+    QCOMPARE(ja.dump(), jb.dump());
+    // The applied scene is valid and carries the lens.
+    const Run v = cli({"validate", out, "--json"});
+    QCOMPARE(v.code, 0);
+    QFile f(out);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const auto scene = nlohmann::json::parse(f.readAll().toStdString());
+    QCOMPARE(scene["beam_shaping_lens"]["enabled"].get<bool>(), true);
+    QCOMPARE(scene["beam_shaping_lens"]["focal_length_mm"].get<double>(), ja["focal_length_mm"].get<double>());
+  }
+
+  void optimizeLensBadCatalogue() {
+    const QString bad = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/bad_catalog.json";
+    QFile f(bad);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(R"({"lenses":[{"part":"X","focal_length_mm":"fifty","diameter_mm":10}]})");
+    f.close();
+    const Run r = cli({"optimize-lens", "--catalog", bad, "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("lenses[0].focal_length_mm"));
+    QCOMPARE(cli({"optimize-lens", "--catalog", "/nonexistent/c.json"}).code, 1);
+  }
+
+  void sensitivityValidatesThePath() {
+    Run r = cli({"sensitivity", "--parameter", "eye.no_such", "--from", "1", "--to", "2", "--json"});
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains("no_such"));
+    r = cli({"sensitivity", "--parameter", "eye.pupil_diameter_mm", "--from", "-1", "--to", "2", "--json"});
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains("eye.pupil_diameter_mm"));
+  }
+
+  void sweepValidatesTheRange() {
+    QCOMPARE(cli({"sweep", "--gaze-from", "0", "--gaze-to", "10", "--gaze-step", "0", "--json"}).code, 2);
+    QCOMPARE(cli({"sweep", "--gaze-from", "0", "--gaze-to", "10", "--gaze-step", "5", "--axis", "roll", "--json"}).code,
+             2);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliAnalyses)
+#include "tst_cli_analyses.moc"

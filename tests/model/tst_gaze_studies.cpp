@@ -1,0 +1,141 @@
+// Gaze studies (A.3/A.4) and parameter sweeps on a closed-form FOV model whose optimum
+// shifts and eye-box borders are known exactly, so the search algorithms are checked
+// against numbers (the traced prototype is checked in tst_gaze_studies_traced).
+#include <QtTest>
+
+#include <cmath>
+#include <numbers>
+
+#include "app/embedded_scene.h"
+#include "model/analysis/gaze_studies.h"
+#include "model/scene/scene_geometry.h"
+#include "model/scene/scene_io.h"
+
+using namespace fovea;
+
+namespace {
+Scene prototype() {
+  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
+}
+
+// Maxwellian toy: the focus sits at the HOE shift (or moves -0.5 mm per mm of source
+// shift); rays miss the pupil when the focus is more than 1 mm from the pupil centre
+// (15 deg of FOV lost per mm), and Bragg mismatch darkens the HOE edge beyond 4.5 mm of
+// HOE shift (20 deg per mm) or 2 mm of source shift.
+FovSample toy(const Scene& scene, const FovQuery& q) {
+  const double pupil = placeEye(scene, q.gaze_deg[0], q.gaze_deg[1]).pupil_center.x();
+  const double s = q.hoe_shift_mm[0], zs = q.source_shift_mm;
+  const double focus = s - 0.5 * zs;
+  const double miss = std::max(0.0, std::abs(pupil - focus) - 1.0);
+  FovSample f;
+  f.horizontal_deg =
+      90.0 - 15.0 * miss - 20.0 * std::max(0.0, std::abs(s) - 4.5) - 20.0 * std::max(0.0, std::abs(zs) - 2.0);
+  f.vertical_deg = 78.0;
+  f.diagonal_deg = std::hypot(f.horizontal_deg, f.vertical_deg);
+  f.mean_efficiency = 0.9 * std::exp(-(s / 6) * (s / 6) - (zs / 4) * (zs / 4) - (pupil - focus) * (pupil - focus) / 4);
+  f.efficiency_uniformity = 0.8;
+  return f;
+}
+}  // namespace
+
+class TestGazeStudies : public QObject {
+  Q_OBJECT
+ private slots:
+  void shiftFollowsThePupilAndGrowsMonotonically() {
+    const Scene scene = prototype();
+    const auto r = sweepGaze(scene, toy, -20, 20, 5, GazeAxis::Yaw, ShiftMethod::Hoe);
+    QVERIFY(r.ok());
+    QCOMPARE(r.value->samples.size(), std::size_t{9});
+    for (std::size_t i = 1; i < r.value->samples.size(); ++i)
+      QVERIFY(r.value->samples[i].shift_mm > r.value->samples[i - 1].shift_mm);
+    for (const auto& s : r.value->samples) {
+      QVERIFY(std::abs(s.fov.horizontal_deg - 90.0) < 1e-9);  // inside the eye box: full FOV
+      // On the FOV plateau the efficiency tie-break decides: maximum of
+      // -(s/6)^2 - (P - s)^2/4 at s = 0.9 P (P: pupil displacement 11.5 sin(gaze)).
+      const double p = 11.5 * std::sin(s.gaze_deg * std::numbers::pi / 180);
+      QVERIFY2(std::abs(s.shift_mm - 0.9 * p) < 0.03, qPrintable(QString::number(s.shift_mm)));
+    }
+  }
+
+  void eyeBoxBordersMatchTheClosedForm() {
+    // FOV(P) = 90 - 15 (|P| - 5.5) beyond the border, tolerance 1 deg: |P| <= 5.5 + 1/15.
+    const Scene scene = prototype();
+    const auto r = sweepGaze(scene, toy, -40, 40, 5, GazeAxis::Yaw, ShiftMethod::Hoe);
+    QVERIFY(r.ok());
+    const EyeBox& eb = r.value->eyebox;
+    QVERIFY(eb.lower_bounded && eb.upper_bounded);
+    const double p = 5.5 + 1.0 / 15.0;
+    QVERIFY2(std::abs(eb.pupil_range_mm[1] - p) < 0.05, qPrintable(QString::number(eb.pupil_range_mm[1])));
+    QVERIFY(std::abs(eb.pupil_range_mm[0] + p) < 0.05);
+    QVERIFY(std::abs(eb.width_mm - 2 * p) < 0.1);
+    QVERIFY(std::abs(eb.travel_mm[1] - 4.5) < 0.05);  // the HOE sits at its Bragg edge there
+    // Outside the eye box the FOV drops.
+    for (const auto& s : r.value->samples)
+      if (s.gaze_deg > eb.gaze_range_deg[1] + 1) QVERIFY(s.fov.horizontal_deg < 89.0);
+  }
+
+  void sourceShiftEyeBoxIsSmaller() {
+    const Scene scene = prototype();
+    const auto hoe = sweepGaze(scene, toy, -40, 40, 5, GazeAxis::Yaw, ShiftMethod::Hoe);
+    const auto src = sweepGaze(scene, toy, -40, 40, 2.5, GazeAxis::Yaw, ShiftMethod::Source);
+    QVERIFY(hoe.ok() && src.ok());
+    // Source: focus reaches 1 mm at zs = -2, then 1 mm of pupil slack and 1/15 mm tolerance.
+    const double p = 2.0 + 1.0 / 15.0;
+    QVERIFY2(std::abs(src.value->eyebox.width_mm - 2 * p) < 0.1,
+             qPrintable(QString::number(src.value->eyebox.width_mm)));
+    QVERIFY(hoe.value->eyebox.width_mm > 2.5 * src.value->eyebox.width_mm);
+  }
+
+  void pitchAxisUsesTheVerticalFov() {
+    const Scene scene = prototype();
+    const auto r = sweepGaze(scene, toy, -10, 10, 10, GazeAxis::Pitch, ShiftMethod::Hoe);
+    QVERIFY(r.ok());
+    // The toy's vertical FOV is flat: every pitch is inside, no border found.
+    QVERIFY(!r.value->eyebox.upper_bounded && !r.value->eyebox.lower_bounded);
+    QCOMPARE(r.value->eyebox.gaze_range_deg[1], 10.0);
+  }
+
+  void parameterPathsEditTheSerializedScene() {
+    const Scene scene = prototype();
+    QCOMPARE(withParameter(scene, "eye.relief_mm", 25).eye.relief_mm, 25.0);
+    QCOMPARE(withParameter(scene, "hoe_layers[1].shrinkage_percent", -1.5).hoe_layers[1].shrinkage_percent, -1.5);
+    QCOMPARE(withParameter(scene, "hoe.rotation_deg[0]", 2).hoe.pose.rotation_deg[0], 2.0);
+    QCOMPARE(withParameter(scene, "hoe_layers[0].recording.wavelength_nm", 650).hoe_layers[0].recording.wavelength_nm,
+             650.0);
+    QCOMPARE(parameterValue(scene, "eye.pupil_diameter_mm"), 5.0);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, withParameter(scene, "eye.nonexistent", 1));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, withParameter(scene, "hoe_layers[7].n1", 1));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, withParameter(scene, "name", 1));
+    try {
+      withParameter(scene, "eye.pupil_diameter_mm", -2);
+      QFAIL("validation did not apply");
+    } catch (const std::invalid_argument& e) {
+      QVERIFY(std::string(e.what()).find("eye.pupil_diameter_mm") != std::string::npos);
+    }
+  }
+
+  void sensitivityReportsEachValue() {
+    const Scene scene = prototype();
+    // Eye decentration moves the pupil away from the fixed focus: FOV loses 15 deg/mm past 1 mm.
+    const auto r = sensitivitySweep(scene, toy, "eye.lateral_offset_mm[0]", 0, 3, 4);
+    QVERIFY(r.ok());
+    QCOMPARE(r.value->size(), std::size_t{4});
+    const double expected[] = {90, 90, 75, 60};
+    for (int i = 0; i < 4; ++i) {
+      QCOMPARE((*r.value)[i].value, double(i));
+      QVERIFY(std::abs((*r.value)[i].fov.horizontal_deg - expected[i]) < 1e-9);
+    }
+  }
+
+  void cancelledSweepReportsNothing() {
+    std::atomic<bool> cancel{true};
+    StudyControl c;
+    c.cancel = &cancel;
+    const auto r = sweepGaze(prototype(), toy, -20, 20, 5, GazeAxis::Yaw, ShiftMethod::Hoe, {}, c);
+    QCOMPARE(r.status, StudyStatus::Cancelled);
+    QVERIFY(!r.value);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestGazeStudies)
+#include "tst_gaze_studies.moc"
