@@ -103,6 +103,56 @@ class TestCliPreview : public QObject {
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("peripheral.B.Y[7]"), qPrintable(r.err));
   }
+
+  void fitWarp() {
+    // dst = quadratic of src: poly2 reproduces it, a query point included.
+    auto f = [](double x, double y) {
+      return std::array<double, 2>{2 + x + 0.001 * x * x, -1 + 0.5 * y + 0.002 * x * y};
+    };
+    json in{{"pairs", json::array()}, {"query", {{55.5, 44.4}}}};
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j) {
+        const double x = 10.0 * i, y = 12.0 * j;
+        const auto d = f(x, y);
+        in["pairs"].push_back({{"src", {x, y}}, {"dst", {d[0], d[1]}}});
+      }
+    const QString file = writeJson("pairs.json", in);
+    Run r =
+        cli({"fit-warp", "--pairs", file, "--model", "poly2", "--holdout-fraction", "0.25", "--seed", "5", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    json j = r.j();
+    QCOMPARE(j["model"].get<std::string>(), std::string("poly2"));
+    QVERIFY(j["rms_px"]["fit"].get<double>() < 1e-8);
+    QVERIFY(j["rms_px"]["holdout"].get<double>() < 1e-8);
+    QCOMPARE(j["pairs"]["held_out"].get<int>(), 16);
+    const auto q = f(55.5, 44.4);
+    QVERIFY(std::abs(j["query_predicted"][0][0].get<double>() - q[0]) < 1e-8);
+    QVERIFY(std::abs(j["query_predicted"][0][1].get<double>() - q[1]) < 1e-8);
+    QCOMPARE(j["coefficients"]["terms"].size(), std::size_t{6});
+    r = cli({"fit-warp", "--pairs", file, "--model", "homography", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QCOMPARE(r.j()["coefficients"]["H"].size(), std::size_t{3});
+    QVERIFY(r.j()["rms_px"]["fit"].get<double>() > 0.01);  // not projective
+    QVERIFY(r.j()["rms_px"]["holdout"].is_null());         // nothing held out
+
+    // Degenerate: too few, collinear, NaN (null), unknown model.
+    json few{{"pairs", json::array()}};
+    for (int i = 0; i < 5; ++i) few["pairs"].push_back({{"src", {i, i * i}}, {"dst", {i, i}}});
+    r = cli({"fit-warp", "--pairs", writeJson("few.json", few), "--model", "poly2"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("too few"), qPrintable(r.err));
+    json line{{"pairs", json::array()}};
+    for (int i = 0; i < 12; ++i) line["pairs"].push_back({{"src", {i, 3 * i}}, {"dst", {i, i}}});
+    r = cli({"fit-warp", "--pairs", writeJson("line.json", line), "--model", "poly1"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("collinear"), qPrintable(r.err));
+    json nan = in;
+    nan["pairs"][3]["dst"][1] = nullptr;
+    r = cli({"fit-warp", "--pairs", writeJson("nan.json", nan), "--model", "poly1"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("non-finite"), qPrintable(r.err));
+    QCOMPARE(cli({"fit-warp", "--pairs", file, "--model", "poly9"}).code, 2);
+  }
 };
 
 QTEST_GUILESS_MAIN(TestCliPreview)
