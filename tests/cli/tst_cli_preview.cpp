@@ -1,0 +1,159 @@
+// fovea-cli commands of the preview and display calibrations: colour, warps, composite,
+// blending profile, gaze fit. Exact JSON contracts, exit codes, and real numbers.
+#include <QtTest>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "model/color/color_calibration.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+struct Run {
+  int code = -1;
+  QString out, err;
+  json j() const { return json::parse(out.toStdString()); }
+};
+Run cli(const QStringList& args) {
+  QProcess p;
+  p.start(FOVEA_CLI_PATH, args);
+  p.waitForFinished(120000);
+  return {p.exitCode(), QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
+}
+fs::path tmpDir() {
+  auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_preview";
+  fs::create_directories(d);
+  return d;
+}
+QString writeJson(const std::string& name, const json& j) {
+  const fs::path p = tmpDir() / name;
+  std::ofstream(p) << j.dump();
+  return QString::fromStdString(p.string());
+}
+
+json measurementsJson() {
+  using namespace fovea::color;
+  auto channel = [](double x, double y, double peak, double gamma) {
+    ChannelMeasurement c;
+    c.xy = {x, y};
+    for (int i = 0; i < 256; ++i) c.Y.push_back(peak * std::pow(i / 255.0, gamma));
+    return c;
+  };
+  ColorMeasurements m;
+  m.foveal.channels = {channel(0.64, 0.33, 60, 2.2), channel(0.265, 0.69, 180, 2.2), channel(0.15, 0.06, 15, 2.2)};
+  m.peripheral.channels = {channel(0.72, 0.28, 35, 2.6), channel(0.25, 0.68, 120, 2.4), channel(0.145, 0.035, 9, 2.5)};
+  return toJson(m);
+}
+}  // namespace
+
+class TestCliPreview : public QObject {
+  Q_OBJECT
+ private slots:
+  void colorCalibrateAndMap() {
+    const QString meas = writeJson("meas.json", measurementsJson());
+    const QString cal = QString::fromStdString((tmpDir() / "cal.json").string());
+    Run r = cli({"color-calibrate", meas, "--out", cal, "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json j = r.j();
+    for (const char* k : {"R", "G", "B"}) QCOMPARE(j["common_primaries_xy"][k].size(), std::size_t{2});
+    QCOMPARE(j["white_xy"][0].get<double>(), 0.3127);
+    QCOMPARE(j["gamma"].get<double>(), 2.2);
+    QVERIFY(j["max_luminance"].get<double>() > 0);
+    // Measured gammas come back from the curves.
+    QVERIFY(std::abs(j["measured_gamma"]["peripheral"]["R"].get<double>() - 2.6) < 0.01);
+
+    // Full white: some channel of one display at 255, none above; black: all zero.
+    double top = 0;
+    for (const char* d : {"foveal", "peripheral"}) {
+      r = cli({"color-map", cal, "--display", d, "--rgb", "255,255,255", "--json"});
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+      const json white = r.j();
+      for (const auto& v : white["drive"]) {
+        QVERIFY(v.get<double>() >= 0 && v.get<double>() <= 255.0 + 1e-9);
+        top = std::max(top, v.get<double>());
+      }
+      r = cli({"color-map", cal, "--display", d, "--rgb", "0,0,0", "--json"});
+      const json black = r.j();
+      for (const auto& v : black["drive"]) QCOMPARE(v.get<double>(), 0.0);
+    }
+    QVERIFY(std::abs(top - 255.0) < 1e-6);
+    // The two displays' drives differ (different primaries and gammas) but emit the same XYZ.
+    const json f = cli({"color-map", cal, "--display", "foveal", "--rgb", "200,100,50", "--json"}).j();
+    const json p = cli({"color-map", cal, "--display", "peripheral", "--rgb", "200,100,50", "--json"}).j();
+    QVERIFY(std::abs(f["drive"][0].get<double>() - p["drive"][0].get<double>()) > 1.0);
+    QCOMPARE(f["target_xyz"], p["target_xyz"]);
+
+    // White outside the common gamut, bad gamma, bad display, missing file.
+    r = cli({"color-calibrate", meas, "--out", cal, "--white-xy", "0.7,0.29", "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("white point"));
+    QCOMPARE(cli({"color-calibrate", meas, "--out", cal, "--gamma", "-1"}).code, 2);
+    QCOMPARE(cli({"color-map", cal, "--display", "left", "--rgb", "1,2,3"}).code, 2);
+    r = cli({"color-map", "/nonexistent/cal.json", "--display", "foveal", "--rgb", "1,2,3"});
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("/nonexistent/cal.json"));
+    json broken = measurementsJson();
+    broken["peripheral"]["B"]["Y"][7] = "x";
+    r = cli({"color-calibrate", writeJson("broken.json", broken), "--out", cal});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("peripheral.B.Y[7]"), qPrintable(r.err));
+  }
+
+  void fitWarp() {
+    // dst = quadratic of src: poly2 reproduces it, a query point included.
+    auto f = [](double x, double y) {
+      return std::array<double, 2>{2 + x + 0.001 * x * x, -1 + 0.5 * y + 0.002 * x * y};
+    };
+    json in{{"pairs", json::array()}, {"query", {{55.5, 44.4}}}};
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j) {
+        const double x = 10.0 * i, y = 12.0 * j;
+        const auto d = f(x, y);
+        in["pairs"].push_back({{"src", {x, y}}, {"dst", {d[0], d[1]}}});
+      }
+    const QString file = writeJson("pairs.json", in);
+    Run r =
+        cli({"fit-warp", "--pairs", file, "--model", "poly2", "--holdout-fraction", "0.25", "--seed", "5", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    json j = r.j();
+    QCOMPARE(j["model"].get<std::string>(), std::string("poly2"));
+    QVERIFY(j["rms_px"]["fit"].get<double>() < 1e-8);
+    QVERIFY(j["rms_px"]["holdout"].get<double>() < 1e-8);
+    QCOMPARE(j["pairs"]["held_out"].get<int>(), 16);
+    const auto q = f(55.5, 44.4);
+    QVERIFY(std::abs(j["query_predicted"][0][0].get<double>() - q[0]) < 1e-8);
+    QVERIFY(std::abs(j["query_predicted"][0][1].get<double>() - q[1]) < 1e-8);
+    QCOMPARE(j["coefficients"]["terms"].size(), std::size_t{6});
+    r = cli({"fit-warp", "--pairs", file, "--model", "homography", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QCOMPARE(r.j()["coefficients"]["H"].size(), std::size_t{3});
+    QVERIFY(r.j()["rms_px"]["fit"].get<double>() > 0.01);  // not projective
+    QVERIFY(r.j()["rms_px"]["holdout"].is_null());         // nothing held out
+
+    // Degenerate: too few, collinear, NaN (null), unknown model.
+    json few{{"pairs", json::array()}};
+    for (int i = 0; i < 5; ++i) few["pairs"].push_back({{"src", {i, i * i}}, {"dst", {i, i}}});
+    r = cli({"fit-warp", "--pairs", writeJson("few.json", few), "--model", "poly2"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("too few"), qPrintable(r.err));
+    json line{{"pairs", json::array()}};
+    for (int i = 0; i < 12; ++i) line["pairs"].push_back({{"src", {i, 3 * i}}, {"dst", {i, i}}});
+    r = cli({"fit-warp", "--pairs", writeJson("line.json", line), "--model", "poly1"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("collinear"), qPrintable(r.err));
+    json nan = in;
+    nan["pairs"][3]["dst"][1] = nullptr;
+    r = cli({"fit-warp", "--pairs", writeJson("nan.json", nan), "--model", "poly1"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("non-finite"), qPrintable(r.err));
+    QCOMPARE(cli({"fit-warp", "--pairs", file, "--model", "poly9"}).code, 2);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliPreview)
+#include "tst_cli_preview.moc"
