@@ -74,19 +74,24 @@ ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficienc
       const auto it = grid.find({i, j});
       return it == grid.end() ? nullptr : it->second;
     };
-    Span h, v;
-    std::vector<const TracedRay*> line;
-    for (int j = 0; j < ny; ++j) {
-      line.clear();
-      for (int i = 0; i < nx; ++i) line.push_back(at(i, j));
-      const Span s = widestRun(line, &isLit, efficiency_threshold, 0);
-      if (s.width() > h.width()) h = s;
+    // The row and the column through the line of sight: those of the lit ray nearest to
+    // the field centre (the yaw/pitch chart stretches the yaw of rows far from pitch 0).
+    const TracedRay* centre = nullptr;
+    for (const auto& [ij, r] : grid) {
+      (void)ij;
+      if (isLit(*r, efficiency_threshold) &&
+          (centre == nullptr ||
+           std::hypot(r->field_deg[0], r->field_deg[1]) < std::hypot(centre->field_deg[0], centre->field_deg[1])))
+        centre = r;
     }
-    for (int i = 0; i < nx; ++i) {
+    Span h, v;
+    if (centre != nullptr) {
+      std::vector<const TracedRay*> line;
+      for (int i = 0; i < nx; ++i) line.push_back(at(i, centre->pixel[1]));
+      h = widestRun(line, &isLit, efficiency_threshold, 0);
       line.clear();
-      for (int j = 0; j < ny; ++j) line.push_back(at(i, j));
-      const Span s = widestRun(line, &isLit, efficiency_threshold, 1);
-      if (s.width() > v.width()) v = s;
+      for (int j = 0; j < ny; ++j) line.push_back(at(centre->pixel[0], j));
+      v = widestRun(line, &isLit, efficiency_threshold, 1);
     }
     const double diagonal =
         h.width() > 0 && v.width() > 0

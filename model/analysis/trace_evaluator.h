@@ -4,11 +4,12 @@
 // The studies use the *continuous* FOV, not the tracer's extent (max - min of the lit field
 // angles): when the Maxwellian focus is blurred or Bragg mismatch darkens parts of the
 // plate, scattered rays can still reach the pupil from both ends of the field while most
-// pixels in between are dark (the seed's "blind regions", A.3). Per wavelength, along
-// every row of the projector grid the widest run of consecutive lit rays (in the pupil,
-// efficiency >= threshold) gives a horizontal span, along every column a vertical one;
-// the FOV is the widest over rows (columns), and the smallest over the wavelengths (the
-// field shown in every colour). Diagonal: the angle between the corners of those spans.
+// pixels in between are dark (the seed's "blind regions", A.3). Per wavelength, along the
+// projector-grid row through the line of sight (that of the lit ray nearest the field
+// centre) the widest run of consecutive lit rays (in the pupil, efficiency >= threshold)
+// gives the horizontal FOV, along that column the vertical one (the seed's top and side
+// views); the smallest over the wavelengths is kept (the field shown in every colour).
+// Diagonal: the angle between the corners of those spans.
 
 #include <optional>
 #include <vector>

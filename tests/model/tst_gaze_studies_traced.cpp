@@ -40,12 +40,22 @@ class TestGazeStudiesTraced : public QObject {
       r.efficiency = 0.5;
       r.wavelength_nm = 532;
       r.pixel = {i, 0};
-      r.field_deg = {-50.0 + 10.0 * i, 0.0};
+      r.field_deg = {-50.0 + 10.0 * i, 1.0};
       rays.push_back(r);
     }
     const ContinuousFov c = continuousFov(rays, 0.1);
     QCOMPARE(c.horizontal_deg, 50.0);  // columns 5..10: -0 .. +50
     QCOMPARE(c.vertical_deg, 0.0);
+    // A second row further from the field centre, fully lit and wider: not the line of sight.
+    for (int i = 0; i < 13; ++i) {
+      TracedRay r = rays.front();
+      r.in_pupil = true;
+      r.pixel = {i, 1};
+      r.field_deg = {-60.0 + 10.0 * i, 20.0};
+      rays.push_back(r);
+    }
+    QCOMPARE(continuousFov(rays, 0.1).horizontal_deg, 50.0);
+    QCOMPARE(continuousFov(rays, 0.1).vertical_deg, 19.0);  // column 5: pitch 1 .. 20
   }
 
   void hoeShiftGrowsWithGazeAndHoldsTheFov() {
