@@ -139,8 +139,8 @@ void Workbench::onResult(const widgets::AnalysisResult& r) {
 void Workbench::startSession(const QString& recoveryDir, bool offer) {
   Preferences::instance().load();
   recoveryDir_ = recoveryDir.isEmpty() ? widgets::Autosaver::defaultDirectory() : recoveryDir;
-  // Offer first: the new session's own files must not be mistaken for orphans (they are
-  // locked anyway) and a recovered scene is then autosaved by this session.
+  // This session's autosaver first: its lock keeps its own files from ever looking orphaned,
+  // and a recovered scene is then autosaved by this session.
   autosaver_ = std::make_unique<widgets::Autosaver>(window_->document(), recoveryDir_);
   autosaver_->setIntervalSeconds(Preferences::instance().values().autosaveSeconds);
   connect(&Preferences::instance(), &Preferences::changed, autosaver_.get(),
