@@ -17,6 +17,7 @@
 #include <QThread>
 #include <QUndoStack>
 
+#include <algorithm>
 #include <atomic>
 
 #include "app/studio/main_window.h"
@@ -65,6 +66,10 @@ Workbench::Workbench(MainWindow* window) : QObject(window), window_(window) {
     window->tabifyDockWidget(messages, plotsDock_);
     messages->raise();
   }
+  // Keep the foundation's dock proportions now that two more docks share the areas.
+  auto* tree = window->findChild<QDockWidget*>("SceneTreeDock");
+  auto* props = window->findChild<QDockWidget*>("PropertiesDock");
+  if (tree && props) window->resizeDocks({tree, props}, {300, 400}, Qt::Horizontal);
   connect(analyses_, &widgets::AnalysesPanel::resultReady, this, &Workbench::onResult);
   connect(plots_, &widgets::PlotsPanel::plotExported, this, [this](const QString& id, const QString& path) {
     window_->messageLog()->info(tr("Exported %1 to %2").arg(widgets::plotTitle(id), path));
@@ -132,6 +137,8 @@ void Workbench::onResult(const widgets::AnalysisResult& r) {
   if (spec && !spec->plots.isEmpty()) {
     plotsDock_->show();
     plotsDock_->raise();
+    if (!plotsDock_->isFloating() && plotsDock_->height() < 360)
+      window_->resizeDocks({plotsDock_}, {std::max(360, window_->height() * 2 / 5)}, Qt::Vertical);
   }
   window_->messageLog()->info(tr("%1 finished in %2 s").arg(spec ? spec->title : r.id).arg(r.seconds, 0, 'f', 1));
 }

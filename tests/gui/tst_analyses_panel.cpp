@@ -4,6 +4,7 @@
 #include <QtTest>
 
 #include <QChartView>
+#include <QDockWidget>
 #include <QImage>
 #include <QProcess>
 #include <QProgressBar>
@@ -13,6 +14,8 @@
 #include <cmath>
 
 #include "app/embedded_scene.h"
+#include "app/studio/main_window.h"
+#include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"
@@ -201,6 +204,37 @@ class TestAnalysesPanel : public QObject {
       // Outside the micro-OLED's field the foveal value is null: an empty cell.
       QCOMPARE(c[foveal].isEmpty(), s["foveal_cpd"].is_null());
     }
+  }
+
+  void workbenchFeedsThePlots() {
+    studio::MainWindow window;
+    window.resize(1600, 1000);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    AnalysesPanel* panel = window.workbench()->analysesPanel();
+    PlotsPanel* plots = window.workbench()->plotsPanel();
+    panel->selectAnalysis("sweep");
+    panel->setParameter("gaze-from", -20.0);
+    panel->setParameter("gaze-to", 20.0);
+    panel->setParameter("gaze-step", 5.0);
+    panel->setParameter("rays", 300);
+    QSignalSpy ready(panel, &AnalysesPanel::resultReady);
+    QVERIFY(panel->run());
+    QTRY_COMPARE_WITH_TIMEOUT(ready.count(), 1, 120000);
+    QVERIFY(plots->filledPlots().contains("fov-vs-gaze"));
+    QVERIFY(plots->filledPlots().contains("travel-vs-gaze"));
+    QVERIFY(plots->isVisible());
+    const PlotData travel = plots->plot("travel-vs-gaze");
+    QCOMPARE(travel.rows.size(), 9);
+    const auto r = panel->lastResult("sweep");
+    QVERIFY(r && r->json);
+    for (int i = 0; i < 9; ++i)
+      QVERIFY(std::abs(travel.rows[i][1].toDouble() - (*r->json)["samples"][i]["hoe_shift_mm"].get<double>()) < 1e-9);
+    QTest::qWait(300);
+    QVERIFY(window.captureWindow().save(tmpDir() + "/studio-plots.png"));
+    window.findChild<QDockWidget*>("AnalysesDock")->raise();
+    QTest::qWait(200);
+    QVERIFY(window.captureWindow().save(tmpDir() + "/studio-analyses.png"));
   }
 
   void displayUnitsConvertThePlottedValues() {
