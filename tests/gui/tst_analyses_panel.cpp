@@ -237,6 +237,29 @@ class TestAnalysesPanel : public QObject {
     QVERIFY(window.captureWindow().save(tmpDir() + "/studio-analyses.png"));
   }
 
+  void gratingSweepAgainstRcwa() {
+    // The default request is an unslanted reflection grating Bragg-matched at normal incidence
+    // (period = lambda / (2 n0)); rho = lambda^2/(Lambda^2 n0 n1) ~ 600: Kogelnik holds to ~1e-3.
+    AnalysisParams p = defaultParameters(*findAnalysis("grating"));
+    p["samples"] = 21;
+    p["model"] = "kogelnik+rcwa";
+    p["period-nm"] = 532.0 / 3.0;  // exactly lambda / (2 n0)
+    const auto r = runAnalysis("grating", Scene{}, p);
+    QVERIFY(r.has_value());
+    QCOMPARE((*r)["samples"].size(), std::size_t(21));
+    const auto& centre = (*r)["samples"][10];
+    QVERIFY(std::abs(centre["detuning_deg"].get<double>()) < 1e-12);
+    const double nu = M_PI * 0.02 * 16.0 / 0.532;
+    QVERIFY(std::abs(centre["kogelnik_efficiency"].get<double>() - std::pow(std::tanh(nu), 2)) < 1e-9);
+    QVERIFY2(std::abs(centre["rcwa_efficiency"].get<double>() - centre["kogelnik_efficiency"].get<double>()) < 5e-3,
+             centre.dump().c_str());
+    const QList<PlotData> plots = plotsFromResult("grating", *r, DisplayUnits{});
+    QCOMPARE(plots.size(), 1);
+    QCOMPARE(plots[0].id, QString("efficiency-vs-angle"));
+    QCOMPARE(plots[0].series.size(), 2);  // Kogelnik and RCWA
+    QCOMPARE(plots[0].rows.size(), 21);
+  }
+
   void displayUnitsConvertThePlottedValues() {
     const nlohmann::json sweep = {{"axis", "yaw"},
                                   {"eyebox_mm", 7.5},
