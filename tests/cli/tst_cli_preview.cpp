@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/color/color_calibration.h"
+#include "model/image/image_io.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -152,6 +153,65 @@ class TestCliPreview : public QObject {
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("non-finite"), qPrintable(r.err));
     QCOMPARE(cli({"fit-warp", "--pairs", file, "--model", "poly9"}).code, 2);
+  }
+
+  void blendProfile() {
+    Run r = cli({"blend-profile", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json j = r.j();
+    const auto& s = j["samples"];
+    QCOMPARE(s.size(), std::size_t{41});  // 0 to 10 deg in 0.25 deg steps
+    QCOMPARE(s.front()["eccentricity_deg"].get<double>(), 0.0);
+    QCOMPARE(s.back()["eccentricity_deg"].get<double>(), 10.0);
+    for (std::size_t i = 1; i < s.size(); ++i)
+      QVERIFY(s[i]["eccentricity_deg"].get<double>() - s[i - 1]["eccentricity_deg"].get<double>() <= 0.25 + 1e-12);
+    QCOMPARE(s[12]["foveal_weight"].get<double>(), 1.0);  // 3 deg
+    QCOMPARE(s[12]["blur_sigma_deg"].get<double>(), 0.0);
+    QVERIFY(std::abs(s[22]["foveal_weight"].get<double>() - 0.5) < 1e-12);  // 5.5 deg
+    QCOMPARE(s[24]["foveal_weight"].get<double>(), 0.0);                    // 6 deg
+    const double sm = j["blur_sigma_match_deg"].get<double>();
+    QVERIFY(sm > 0);
+    QVERIFY(std::abs(s[16]["blur_sigma_deg"].get<double>() - sm / 2) < 1e-15);  // 4 deg
+    QCOMPARE(s[20]["blur_sigma_deg"].get<double>(), sm);                        // 5 deg
+    QCOMPARE(cli({"blend-profile", "--scene", "/nonexistent.json"}).code, 1);
+  }
+
+  void composite() {
+    cv::Mat img(540, 960, CV_32FC3);
+    for (int y = 0; y < img.rows; ++y)
+      for (int x = 0; x < img.cols; ++x)
+        img.at<cv::Vec3f>(y, x) = cv::Vec3f(((x / 24 + y / 24) % 2) ? 0.8f : 0.1f, 0.4f, x / 960.0f);
+    const std::string in = (tmpDir() / "target.png").string();
+    fovea::image::writeLinearRgb(in, img);
+    auto out = [](const char* n) { return QString::fromStdString((tmpDir() / n).string()); };
+    const QStringList common{"--out-foveal", out("f.png"), "--out-peripheral", out("p.png"), "--out-perceived",
+                             out("q.png"),   "--json"};
+    Run r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2"} + common);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json soft = r.j();
+    QVERIFY(soft["seam_metric"].get<double>() > 0 && soft["seam_metric"].get<double>() < 1);
+    QVERIFY(soft["timings_ms"]["gaze_update"].get<double>() > 0);
+    const cv::Mat f = fovea::image::readLinearRgb(out("f.png").toStdString());
+    const cv::Mat p = fovea::image::readLinearRgb(out("p.png").toStdString());
+    const cv::Mat q = fovea::image::readLinearRgb(out("q.png").toStdString());
+    QCOMPARE(f.size(), cv::Size(1920, 1080));
+    QCOMPARE(p.size(), cv::Size(1280, 720));
+    QCOMPARE(q.size(), img.size());
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--no-blend"} +
+            common);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY(r.j()["seam_metric"].get<double>() > soft["seam_metric"].get<double>());
+
+    // Unreadable and unsupported images name the file.
+    r = cli(QStringList{"composite", "--image", "/nonexistent/target.png", "--gaze-deg", "0,0"} + common);
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("/nonexistent/target.png"));
+    const std::string junk = (tmpDir() / "junk.png").string();
+    std::ofstream(junk) << "this is not a PNG";
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(junk), "--gaze-deg", "0,0"} + common);
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("junk.png"), qPrintable(r.err));
+    QCOMPARE(cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "x"} + common).code, 2);
   }
 };
 
