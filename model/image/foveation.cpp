@@ -29,34 +29,6 @@ struct AngleGrid {
   double pitch(double y) const { return centre[1] - ((y + 0.5) / size.height - 0.5) * fov[1]; }
 };
 
-// Bilinear sample of a CV_32FC3 image; zero outside (no light beyond a display's edge).
-inline cv::Vec3f sample(const cv::Mat& img, double x, double y) {
-  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-  const float fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-  cv::Vec3f out(0, 0, 0);
-  auto add = [&](int xi, int yi, float w) {
-    if (w == 0.0f || xi < 0 || yi < 0 || xi >= img.cols || yi >= img.rows) return;
-    out += w * img.ptr<cv::Vec3f>(yi)[xi];
-  };
-  add(x0, y0, (1 - fx) * (1 - fy));
-  add(x0 + 1, y0, fx * (1 - fy));
-  add(x0, y0 + 1, (1 - fx) * fy);
-  add(x0 + 1, y0 + 1, fx * fy);
-  return out;
-}
-// Interior fast path (no bounds checks) falling back to sample() at the edges.
-inline cv::Vec3f sampleFast(const cv::Mat& img, double x, double y) {
-  if (x >= 0.0 && y >= 0.0 && x < img.cols - 1.0 && y < img.rows - 1.0) {
-    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-    const float fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-    const cv::Vec3f* r0 = img.ptr<cv::Vec3f>(y0) + x0;
-    const cv::Vec3f* r1 = img.ptr<cv::Vec3f>(y0 + 1) + x0;
-    const cv::Vec3f top = r0[0] + fx * (r0[1] - r0[0]);
-    const cv::Vec3f bottom = r1[0] + fx * (r1[1] - r1[0]);
-    return top + fy * (bottom - top);
-  }
-  return sample(img, x, y);
-}
 // Columns [first, last] of a row whose pixel centres lie within `radius` of `centre_yaw`,
 // for a row at pitch offset `dp` (empty when first > last).
 inline std::pair<int, int> discColumns(double radius, double dp, double centre_yaw, double x_of_yaw0, double px_per_deg,
@@ -161,16 +133,34 @@ void FoveatedCompositor::renderFoveal() {
   const double sigmaToLevel = p.sigma_match_deg > 0 ? (levels - 1) / p.sigma_match_deg : 0.0;
 
   const cv::Rect rectT = discRect(target_.size(), angles_.peripheral_fov_deg, gaze_, extent);
-  foveal_content_.create(rectT.size(), CV_32FC3);
+  // A view into a buffer of the largest (unclipped) disc box: no reallocation (and no
+  // page faults) when the disc is clipped differently at the target's edges.
+  const int side = 2 * static_cast<int>(std::ceil(extent * targetPpd())) + 8;
+  if (foveal_content_buf_.rows < side || foveal_content_buf_.cols < side)
+    foveal_content_buf_.create(std::max(side, rectT.height), std::max(side, rectT.width), CV_32FC3);
+  foveal_content_ = foveal_content_buf_(cv::Rect(0, 0, rectT.width, rectT.height));
   foveal_content_.setTo(cv::Scalar::all(0));
   const double ppdT = target_.cols / angles_.peripheral_fov_deg[0];
   const double x0T = tgt.px(0.0);
+  // Radius within which the foveal weight is 1 and there is no blur (just inside it, so
+  // that rounding never copies a pixel the ramps would change).
+  const double inner = (p.enabled ? std::min(p.blur_start_deg, p.blend_start_deg) : p.blend_start_deg) * (1.0 - 1e-9);
   cv::parallel_for_(cv::Range(rectT.y, rectT.y + rectT.height), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y) {
       auto* out = foveal_content_.ptr<cv::Vec3f>(y - rectT.y) - rectT.x;
       const double dp = tgt.pitch(y) - gaze_[1];
       const auto [first, last] = discColumns(extent, dp, gaze_[0], x0T, ppdT, target_.cols);
+      // Inside the inner disc (weight 1, no blur) the content is the target itself: copy.
+      const auto [innerFirst, innerLast] = discColumns(inner, dp, gaze_[0], x0T, ppdT, target_.cols);
+      const bool hasInner = innerFirst <= innerLast;
+      if (hasInner)
+        std::copy(blur_levels_[0].ptr<cv::Vec3f>(y) + innerFirst, blur_levels_[0].ptr<cv::Vec3f>(y) + innerLast + 1,
+                  out + innerFirst);
       for (int x = first; x <= last; ++x) {
+        if (hasInner && x == innerFirst) {
+          x = innerLast;
+          continue;
+        }
         const double dyaw = tgt.yaw(x) - gaze_[0];
         const double ecc = std::sqrt(dyaw * dyaw + dp * dp);
         const double w = p.fovealWeight(ecc);
@@ -227,7 +217,11 @@ void FoveatedCompositor::renderPeripheral() {
 
 void FoveatedCompositor::renderPerceived() {
   // Each display mapped back to visual angle (the target grid) by bilinear interpolation
-  // of its own pixels, i.e. at the angular resolution it delivers, then added.
+  // of its own pixels, i.e. at the angular resolution it delivers, then added. Both maps
+  // from target pixels to display pixels are affine in the equal-angle model, so
+  // cv::warpAffine does the interpolation (vectorised; sub-pixel positions quantised to
+  // 1/32 px). The projector's edge pixels extend outwards (as cv::resize does for the
+  // cached base); the foveal display is dark beyond its edge.
   const AngleGrid grid{target_.size(), angles_.peripheral_fov_deg, {0.0, 0.0}};
   const AngleGrid per{peripheral_ideal_.size(), angles_.peripheral_fov_deg, {0.0, 0.0}};
   const AngleGrid fov{foveal_ideal_.size(), angles_.foveal_fov_deg, gaze_};
@@ -236,24 +230,24 @@ void FoveatedCompositor::renderPerceived() {
   const double margin = 1.0 / angles_.peripheralPpd();
   const cv::Rect rect =
       discRect(target_.size(), angles_.peripheral_fov_deg, gaze_, profile_.fovealExtentDeg() + margin);
-  // Outside the disc (plus the margin) nothing changed: the restored base is right.
-  const double radius = profile_.fovealExtentDeg() + margin;
-  const double ppdX = target_.cols / angles_.peripheral_fov_deg[0];
-  const double x0 = grid.px(0.0);
-  cv::parallel_for_(cv::Range(rect.y, rect.y + rect.height), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y) {
-      auto* out = perceived_.ptr<cv::Vec3f>(y);
-      const double pitch = grid.pitch(y), py = std::clamp(per.py(pitch), 0.0, per.size.height - 1.0),
-                   fy = fov.py(pitch);
-      const auto [first, last] = discColumns(radius, pitch - gaze_[1], gaze_[0], x0, ppdX, target_.cols);
-      for (int x = first; x <= last; ++x) {
-        const double yaw = grid.yaw(x);
-        out[x] = sampleFast(peripheral_ideal_, std::clamp(per.px(yaw), 0.0, per.size.width - 1.0), py) +
-                 sampleFast(foveal_ideal_, fov.px(yaw), fy);
-      }
-    }
-  });
   perceived_dirty_ = rect;
+  if (rect.empty()) return;
+  auto affine = [&](const AngleGrid& to) {
+    // Target pixel (rect.x + i, rect.y + j) -> display pixel (a i + b, c j + d).
+    const double a = to.px(grid.yaw(rect.x + 1)) - to.px(grid.yaw(rect.x)), b = to.px(grid.yaw(rect.x));
+    const double c = to.py(grid.pitch(rect.y + 1)) - to.py(grid.pitch(rect.y)), d = to.py(grid.pitch(rect.y));
+    return cv::Matx23d(a, 0, b, 0, c, d);
+  };
+  if (scratch_.rows < rect.height || scratch_.cols < 2 * rect.width)
+    scratch_.create(std::max(scratch_.rows, rect.height), std::max(scratch_.cols, 2 * rect.width), CV_32FC3);
+  cv::Mat fromPer = scratch_(cv::Rect(0, 0, rect.width, rect.height));
+  cv::Mat fromFov = scratch_(cv::Rect(rect.width, 0, rect.width, rect.height));
+  cv::warpAffine(peripheral_ideal_, fromPer, affine(per), rect.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                 cv::BORDER_REPLICATE);
+  cv::warpAffine(foveal_ideal_, fromFov, affine(fov), rect.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                 cv::BORDER_CONSTANT, cv::Scalar::all(0));
+  cv::Mat dst = perceived_(rect);
+  cv::add(fromPer, fromFov, dst);
 }
 
 void FoveatedCompositor::update(std::array<double, 2> gaze) {

@@ -104,6 +104,8 @@ class FoveatedCompositor {
   cv::Mat peripheral_base_;           // target at projector resolution
   cv::Mat perceived_base_;            // peripheral_base_ upsampled to the target grid
   cv::Mat foveal_content_;            // blended foveal content on the target grid (disc bbox)
+  cv::Mat foveal_content_buf_;        // storage behind foveal_content_
+  cv::Mat scratch_;                   // both displays on the target grid, in renderPerceived
   cv::Mat foveal_ideal_, peripheral_ideal_, foveal_out_, peripheral_out_, perceived_;
   cv::Rect foveal_dirty_, peripheral_dirty_, perceived_dirty_;
   CompositeTimings timings_;
