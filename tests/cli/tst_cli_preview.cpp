@@ -199,6 +199,30 @@ class TestCliPreview : public QObject {
     QCOMPARE(f.size(), cv::Size(1920, 1080));
     QCOMPARE(p.size(), cv::Size(1280, 720));
     QCOMPARE(q.size(), img.size());
+    // Geometric pre-warp: a projector whose pixel (x, y) lands where the ideal image has
+    // pixel (x + 10, y) must show that ideal pixel: the output is the ideal one shifted.
+    json shift = {{"pairs", json::array()}};
+    for (double x : {0.0, 400.0, 1279.0})
+      for (double y : {0.0, 300.0, 719.0}) shift["pairs"].push_back({{"src", {x, y}}, {"dst", {x + 10, y}}});
+    const QString shiftFile = writeJson("shift.json", shift);
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--warp-peripheral",
+                        shiftFile, "--warp-model", "poly1", "--out-foveal", out("fw.png"), "--out-peripheral",
+                        out("pw.png"), "--out-perceived", out("qw.png"), "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QCOMPARE(r.j()["prewarp"]["peripheral"].get<bool>(), true);
+    const cv::Mat pw = fovea::image::readLinearRgb(out("pw.png").toStdString());
+    QCOMPARE(cv::norm(pw(cv::Rect(0, 0, 1270, 720)), p(cv::Rect(10, 0, 1270, 720)), cv::NORM_INF), 0.0);
+    QVERIFY(cv::norm(pw.col(1275)) == 0.0);  // beyond the ideal image's edge: dark
+    QCOMPARE(cv::norm(fovea::image::readLinearRgb(out("fw.png").toStdString()), f, cv::NORM_INF), 0.0);
+    json collinear = {{"pairs", json::array()}};
+    for (double x : {0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0})
+      collinear["pairs"].push_back({{"src", {x, x}}, {"dst", {x, x}}});
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "0,0", "--warp-foveal",
+                        writeJson("collinear.json", collinear)} +
+            common);
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("collinear.json"), qPrintable(r.err));
+
     r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--no-blend"} +
             common);
     QVERIFY2(r.code == 0, qPrintable(r.err));
