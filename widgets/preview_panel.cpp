@@ -120,7 +120,14 @@ class PreviewWorker : public QObject {
 
 PreviewImageView::PreviewImageView(const QString& title, QWidget* parent) : QWidget(parent), title_(title) {
   setMinimumSize(160, 110);
-  setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
+  QSizePolicy policy(QSizePolicy::Expanding, QSizePolicy::Preferred);
+  policy.setHeightForWidth(true);
+  setSizePolicy(policy);
+}
+
+int PreviewImageView::heightForWidth(int width) const {
+  const double aspect = image_.isNull() ? 9.0 / 16.0 : double(image_.height()) / image_.width();
+  return fontMetrics().height() + 4 + static_cast<int>(std::lround(width * aspect));
 }
 
 void PreviewImageView::setImage(const QImage& image) {
@@ -205,7 +212,8 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   grid->addWidget(fovealView_, 0, 1);
   grid->addWidget(peripheralView_, 1, 0);
   grid->addWidget(perceivedView_, 1, 1);
-  layout->addLayout(grid, 1);
+  layout->addLayout(grid);
+  layout->addStretch(1);
 
   seamTimer_ = new QTimer(this);
   seamTimer_->setSingleShot(true);

@@ -33,7 +33,10 @@ class PreviewImageView : public QWidget {
   void setImage(const QImage& image);
   void setRings(std::array<double, 2> fov_deg, std::array<double, 2> centre_deg, std::vector<double> radii_deg);
   const QImage& image() const { return image_; }
-  QSize sizeHint() const override { return {320, 200}; }
+  QSize sizeHint() const override { return {320, heightForWidth(320)}; }
+  // Title line plus the image's height at this width (16:9 until an image arrives).
+  bool hasHeightForWidth() const override { return true; }
+  int heightForWidth(int width) const override;
 
  protected:
   void paintEvent(QPaintEvent*) override;
