@@ -16,6 +16,7 @@
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
 #include "app/studio/window_capture.h"
+#include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
 #include "widgets/message_log.h"
@@ -46,6 +47,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setCentralWidget(view_);
   createDocks();
   createMenus();
+  workbench_ = new Workbench(this);
   statusBar()->showMessage(tr("Drag: orbit · Shift+drag or middle: pan · wheel or right-drag: zoom · click: select"));
 
   connect(document_, &widgets::SceneDocument::sceneChanged, this, [this] { view_->setScene(document_->scene()); });
