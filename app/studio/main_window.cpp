@@ -20,6 +20,7 @@
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
 #include "widgets/message_log.h"
+#include "widgets/preview_panel.h"
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
 #include "widgets/scene_tree.h"
@@ -77,6 +78,7 @@ void MainWindow::createDocks() {
   addPanel(properties_, tr("Properties"), "PropertiesDock", Qt::RightDockWidgetArea);
   log_ = new widgets::MessageLog(this);
   addPanel(log_, tr("Messages"), "MessagesDock", Qt::BottomDockWidgetArea);
+  addPanel(new widgets::PreviewPanel(document_, this), tr("Foveated preview"), "PreviewDock", Qt::RightDockWidgetArea);
   resizeDocks({findChild<QDockWidget*>("SceneTreeDock"), findChild<QDockWidget*>("PropertiesDock")}, {300, 380},
               Qt::Horizontal);
   resizeDocks({findChild<QDockWidget*>("MessagesDock")}, {130}, Qt::Vertical);
