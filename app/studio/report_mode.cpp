@@ -1,6 +1,7 @@
 #include "app/studio/report_mode.h"
 
 #include <QApplication>
+#include <QDockWidget>
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -32,6 +33,8 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
     }
     options.gazes_deg << g;
   }
+  // Headless: the 3-D figures get the whole window (the docks would only shrink the view).
+  for (QDockWidget* dock : window.findChildren<QDockWidget*>()) dock->hide();
   window.resize(1500, 1000);
   window.show();
   QElapsedTimer t;
