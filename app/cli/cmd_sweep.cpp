@@ -5,6 +5,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
+#include "model/analysis/analysis_json.h"
 #include "model/analysis/gaze_studies.h"
 
 namespace fovea::cli {
@@ -68,26 +69,7 @@ void install(CLI::App& app) {
       g.tolerance_deg = opt->tolerance_deg;
       const auto r = sweepGaze(scene, eval, *from, *to, *step, ax, m, g, control);
       if (!r.ok()) inputError("sweep did not complete");
-      nlohmann::json j;
-      j["axis"] = *axis;
-      j["method"] = *method;
-      nlohmann::json arr = nlohmann::json::array();
-      for (const auto& s : r.value->samples)
-        arr.push_back(
-            {{"gaze_deg", s.gaze_deg},
-             {"hoe_shift_mm", m == ShiftMethod::Hoe ? s.shift_mm : 0.0},
-             {"source_shift_mm", m == ShiftMethod::Source ? s.shift_mm : 0.0},
-             {"fov_extent_deg", {{"horizontal", s.fov.extent_horizontal_deg}, {"vertical", s.fov.extent_vertical_deg}}},
-             {"fov_deg", fovJson(s.fov)},
-             {"mean_efficiency", s.fov.mean_efficiency},
-             {"efficiency_uniformity", s.fov.efficiency_uniformity},
-             {"pupil_position_mm", s.pupil_position_mm},
-             {"shift_plateau_mm", s.plateau_mm},
-             {"best_fov_deg", s.best_fov_deg}});
-      j["samples"] = arr;
-      j["eyebox_mm"] = r.value->eyebox.width_mm;
-      j["eyebox"] = eyeboxJson(r.value->eyebox);
-      return j;
+      return sweepResultJson(*r.value, *axis);  // the same document as the studio's
     });
     if (*json) {
       printJson(out);

@@ -65,14 +65,21 @@ nlohmann::json eyeBoxJson(const EyeBox& eb) {
 nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis) {
   nlohmann::json j;
   j["axis"] = axis;
+  const ShiftMethod m = r.method;
+  j["method"] = m == ShiftMethod::Hoe ? "hoe" : m == ShiftMethod::Source ? "source" : "none";
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& s : r.samples)
-    arr.push_back({{"gaze_deg", s.gaze_deg},
-                   {"hoe_shift_mm", s.shift_mm},
-                   {"fov_deg", fovSampleJson(s.fov)},
-                   {"mean_efficiency", s.fov.mean_efficiency},
-                   {"efficiency_uniformity", s.fov.efficiency_uniformity},
-                   {"pupil_position_mm", s.pupil_position_mm}});
+    arr.push_back(
+        {{"gaze_deg", s.gaze_deg},
+         {"hoe_shift_mm", m == ShiftMethod::Hoe ? s.shift_mm : 0.0},
+         {"source_shift_mm", m == ShiftMethod::Source ? s.shift_mm : 0.0},
+         {"fov_deg", fovSampleJson(s.fov)},
+         {"fov_extent_deg", {{"horizontal", s.fov.extent_horizontal_deg}, {"vertical", s.fov.extent_vertical_deg}}},
+         {"mean_efficiency", s.fov.mean_efficiency},
+         {"efficiency_uniformity", s.fov.efficiency_uniformity},
+         {"pupil_position_mm", s.pupil_position_mm},
+         {"shift_plateau_mm", s.plateau_mm},
+         {"best_fov_deg", s.best_fov_deg}});
   j["samples"] = arr;
   j["eyebox_mm"] = r.eyebox.width_mm;
   j["eyebox"] = eyeBoxJson(r.eyebox);
@@ -84,8 +91,9 @@ nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod m, GazeAxis 
           {"travel_mm", eb.travel_mm},
           {"eyebox_mm", eb.width_mm},
           {"eyebox", eyeBoxJson(eb)},
-          {"shift_axis",
-           m == ShiftMethod::Hoe ? (ax == GazeAxis::Yaw ? "HOE local x" : "HOE local y") : "projector along bench z"}};
+          {"shift_axis", m == ShiftMethod::Hoe      ? (ax == GazeAxis::Yaw ? "HOE local x" : "HOE local y")
+                         : m == ShiftMethod::Source ? "projector along bench z"
+                                                    : "none"}};
 }
 
 nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& samples, const std::string& parameter,

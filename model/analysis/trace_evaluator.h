@@ -30,6 +30,11 @@ struct ContinuousFov {
 };
 ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficiency_threshold);
 
+// Always true since the tracer landed (kept for callers written before it).
+inline bool traceEvaluatorAvailable() {
+  return true;
+}
+
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options = {});
 
 }  // namespace fovea
