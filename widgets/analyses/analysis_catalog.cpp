@@ -240,7 +240,6 @@ GazeAxis axisOf(const AnalysisParams& p) {
 }
 
 FovEvaluator evaluatorOf(const AnalysisParams& p) {
-  if (!traceEvaluatorAvailable()) throw std::runtime_error("the HOE ray tracer is not part of this build");
   TraceEvaluatorOptions t;
   t.rays = integerOf(p, "rays");
   return traceEvaluator(t);
