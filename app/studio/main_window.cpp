@@ -15,6 +15,7 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
+#include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
@@ -64,6 +65,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   });
   resize(1400, 900);
   openEmbeddedDefault();
+  workbench_ = new TraceWorkbench(this);
 }
 
 MainWindow::~MainWindow() = default;
