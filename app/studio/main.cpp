@@ -1,10 +1,12 @@
 // fovea-studio [SCENE] [--screenshot FILE.png [--size WxH] [--grab window|view|retina|kcloud]]
-//              [--view iso|top|side|eye] [--select ID] [--gaze-deg YAW[,PITCH]] [--follow-gaze]
-//              [--show rays,effmap,kcloud,retina] [--rays N]
+//              [--view iso|top|side|eye] [--zoom F] [--select ID] [--gaze-deg YAW[,PITCH]]
+//              [--follow-gaze] [--show rays,effmap,kcloud,retina] [--rays N]
+//              [--report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]]
 // Opens the studio on SCENE, or on the embedded prototype bench without one. With
 // --screenshot it loads, waits for the live trace, renders, saves a PNG of the whole main
 // window (or of one view with --grab) and exits (0 on success, 1 when the scene, the trace
-// or the PNG fails, 2 for bad arguments).
+// or the PNG fails, 2 for bad arguments). With --report it writes the design report
+// (report_mode.h) and exits.
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -17,8 +19,10 @@
 #include <cstdio>
 
 #include "app/studio/main_window.h"
+#include "app/studio/report_mode.h"
 #include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
+#include "app/studio/workbench.h"
 #include "fovea/version.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
@@ -58,21 +62,29 @@ int main(int argc, char** argv) {
   parser.addOption(shotOpt);
   parser.addOption(sizeOpt);
   parser.addOption(viewOpt);
-  QCommandLineOption gazeOpt("gaze-deg", "Gaze yaw and optional pitch in degrees, e.g. 10 or 10,-5.", "YAW[,PITCH]");
   QCommandLineOption followOpt("follow-gaze", "HOE follows gaze: apply the travel x_p(alpha) that maximises the FOV.");
   QCommandLineOption showOpt("show",
                              "Views to show, comma-separated: rays (ray fans), effmap (efficiency map on the HOE), "
                              "kcloud (grating-vector cloud dock), retina (retina dock), none. Default: rays,retina.",
                              "LIST");
-  QCommandLineOption raysOpt("rays", "Traced rays per wavelength (200..40000, default 4000).", "N");
   QCommandLineOption zoomOpt("zoom", "Camera zoom factor applied after --view (0.2..20, e.g. 1.8).", "F");
   QCommandLineOption grabOpt("grab", "What --screenshot saves: window (default), view (3D view), retina, kcloud.",
                              "WHAT", "window");
   parser.addOption(selectOpt);
+  QCommandLineOption reportOpt("report", "Write the design report (.pdf or .html) and exit.", "FILE");
+  QCommandLineOption gazeOpt("gaze-deg",
+                             "Gaze YAW[,PITCH] in degrees: the eye's gaze in the studio and screenshots; for "
+                             "--report a gaze for ray and retina figures (repeatable).",
+                             "A[,B]");
+  QCommandLineOption raysOpt("rays",
+                             "Rays per wavelength: the live trace (200..40000, default 4000) or the report "
+                             "(default 1500).",
+                             "N", "1500");
+  parser.addOption(reportOpt);
   parser.addOption(gazeOpt);
+  parser.addOption(raysOpt);
   parser.addOption(followOpt);
   parser.addOption(showOpt);
-  parser.addOption(raysOpt);
   parser.addOption(grabOpt);
   parser.addOption(zoomOpt);
   parser.process(app);
@@ -89,7 +101,14 @@ int main(int argc, char** argv) {
         << "\"\n";
     return 2;
   }
-  const bool screenshot = parser.isSet(shotOpt);
+  const bool report = parser.isSet(reportOpt);
+  const bool screenshot = parser.isSet(shotOpt) || report;
+  bool raysOk = false;
+  const int rays = parser.value(raysOpt).toInt(&raysOk);
+  if (!raysOk || rays < 50 || rays > 1000000) {
+    err << "fovea-studio: --rays: expected a whole number in 50 .. 1000000, got \"" << parser.value(raysOpt) << "\"\n";
+    return 2;
+  }
   const QMap<QString, fovea::viz::StandardView> views{{"iso", fovea::viz::StandardView::Isometric},
                                                       {"top", fovea::viz::StandardView::Top},
                                                       {"side", fovea::viz::StandardView::Side},
@@ -100,7 +119,7 @@ int main(int argc, char** argv) {
   }
 
   double gazeYaw = 0, gazePitch = 0;
-  if (parser.isSet(gazeOpt)) {
+  if (parser.isSet(gazeOpt) && !report) {
     const QStringList parts = parser.value(gazeOpt).split(',');
     bool ok1 = parts.size() <= 2, ok2 = true;
     if (ok1) gazeYaw = parts.value(0).toDouble(&ok1);
@@ -111,14 +130,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  int rays = 4000;
-  if (parser.isSet(raysOpt)) {
-    bool ok = false;
-    rays = parser.value(raysOpt).toInt(&ok);
-    if (!ok || rays < 200 || rays > 40000) {
-      err << "fovea-studio: --rays: expected an integer 200..40000, got \"" << parser.value(raysOpt) << "\"\n";
-      return 2;
-    }
+  if (parser.isSet(raysOpt) && !report && (rays < 200 || rays > 40000)) {
+    err << "fovea-studio: --rays: the live trace takes 200..40000 rays, got " << rays << "\n";
+    return 2;
   }
   double zoom = 1.0;
   if (parser.isSet(zoomOpt)) {
@@ -146,7 +160,7 @@ int main(int argc, char** argv) {
     }
   }
   fovea::studio::TraceWorkbench* bench = window.traceWorkbench();
-  if (parser.isSet(gazeOpt)) bench->setStartGaze(gazeYaw, gazePitch);
+  if (parser.isSet(gazeOpt) && !report) bench->setStartGaze(gazeYaw, gazePitch);
   if (parser.isSet(followOpt)) bench->gazePanel()->setFollowGaze(true);
   if (parser.isSet(raysOpt)) bench->displayPanel()->setTraceRays(rays);
   if (parser.isSet(showOpt)) {
@@ -159,8 +173,10 @@ int main(int argc, char** argv) {
   if (parser.isSet(viewOpt)) window.sceneView()->showStandardView(views.value(parser.value(viewOpt)));
   if (parser.isSet(zoomOpt)) window.sceneView()->zoomCamera(zoom);
   if (parser.isSet(selectOpt)) window.selectElement(parser.value(selectOpt));
+  if (report) return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays);
   if (!screenshot) {
     window.show();
+    window.workbench()->startSession();  // preferences, autosave, recovery offer after a crash
     return QApplication::exec();
   }
 

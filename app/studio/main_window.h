@@ -25,6 +25,7 @@ class MessageLog;
 
 namespace fovea::studio {
 
+class Workbench;
 class TraceWorkbench;
 
 class MainWindow : public QMainWindow {
@@ -61,8 +62,10 @@ class MainWindow : public QMainWindow {
   widgets::PropertyEditor* propertyEditor() const { return properties_; }
   widgets::MessageLog* messageLog() const { return log_; }
   QStringList recentFiles() const { return recent_; }
+  // Analyses, plots, preferences, report export, autosave and recovery (workbench.h).
+  Workbench* workbench() const { return workbench_; }
   // Live trace, ray fans, retina and grating-vector views, gaze, handles (trace_workbench.h).
-  TraceWorkbench* traceWorkbench() const { return workbench_; }
+  TraceWorkbench* traceWorkbench() const { return traceWorkbench_; }
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -93,7 +96,8 @@ class MainWindow : public QMainWindow {
   QString selected_;
   QStringList recent_;
   bool persistSettings_ = false;
-  TraceWorkbench* workbench_ = nullptr;
+  Workbench* workbench_ = nullptr;
+  TraceWorkbench* traceWorkbench_ = nullptr;
 };
 
 }  // namespace fovea::studio
