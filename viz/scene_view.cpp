@@ -16,6 +16,7 @@
 #include <vtkOrientationMarkerWidget.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProp.h>
+#include <vtkProp3D.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkTextProperty.h>
@@ -23,6 +24,7 @@
 #include "model/scene/scene_geometry.h"
 #include "viz/scale_bar.h"
 #include "viz/scene_actors.h"
+#include "viz/scene_elements.h"
 
 namespace fovea::viz {
 
@@ -82,6 +84,7 @@ void SceneView::setScene(const Scene& scene, bool reset) {
   SceneLayer& l = sceneLayer();
   l.clear();
   buildSceneActors(scene_, l);
+  applyHoeShift();
   updateHighlight();
   if (first || reset) showStandardView(StandardView::Isometric);
   requestRender();
@@ -92,6 +95,7 @@ void SceneView::setSelectedElement(const QString& id) {
   selected_ = id;
   updateHighlight();
   requestRender();
+  emit selectionChanged(id);
 }
 
 void SceneView::updateHighlight() {
@@ -120,6 +124,38 @@ void SceneView::updateHighlight() {
   cube->Update();
   static_cast<vtkPolyDataMapper*>(highlight_->GetMapper())->SetInputData(cube->GetOutput());
   highlight_->VisibilityOn();
+}
+
+void SceneView::setHoeDisplayShift(const Eigen::Vector3d& shift) {
+  if (shift == hoeShift_) return;
+  hoeShift_ = shift;
+  applyHoeShift();
+  updateHighlight();
+  requestRender();
+}
+
+void SceneView::applyHoeShift() {
+  QStringList ids{"hoe"};
+  for (int i = 0; i < static_cast<int>(scene_.hoe_layers.size()); ++i) ids << hoeLayerId(i);
+  for (const QString& id : ids)
+    for (vtkProp* p : sceneLayer().propsOf(id))
+      if (auto* p3 = vtkProp3D::SafeDownCast(p)) p3->SetPosition(hoeShift_.x(), hoeShift_.y(), hoeShift_.z());
+}
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> SceneView::viewRay(const QPointF& pos) {
+  vtkRenderer* ren = renderer();
+  const double dpr = devicePixelRatioF();
+  const double x = pos.x() * dpr, y = (height() - pos.y()) * dpr;
+  double nearP[4], farP[4];
+  ren->SetDisplayPoint(x, y, 0.0);
+  ren->DisplayToWorld();
+  ren->GetWorldPoint(nearP);
+  ren->SetDisplayPoint(x, y, 1.0);
+  ren->DisplayToWorld();
+  ren->GetWorldPoint(farP);
+  Eigen::Vector3d a(nearP[0] / nearP[3], nearP[1] / nearP[3], nearP[2] / nearP[3]);
+  Eigen::Vector3d b(farP[0] / farP[3], farP[1] / farP[3], farP[2] / farP[3]);
+  return {a, (b - a).normalized()};
 }
 
 QString SceneView::elementAt(const QPointF& pos) {
@@ -188,6 +224,12 @@ void SceneView::resetCamera() {
   if (b[0] <= b[1]) ren->ResetCamera(b);
   ren->GetActiveCamera()->Zoom(1.25);  // the bounding sphere frames loosely
   ren->ResetCameraClippingRange();
+  requestRender();
+}
+
+void SceneView::zoomCamera(double factor) {
+  renderer()->GetActiveCamera()->Zoom(factor);
+  renderer()->ResetCameraClippingRange();
   requestRender();
 }
 

@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -42,7 +43,7 @@ class SceneView : public VtkGlWidget {
   SceneLayer& layer(const QString& name);
   SceneLayer& sceneLayer() { return layer(QStringLiteral("scene")); }
 
-  // Highlights an element (empty: none). Emits nothing.
+  // Highlights an element (empty: none). Emits selectionChanged(), not elementPicked().
   void setSelectedElement(const QString& id);
   const QString& selectedElement() const { return selected_; }
 
@@ -51,12 +52,24 @@ class SceneView : public VtkGlWidget {
   // Where a bench point (mm) appears in the widget (logical pixels), if in front of the camera.
   std::optional<QPointF> widgetPositionOf(const Eigen::Vector3d& bench_mm);
 
+  // Draws the HOE plate (and its layers) displaced by `shift` (bench mm) from its pose: the
+  // travel x_p applied by "HOE follows gaze". Kept across setScene().
+  void setHoeDisplayShift(const Eigen::Vector3d& shift);
+  const Eigen::Vector3d& hoeDisplayShift() const { return hoeShift_; }
+
+  // The camera ray through a widget position (logical pixels): origin and unit direction.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> viewRay(const QPointF& widgetPos);
+
   void showStandardView(StandardView view);
   void resetCamera();
+  // Zooms the camera by `factor` (> 1 closer) about its focal point.
+  void zoomCamera(double factor);
   double scaleBarLengthMm() const;
 
  signals:
   void elementPicked(const QString& id);
+  // The highlighted element changed (setSelectedElement, by a click or programmatically).
+  void selectionChanged(const QString& id);
 
  protected:
   void mousePressEvent(QMouseEvent* event) override;
@@ -64,6 +77,7 @@ class SceneView : public VtkGlWidget {
 
  private:
   void updateHighlight();
+  void applyHoeShift();
 
   Scene scene_;
   bool hasScene_ = false;
@@ -75,6 +89,7 @@ class SceneView : public VtkGlWidget {
   std::unique_ptr<ScaleBar> scaleBar_;
   QPointF pressPos_;
   bool pressed_ = false;
+  Eigen::Vector3d hoeShift_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace fovea::viz

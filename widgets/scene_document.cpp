@@ -37,14 +37,14 @@ void SceneDocument::markSaved(const QString& filePath) {
   emit filePathChanged(filePath_);
 }
 
-QStringList SceneDocument::applyEdit(const QString& text, const std::function<void(Scene&)>& change) {
+QStringList SceneDocument::applyEdit(const QString& text, const std::function<void(Scene&)>& change, int mergeId) {
   Scene after = scene_;
   change(after);
   QStringList problems;
   for (const auto& p : validateScene(after)) problems << QString::fromStdString(p);
   if (!problems.isEmpty()) return problems;
   if (after == scene_) return {};
-  undo_.push(new SceneEditCommand(this, scene_, after, text));
+  undo_.push(new SceneEditCommand(this, scene_, after, text, mergeId));
   return {};
 }
 

@@ -35,8 +35,12 @@ class SceneDocument : public QObject {
 
   // Applies `change` to a copy of the scene; if the result is valid, pushes an undoable
   // command named `text` and returns {}; otherwise changes nothing and returns every
-  // problem ("eye.relief_mm: must be > 0, got -5").
-  QStringList applyEdit(const QString& text, const std::function<void(Scene&)>& change);
+  // problem ("eye.relief_mm: must be > 0, got -5"). Consecutive edits with the same
+  // mergeId >= 0 merge into one undo step: one per gesture (a slider drag, a handle drag),
+  // see newGestureId().
+  QStringList applyEdit(const QString& text, const std::function<void(Scene&)>& change, int mergeId = -1);
+  // A merge id not used before by this document.
+  int newGestureId() { return ++gestures_; }
 
   // Used by the undo commands: sets the scene and notifies.
   void setSceneState(const Scene& scene);
@@ -52,6 +56,7 @@ class SceneDocument : public QObject {
   QUndoStack undo_;
   QString filePath_;
   QString displayName_;
+  int gestures_ = 0;
 };
 
 }  // namespace fovea::widgets

@@ -4,8 +4,20 @@
 
 namespace fovea::widgets {
 
-SceneEditCommand::SceneEditCommand(SceneDocument* document, Scene before, Scene after, const QString& text)
-    : QUndoCommand(text), document_(document), before_(std::move(before)), after_(std::move(after)) {}
+SceneEditCommand::SceneEditCommand(SceneDocument* document, Scene before, Scene after, const QString& text, int mergeId)
+    : QUndoCommand(text),
+      document_(document),
+      before_(std::move(before)),
+      after_(std::move(after)),
+      mergeId_(mergeId) {}
+
+bool SceneEditCommand::mergeWith(const QUndoCommand* other) {
+  const auto* o = dynamic_cast<const SceneEditCommand*>(other);
+  if (!o || o->mergeId_ != mergeId_ || mergeId_ < 0) return false;
+  after_ = o->after_;
+  setText(o->text());
+  return true;
+}
 
 void SceneEditCommand::undo() {
   document_->setSceneState(before_);

@@ -1,9 +1,12 @@
-// fovea-studio [SCENE] [--screenshot FILE.png [--size WxH]]
+// fovea-studio [SCENE] [--screenshot FILE.png [--size WxH] [--grab window|view|retina|kcloud]]
+//              [--view iso|top|side|eye] [--zoom F] [--select ID] [--gaze-deg YAW[,PITCH]]
+//              [--follow-gaze] [--show rays,effmap,kcloud,retina] [--rays N]
 //              [--report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]]
 // Opens the studio on SCENE, or on the embedded prototype bench without one. With
-// --screenshot it loads, renders, saves a PNG of the whole main window and exits (0 on
-// success, 1 when the scene or the PNG fails, 2 for bad arguments). With --report it writes
-// the design report (report_mode.h) and exits.
+// --screenshot it loads, waits for the live trace, renders, saves a PNG of the whole main
+// window (or of one view with --grab) and exits (0 on success, 1 when the scene, the trace
+// or the PNG fails, 2 for bad arguments). With --report it writes the design report
+// (report_mode.h) and exits.
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -12,16 +15,22 @@
 #include <QMap>
 #include <QTextStream>
 
+#include <cmath>
 #include <cstdio>
 
 #include "app/studio/main_window.h"
 #include "app/studio/report_mode.h"
+#include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
 #include "app/studio/workbench.h"
 #include "fovea/version.h"
+#include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/vtk_gl_widget.h"
+#include "widgets/display_panel.h"
+#include "widgets/gaze_panel.h"
 #include "widgets/message_log.h"
+#include "widgets/retina_view.h"
 
 namespace {
 
@@ -53,14 +62,31 @@ int main(int argc, char** argv) {
   parser.addOption(shotOpt);
   parser.addOption(sizeOpt);
   parser.addOption(viewOpt);
+  QCommandLineOption followOpt("follow-gaze", "HOE follows gaze: apply the travel x_p(alpha) that maximises the FOV.");
+  QCommandLineOption showOpt("show",
+                             "Views to show, comma-separated: rays (ray fans), effmap (efficiency map on the HOE), "
+                             "kcloud (grating-vector cloud dock), retina (retina dock), none. Default: rays,retina.",
+                             "LIST");
+  QCommandLineOption zoomOpt("zoom", "Camera zoom factor applied after --view (0.2..20, e.g. 1.8).", "F");
+  QCommandLineOption grabOpt("grab", "What --screenshot saves: window (default), view (3D view), retina, kcloud.",
+                             "WHAT", "window");
   parser.addOption(selectOpt);
   QCommandLineOption reportOpt("report", "Write the design report (.pdf or .html) and exit.", "FILE");
-  QCommandLineOption gazeOpt("gaze-deg", "Report: a gaze YAW[,PITCH] (deg) for ray and retina figures; repeatable.",
+  QCommandLineOption gazeOpt("gaze-deg",
+                             "Gaze YAW[,PITCH] in degrees: the eye's gaze in the studio and screenshots; for "
+                             "--report a gaze for ray and retina figures (repeatable).",
                              "A[,B]");
-  QCommandLineOption raysOpt("rays", "Report: rays per wavelength (default 1500).", "N", "1500");
+  QCommandLineOption raysOpt("rays",
+                             "Rays per wavelength: the live trace (200..40000, default 4000) or the report "
+                             "(default 1500).",
+                             "N", "1500");
   parser.addOption(reportOpt);
   parser.addOption(gazeOpt);
   parser.addOption(raysOpt);
+  parser.addOption(followOpt);
+  parser.addOption(showOpt);
+  parser.addOption(grabOpt);
+  parser.addOption(zoomOpt);
   parser.process(app);
 
   QTextStream err(stderr);
@@ -92,6 +118,37 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  double gazeYaw = 0, gazePitch = 0;
+  if (parser.isSet(gazeOpt) && !report) {
+    const QStringList parts = parser.value(gazeOpt).split(',');
+    bool ok1 = parts.size() <= 2, ok2 = true;
+    if (ok1) gazeYaw = parts.value(0).toDouble(&ok1);
+    if (ok1 && parts.size() == 2) gazePitch = parts[1].toDouble(&ok2);
+    if (!ok1 || !ok2 || std::abs(gazeYaw) > 40 || std::abs(gazePitch) > 40) {
+      err << "fovea-studio: --gaze-deg: expected YAW or YAW,PITCH in degrees within +-40, got \""
+          << parser.value(gazeOpt) << "\"\n";
+      return 2;
+    }
+  }
+  if (parser.isSet(raysOpt) && !report && (rays < 200 || rays > 40000)) {
+    err << "fovea-studio: --rays: the live trace takes 200..40000 rays, got " << rays << "\n";
+    return 2;
+  }
+  double zoom = 1.0;
+  if (parser.isSet(zoomOpt)) {
+    bool ok = false;
+    zoom = parser.value(zoomOpt).toDouble(&ok);
+    if (!ok || !(zoom >= 0.2 && zoom <= 20.0)) {
+      err << "fovea-studio: --zoom: expected a factor 0.2..20, got \"" << parser.value(zoomOpt) << "\"\n";
+      return 2;
+    }
+  }
+  const QString grab = parser.value(grabOpt);
+  if (!QStringList{"window", "view", "retina", "kcloud"}.contains(grab)) {
+    err << "fovea-studio: --grab: expected window, view, retina or kcloud, got \"" << grab << "\"\n";
+    return 2;
+  }
+
   fovea::studio::MainWindow window;
   window.setPersistentSettings(!screenshot);
   window.restoreSettings();
@@ -102,7 +159,19 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  fovea::studio::TraceWorkbench* bench = window.traceWorkbench();
+  if (parser.isSet(gazeOpt) && !report) bench->setStartGaze(gazeYaw, gazePitch);
+  if (parser.isSet(followOpt)) bench->gazePanel()->setFollowGaze(true);
+  if (parser.isSet(raysOpt)) bench->displayPanel()->setTraceRays(rays);
+  if (parser.isSet(showOpt)) {
+    QString why;
+    if (!bench->applyShowList(parser.value(showOpt).split(','), &why)) {
+      err << "fovea-studio: --show: " << why << "\n";
+      return 2;
+    }
+  }
   if (parser.isSet(viewOpt)) window.sceneView()->showStandardView(views.value(parser.value(viewOpt)));
+  if (parser.isSet(zoomOpt)) window.sceneView()->zoomCamera(zoom);
   if (parser.isSet(selectOpt)) window.selectElement(parser.value(selectOpt));
   if (report) return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays);
   if (!screenshot) {
@@ -114,7 +183,20 @@ int main(int argc, char** argv) {
   window.resize(size);
   window.show();
   settle(400);  // let the window map, lay out the docks and render the 3D view
-  const QImage image = window.captureWindow();
+  if (!bench->waitForTrace()) {
+    err << "fovea-studio: the live trace did not finish\n";
+    return 1;
+  }
+  settle(200);
+  QImage image;
+  if (grab == "view")
+    image = window.sceneView()->renderToImage();
+  else if (grab == "retina")
+    image = bench->retinaView()->render(size);
+  else if (grab == "kcloud")
+    image = bench->kspaceView()->renderToImage();
+  else
+    image = window.captureWindow();
   const QString path = parser.value(shotOpt);
   if (image.isNull() || !image.save(path, "PNG")) {
     err << "fovea-studio: could not write the screenshot " << path << "\n";

@@ -15,6 +15,7 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
+#include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
 #include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
@@ -67,6 +68,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   });
   resize(1400, 900);
   openEmbeddedDefault();
+  traceWorkbench_ = new TraceWorkbench(this);
 }
 
 MainWindow::~MainWindow() = default;

@@ -26,6 +26,7 @@ class MessageLog;
 namespace fovea::studio {
 
 class Workbench;
+class TraceWorkbench;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -63,6 +64,8 @@ class MainWindow : public QMainWindow {
   QStringList recentFiles() const { return recent_; }
   // Analyses, plots, preferences, report export, autosave and recovery (workbench.h).
   Workbench* workbench() const { return workbench_; }
+  // Live trace, ray fans, retina and grating-vector views, gaze, handles (trace_workbench.h).
+  TraceWorkbench* traceWorkbench() const { return traceWorkbench_; }
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -94,6 +97,7 @@ class MainWindow : public QMainWindow {
   QStringList recent_;
   bool persistSettings_ = false;
   Workbench* workbench_ = nullptr;
+  TraceWorkbench* traceWorkbench_ = nullptr;
 };
 
 }  // namespace fovea::studio

@@ -1,0 +1,120 @@
+#include "app/studio/trace_workbench.h"
+
+#include <QDockWidget>
+#include <QStatusBar>
+
+#include "app/studio/main_window.h"
+#include "viz/kspace_view.h"
+#include "viz/scene_view.h"
+#include "viz/trace_overlay.h"
+#include "widgets/display_panel.h"
+#include "widgets/gaze_panel.h"
+#include "widgets/handle_controller.h"
+#include "widgets/live_trace.h"
+#include "widgets/retina_view.h"
+#include "widgets/scene_document.h"
+
+namespace fovea::studio {
+
+TraceWorkbench::TraceWorkbench(MainWindow* window) : QObject(window), window_(window) {
+  widgets::SceneDocument* doc = window->document();
+  trace_ = new widgets::LiveTrace(this);
+  overlay_ = std::make_unique<viz::TraceOverlay>(window->sceneView());
+  gaze_ = new widgets::GazePanel(doc, window);
+  display_ = new widgets::DisplayPanel(window);
+  retina_ = new widgets::RetinaView(window);
+  retina_->setObjectName("RetinaView");
+  kspace_ = new viz::KSpaceView(window);
+  kspace_->setObjectName("KSpaceView");
+  handles_ = new widgets::HandleController(doc, window->sceneView(), this);
+
+  QDockWidget* gazeDock = window->addPanel(gaze_, tr("Gaze"), "GazeDock", Qt::LeftDockWidgetArea);
+  QDockWidget* raysDock = window->addPanel(display_, tr("Rays"), "RaysDock", Qt::LeftDockWidgetArea);
+  window->tabifyDockWidget(gazeDock, raysDock);
+  gazeDock->raise();
+  retinaDock_ = window->addPanel(retina_, tr("Retina"), "RetinaDock", Qt::RightDockWidgetArea);
+  kspaceDock_ = window->addPanel(kspace_, tr("Grating vectors"), "KSpaceDock", Qt::RightDockWidgetArea);
+  window->tabifyDockWidget(retinaDock_, kspaceDock_);
+  retinaDock_->raise();
+
+  connect(doc, &widgets::SceneDocument::sceneChanged, this, [this, doc] {
+    display_->setWavelengths(doc->scene().projector.wavelengths_nm);
+    requestTrace();
+  });
+  connect(display_, &widgets::DisplayPanel::traceRaysChanged, this, &TraceWorkbench::requestTrace);
+  connect(display_, &widgets::DisplayPanel::overlayOptionsChanged, this, &TraceWorkbench::redraw);
+  connect(gaze_, &widgets::GazePanel::followGazeChanged, this, &TraceWorkbench::requestTrace);
+  connect(trace_, &widgets::LiveTrace::resultReady, this, &TraceWorkbench::showResult);
+  connect(trace_, &widgets::LiveTrace::busyChanged, this,
+          [this](bool busy) { gaze_->showResult(trace_->latest(), busy); });
+  connect(window->sceneView(), &viz::SceneView::selectionChanged, handles_, &widgets::HandleController::setElement);
+  connect(handles_, &widgets::HandleController::dragFinished, this, [this](const QString& el, int axis, double d) {
+    window_->statusBar()->showMessage(
+        tr("Moved %1 along %2 by %3 mm").arg(el, QString("xyz").mid(axis, 1)).arg(d, 0, 'g', 6), 4000);
+  });
+  display_->setWavelengths(doc->scene().projector.wavelengths_nm);
+  requestTrace();
+}
+
+TraceWorkbench::~TraceWorkbench() = default;
+
+void TraceWorkbench::requestTrace() {
+  widgets::LiveTraceSettings s;
+  s.rays = display_->traceRays();
+  s.follow_gaze = gaze_->followGaze();
+  trace_->request(window_->document()->scene(), s);
+}
+
+void TraceWorkbench::showResult(const std::shared_ptr<const widgets::LiveTraceResult>& r) {
+  gaze_->showResult(r, trace_->isBusy());
+  redraw();
+}
+
+void TraceWorkbench::redraw() {
+  const auto r = trace_->latest();
+  const viz::TraceOverlayOptions o = display_->overlayOptions();
+  if (!r || !r->error.empty()) {
+    overlay_->clear();
+  } else {
+    overlay_->show(r->scene, r->trace, r->grid, r->hoe_shift_mm, o);
+  }
+  retina_->setResult(r, o.hidden_wavelengths_nm);
+  if (r) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);
+}
+
+bool TraceWorkbench::applyShowList(const QStringList& names, QString* error) {
+  bool rays = false, effmap = false;
+  for (const QString& raw : names) {
+    const QString n = raw.trimmed().toLower();
+    if (n == "rays") {
+      rays = true;
+    } else if (n == "effmap") {
+      effmap = true;
+    } else if (n == "kcloud") {
+      kspaceDock_->show();
+      kspaceDock_->raise();
+    } else if (n == "retina") {
+      retinaDock_->show();
+      retinaDock_->raise();
+    } else if (n != "none" && !n.isEmpty()) {
+      if (error) *error = tr("unknown view \"%1\" (expected rays, effmap, kcloud, retina or none)").arg(raw);
+      return false;
+    }
+  }
+  display_->setShowRays(rays);
+  display_->setShowEfficiencyMap(effmap);
+  return true;
+}
+
+void TraceWorkbench::setStartGaze(double yaw, double pitch) {
+  widgets::SceneDocument* doc = window_->document();
+  Scene s = doc->scene();
+  s.eye.gaze_deg = {yaw, pitch};
+  doc->resetTo(s, doc->filePath(), doc->displayName());
+}
+
+bool TraceWorkbench::waitForTrace(int timeout_ms) {
+  return trace_->waitForIdle(timeout_ms);
+}
+
+}  // namespace fovea::studio

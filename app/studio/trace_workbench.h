@@ -1,0 +1,71 @@
+#pragma once
+// The live-trace part of the studio, composed on top of the main window: the LiveTrace
+// controller (off-thread, coalesced), the 3D view's trace overlay (ray fans, efficiency map,
+// pupil and fovea, colour bar), the grating-vector cloud view, the retina view, the gaze and
+// ray-display docks, and the drag handles. MainWindow creates one; everything else is here.
+
+#include <QObject>
+#include <QStringList>
+
+#include <memory>
+
+class QDockWidget;
+
+namespace fovea::viz {
+class KSpaceView;
+class TraceOverlay;
+}  // namespace fovea::viz
+
+namespace fovea::widgets {
+class DisplayPanel;
+class GazePanel;
+class HandleController;
+class LiveTrace;
+class RetinaView;
+struct LiveTraceResult;
+}  // namespace fovea::widgets
+
+namespace fovea::studio {
+
+class MainWindow;
+
+class TraceWorkbench : public QObject {
+  Q_OBJECT
+ public:
+  explicit TraceWorkbench(MainWindow* window);
+  ~TraceWorkbench() override;
+
+  widgets::LiveTrace* liveTrace() const { return trace_; }
+  widgets::GazePanel* gazePanel() const { return gaze_; }
+  widgets::DisplayPanel* displayPanel() const { return display_; }
+  widgets::RetinaView* retinaView() const { return retina_; }
+  viz::KSpaceView* kspaceView() const { return kspace_; }
+  viz::TraceOverlay* overlay() const { return overlay_.get(); }
+  widgets::HandleController* handles() const { return handles_; }
+
+  // --show: any of "rays", "effmap", "kcloud", "retina" (rays and effmap switch the 3D
+  // layers, kcloud and retina raise their docks). Returns false on an unknown name.
+  bool applyShowList(const QStringList& names, QString* error = nullptr);
+  // Sets the scene's gaze without an undo step (command line, before any edit).
+  void setStartGaze(double yaw_deg, double pitch_deg);
+  // Waits (running the event loop) until the newest trace is drawn; false on timeout.
+  bool waitForTrace(int timeout_ms = 120000);
+
+ private:
+  void requestTrace();
+  void showResult(const std::shared_ptr<const widgets::LiveTraceResult>& result);
+  void redraw();
+
+  MainWindow* window_;
+  widgets::LiveTrace* trace_ = nullptr;
+  widgets::GazePanel* gaze_ = nullptr;
+  widgets::DisplayPanel* display_ = nullptr;
+  widgets::RetinaView* retina_ = nullptr;
+  viz::KSpaceView* kspace_ = nullptr;
+  widgets::HandleController* handles_ = nullptr;
+  std::unique_ptr<viz::TraceOverlay> overlay_;
+  QDockWidget* retinaDock_ = nullptr;
+  QDockWidget* kspaceDock_ = nullptr;
+};
+
+}  // namespace fovea::studio

@@ -1,0 +1,271 @@
+// The live trace in the studio under Xvfb: gaze sliders change the model's gaze (one undo
+// step per drag), "HOE follows gaze" applies x_p, a handle drag is one undo step in sync
+// with the property editor, requests are coalesced and stale results dropped, and the
+// overlay draws what the trace found (solid rays into the pupil, dashed ones missing it).
+#include <QtTest>
+
+#include <QCheckBox>
+#include <QLineEdit>
+#include <QSlider>
+#include <QUndoStack>
+
+#include <cmath>
+#include <filesystem>
+
+#include <vtkProp.h>
+#include <vtkScalarBarActor.h>
+
+#include "app/studio/main_window.h"
+#include "app/studio/trace_workbench.h"
+#include "model/physics/trace.h"
+#include "model/scene/scene_geometry.h"
+#include "viz/element_handles.h"
+#include "viz/kspace_view.h"
+#include "viz/scene_view.h"
+#include "viz/trace_overlay.h"
+#include "viz/vtk_gl_widget.h"
+#include "widgets/display_panel.h"
+#include "widgets/gaze_panel.h"
+#include "widgets/handle_controller.h"
+#include "widgets/live_trace.h"
+#include "widgets/property_editor.h"
+#include "widgets/retina_view.h"
+#include "widgets/scene_document.h"
+
+using namespace fovea;
+
+class TestTraceViews : public QObject {
+  Q_OBJECT
+ private:
+  std::unique_ptr<studio::MainWindow> w;
+  studio::TraceWorkbench* bench() { return w->traceWorkbench(); }
+
+ private slots:
+  void init() {
+    w = std::make_unique<studio::MainWindow>();
+    w->resize(1600, 1000);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    w->sceneView()->renderToImage();
+    QVERIFY(bench()->waitForTrace());
+  }
+  void cleanup() {
+    w->document()->undoStack()->setClean();
+    w.reset();
+  }
+
+  void firstTraceMatchesTheModel() {
+    const auto r = bench()->liveTrace()->latest();
+    QVERIFY(r);
+    QVERIFY(r->error.empty());
+    // The same numbers as a direct trace of the scene (4000 rays per wavelength).
+    TraceOptions o;
+    o.rays = 4000;
+    const TraceResult direct = traceScene(w->document()->scene(), o);
+    QCOMPARE(r->trace.fov_deg.horizontal, direct.fov_deg.horizontal);
+    QCOMPARE(r->trace.rays_in_pupil, direct.rays_in_pupil);
+    QVERIFY(r->trace.fov_deg.horizontal > 85.0);  // docs/physics.md: 88.0 deg at 4000 rays
+    QCOMPARE(static_cast<int>(r->trace.ray_list.size()), 3 * r->grid[0] * r->grid[1]);
+    // The horizontal fan: 25 rays per wavelength, all on the plate, all entering the pupil
+    // at zero gaze (recorded in place: every ray converges to the pupil centre).
+    const viz::TraceOverlayStats& s = bench()->overlay()->stats();
+    QCOMPARE(s.rays_drawn, 3 * 25);
+    QCOMPARE(s.rays_in_pupil, 3 * 25);
+    QCOMPARE(s.rays_missing, 0);
+    QVERIFY(!w->sceneView()->layer("rays").propsOf({}).empty());
+    QVERIFY(bench()->overlay()->colorBar()->GetVisibility());
+    // Retina view: the FOV box equals the trace's horizontal and vertical FOV.
+    const auto& box = bench()->retinaView()->fovBox();
+    QVERIFY(box.valid);
+    QCOMPARE(box.yaw_max - box.yaw_min, r->trace.fov_deg.horizontal);
+    QCOMPARE(box.pitch_max - box.pitch_min, r->trace.fov_deg.vertical);
+    bench()->retinaView()->render(QSize(640, 480));  // counted while painting (the dock may be a hidden tab)
+    QVERIFY(bench()->retinaView()->cellsDrawn() > 1000);
+    // Grating-vector cloud: Bragg matched at zero gaze, the probe's K equals the recorded one.
+    QVERIFY(bench()->kspaceView()->probePoints() > 1000);
+    QVERIFY2(bench()->kspaceView()->maxDephasing() < 1e-6,
+             qPrintable(QString::number(bench()->kspaceView()->maxDephasing())));
+  }
+
+  void sliderMoveChangesTheGaze() {
+    widgets::GazePanel* gaze = bench()->gazePanel();
+    QSlider* yaw = gaze->yawSlider();
+    QUndoStack* stack = w->document()->undoStack();
+    QSignalSpy sceneSpy(w->document(), &widgets::SceneDocument::sceneChanged);
+    QSignalSpy results(bench()->liveTrace(), &widgets::LiveTrace::resultReady);
+    // A drag of the slider: pressed, several values, released.
+    yaw->setSliderDown(true);
+    for (int v = 1; v <= 28; ++v) yaw->setValue(v);  // 0.5 deg steps up to 14 deg
+    yaw->setSliderDown(false);
+    QCOMPARE(w->document()->scene().eye.gaze_deg[0], 14.0);
+    QCOMPARE(w->document()->scene().eye.gaze_deg[1], 0.0);
+    QCOMPARE(sceneSpy.count(), 28);
+    QCOMPARE(stack->count(), 1);  // one drag, one undo step
+    QCOMPARE(stack->undoText(), QString("Set gaze to 14.0°, 0.0°"));
+    QVERIFY(w->isWindowModified());
+    // The trace follows: 28 requests, coalesced; only the newest result is delivered.
+    QVERIFY(bench()->waitForTrace());
+    QVERIFY(results.count() >= 1);
+    QVERIFY(bench()->liveTrace()->jobsStarted() < 10);
+    const auto r = bench()->liveTrace()->latest();
+    QCOMPARE(r->trace.gaze_deg[0], 14.0);
+    QVERIFY(r->reused_diffraction);  // only the gaze stage ran
+    // At 14 deg without HOE travel the pupil has left the Maxwellian focus (physics.md:
+    // nothing beyond ~12.5 deg), so the fan's rays miss it: dashed.
+    QVERIFY(r->trace.fov_deg.horizontal < 10.0);
+    QVERIFY(bench()->overlay()->stats().rays_missing > 0);
+    // The keyboard moves by one step: a separate undo step.
+    yaw->setFocus();
+    QTest::keyClick(yaw, Qt::Key_Left);
+    QCOMPARE(w->document()->scene().eye.gaze_deg[0], 13.5);
+    QCOMPARE(stack->count(), 2);
+    stack->undo();
+    stack->undo();
+    QCOMPARE(w->document()->scene().eye.gaze_deg[0], 0.0);
+    QCOMPARE(yaw->value(), 0);
+    QVERIFY(!w->isWindowModified());
+  }
+
+  void hoeFollowsGaze() {
+    bench()->gazePanel()->setGaze(20.0, 0.0);
+    QVERIFY(bench()->waitForTrace());
+    const double fovFixed = bench()->liveTrace()->latest()->trace.fov_deg.horizontal;
+    QCOMPARE(bench()->liveTrace()->latest()->hoe_shift_mm[0], 0.0);
+    bench()->gazePanel()->setFollowGaze(true);
+    QVERIFY(bench()->waitForTrace());
+    const auto r = bench()->liveTrace()->latest();
+    // physics.md / seed A.4: about +3.4 mm of travel restores ~86 deg at +20 deg gaze.
+    QVERIFY2(r->hoe_shift_mm[0] > 1.0 && r->hoe_shift_mm[0] < 5.0, qPrintable(QString::number(r->hoe_shift_mm[0])));
+    QCOMPARE(r->hoe_shift_mm[1], 0.0);
+    QVERIFY2(r->trace.fov_deg.horizontal > 80.0 && fovFixed < 10.0,
+             qPrintable(QString("%1 vs %2").arg(r->trace.fov_deg.horizontal).arg(fovFixed)));
+    // The plate is drawn at its travelled place.
+    const Eigen::Vector3d drawn = w->sceneView()->hoeDisplayShift();
+    QCOMPARE(drawn.x(), r->hoe_shift_mm[0]);
+    const double* b = w->sceneView()->sceneLayer().propsOf("hoe_layers[1]").front()->GetBounds();
+    QVERIFY(std::abs(b[0] - (-22.0 + r->hoe_shift_mm[0])) < 1e-9);
+  }
+
+  void dragIsOneUndoStep() {
+    viz::SceneView* view = w->sceneView();
+    w->selectElement("projector");
+    viz::ElementHandles* handles = bench()->handles()->handles();
+    QCOMPARE(handles->element(), QString("projector"));
+    view->showStandardView(viz::StandardView::Top);
+    view->renderToImage();
+    const Eigen::Vector3d start = toVec(w->document()->scene().projector.pose.position_mm);
+    const auto grip = view->widgetPositionOf(start + Eigen::Vector3d(viz::ElementHandles::kLength_mm - 3.0, 0, 0));
+    const auto target = view->widgetPositionOf(start + Eigen::Vector3d(viz::ElementHandles::kLength_mm + 9.2, 0, 0));
+    QVERIFY(grip && target);
+    QCOMPARE(handles->axisAt(*grip), std::optional<int>(0));
+    QUndoStack* stack = w->document()->undoStack();
+    QSignalSpy finished(bench()->handles(), &widgets::HandleController::dragFinished);
+    QTest::mousePress(view, Qt::LeftButton, {}, grip->toPoint());
+    QVERIFY(bench()->handles()->isDragging());
+    for (int i = 1; i <= 8; ++i) {
+      const QPointF p = *grip + (*target - *grip) * (i / 8.0);
+      QMouseEvent move(QEvent::MouseMove, p, view->mapToGlobal(p), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(view, &move);
+    }
+    // The property editor follows during the drag.
+    auto* field = qobject_cast<QLineEdit*>(w->propertyEditor()->fieldFor("projector.position_mm[0]"));
+    QVERIFY(field);
+    QTest::mouseRelease(view, Qt::LeftButton, {}, target->toPoint());
+    QVERIFY(!bench()->handles()->isDragging());
+    const double moved = w->document()->scene().projector.pose.position_mm[0] - start.x();
+    // Snapped to whole millimetres, about 12 mm along x; y and z untouched; camera unmoved.
+    QVERIFY2(std::abs(moved - 12.0) <= 1.0, qPrintable(QString::number(moved)));
+    QCOMPARE(moved, std::round(moved));
+    QCOMPARE(w->document()->scene().projector.pose.position_mm[1], start.y());
+    QCOMPARE(w->document()->scene().projector.pose.position_mm[2], start.z());
+    QCOMPARE(field->text(), QString::number(start.x() + moved));
+    QCOMPARE(stack->count(), 1);
+    QVERIFY(stack->undoText().startsWith("Move projector along x by "));
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(w->selectedElement(), QString("projector"));  // the drag did not pick or deselect
+    stack->undo();
+    QCOMPARE(w->document()->scene().projector.pose.position_mm[0], start.x());
+    QCOMPARE(field->text(), QString::number(start.x()));
+    // Numeric entry: one exact move, one more step.
+    QVERIFY(bench()->handles()->moveBy(2, -2.5));
+    QCOMPARE(w->document()->scene().projector.pose.position_mm[2], start.z() - 2.5);
+    QCOMPARE(stack->count(), 1);
+  }
+
+  void eyeDragMovesReliefAndLateralOffset() {
+    w->selectElement("eye");
+    QCOMPARE(bench()->handles()->handles()->element(), QString("eye"));
+    QVERIFY(bench()->handles()->moveBy(2, -3.0));  // away from the HOE
+    QCOMPARE(w->document()->scene().eye.relief_mm, 25.0);
+    QVERIFY(bench()->handles()->moveBy(0, 1.5));
+    QCOMPARE(w->document()->scene().eye.lateral_offset_mm[0], 1.5);
+    // A move the scene rules refuse (relief <= 0) changes nothing.
+    QVERIFY(!bench()->handles()->moveBy(2, 40.0));
+    QCOMPARE(w->document()->scene().eye.relief_mm, 25.0);
+  }
+
+  void requestsAreCoalescedAndStaleResultsDropped() {
+    widgets::LiveTrace* t = bench()->liveTrace();
+    QVERIFY(t->waitForIdle());
+    const quint64 started = t->jobsStarted(), delivered = t->resultsDelivered(), dropped = t->resultsDropped();
+    Scene s = w->document()->scene();
+    widgets::LiveTraceSettings settings;
+    // Ten requests in one event-loop turn: one job, one result, for the last scene.
+    for (int i = 1; i <= 10; ++i) {
+      s.eye.gaze_deg = {0.5 * i, 0.0};
+      t->request(s, settings);
+    }
+    QVERIFY(t->waitForIdle());
+    QCOMPARE(t->jobsStarted(), started + 1);
+    QCOMPARE(t->resultsDelivered(), delivered + 1);
+    QCOMPARE(t->latest()->scene.eye.gaze_deg[0], 5.0);
+    // A request while a job runs: that job's result is stale and dropped.
+    s.hoe_layers[0].n1 = 0.02;  // new diffraction: a real job
+    t->request(s, settings);
+    QTRY_COMPARE(t->jobsStarted(), started + 2);
+    s.eye.gaze_deg = {-3.0, 1.0};
+    t->request(s, settings);
+    QVERIFY(t->waitForIdle());
+    QCOMPARE(t->jobsStarted(), started + 3);
+    QCOMPARE(t->resultsDropped(), dropped + 1);
+    QCOMPARE(t->latest()->scene.eye.gaze_deg[1], 1.0);
+    QCOMPARE(t->latest()->trace.gaze_deg[1], 1.0);
+  }
+
+  void wavelengthTogglesAndEfficiencyMap() {
+    widgets::DisplayPanel* d = bench()->displayPanel();
+    QCheckBox* green = d->wavelengthToggle(532.0);
+    QVERIFY(green);
+    green->setChecked(false);
+    QCOMPARE(bench()->overlay()->stats().rays_drawn, 2 * 25);
+    d->setShowEfficiencyMap(true);
+    // One cell per grid cell whose four corner rays land on the plate.
+    const auto r = bench()->liveTrace()->latest();
+    const int nx = r->grid[0], ny = r->grid[1];
+    int cells = 0;
+    for (int y = 0; y + 1 < ny; ++y)
+      for (int x = 0; x + 1 < nx; ++x)
+        if (r->trace.ray_list[y * nx + x].hits_hoe && r->trace.ray_list[y * nx + x + 1].hits_hoe &&
+            r->trace.ray_list[(y + 1) * nx + x].hits_hoe && r->trace.ray_list[(y + 1) * nx + x + 1].hits_hoe)
+          ++cells;
+    QVERIFY(cells > 300);
+    QCOMPARE(bench()->overlay()->stats().effmap_cells, cells);
+    QVERIFY(!w->sceneView()->layer("effmap").propsOf("hoe").empty());
+    d->setShowRays(false);
+    QCOMPARE(bench()->overlay()->stats().rays_drawn, 0);
+    QVERIFY(w->sceneView()->layer("rays").size() == 0);
+    green->setChecked(true);
+    d->setShowRays(true);
+    QCOMPARE(bench()->overlay()->stats().rays_drawn, 3 * 25);
+  }
+};
+
+int main(int argc, char** argv) {
+  viz::installDefaultSurfaceFormat();
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName("FoveatedARStudioTest");
+  QApplication::setApplicationName("tst_trace_views");
+  TestTraceViews test;
+  return QTest::qExec(&test, argc, argv);
+}
+#include "tst_trace_views.moc"

@@ -1,0 +1,181 @@
+// Image baselines of the 3D view with ray fans and of the retina view, compared with the
+// PNGs in tests/baselines/ with a perceptual tolerance (image_compare.h), so they pass on a
+// fresh machine under Xvfb with Mesa llvmpipe. Regenerate them with
+//     bash scripts/update-baselines.sh
+// (runs this test with FOVEA_UPDATE_BASELINES=1, which writes the PNGs instead of
+// comparing). On a mismatch the rendered image and a difference image are written to
+// $FOVEA_TEST_TMP/view_baselines/.
+#include <QtTest>
+
+#include <QPainter>
+
+#include <filesystem>
+
+#include "app/embedded_scene.h"
+#include "model/physics/projector_rays.h"
+#include "model/physics/trace.h"
+#include "model/scene/scene_io.h"
+#include "tests/gui/image_compare.h"
+#include "viz/kspace_view.h"
+#include "viz/scene_view.h"
+#include "viz/trace_overlay.h"
+#include "viz/vtk_gl_widget.h"
+#include "widgets/live_trace.h"
+#include "widgets/retina_view.h"
+
+using namespace fovea;
+
+namespace {
+
+// Tolerances: mean dE76 over the 4x-downscaled image, and the share of its pixels that
+// differ by more than dE 20 (a clearly different colour).
+constexpr double kMeanLimit = 2.0;
+constexpr double kOutlierLimit = 0.01;
+
+QString baselinePath(const QString& name) {
+  return QStringLiteral(FOVEA_SOURCE_DIR "/tests/baselines/") + name;
+}
+
+QString scratch(const QString& name) {
+  const auto dir =
+      std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "view_baselines";
+  std::filesystem::create_directories(dir);
+  return QString::fromStdString((dir / name.toStdString()).string());
+}
+
+bool updating() {
+  return qEnvironmentVariableIntValue("FOVEA_UPDATE_BASELINES") == 1;
+}
+
+// Compares or, when updating, writes. Returns an empty string on success.
+QString check(const QImage& image, const QString& name) {
+  if (image.isNull()) return "empty image";
+  if (updating()) return image.save(baselinePath(name), "PNG") ? QString() : "cannot write " + baselinePath(name);
+  const QImage baseline(baselinePath(name));
+  if (baseline.isNull()) return "missing baseline " + baselinePath(name) + " (run scripts/update-baselines.sh)";
+  const test::ImageDifference d = test::compareImages(image, baseline);
+  image.save(scratch("actual-" + name), "PNG");
+  if (!d.same_size)
+    return QString("size %1x%2, baseline %3x%4")
+        .arg(image.width())
+        .arg(image.height())
+        .arg(baseline.width())
+        .arg(baseline.height());
+  d.diff.save(scratch("diff-" + name), "PNG");
+  qInfo("%s: mean dE %.3f, outliers %.4f", qPrintable(name), d.mean_dE, d.outlier_fraction);
+  if (d.mean_dE > kMeanLimit || d.outlier_fraction > kOutlierLimit)
+    return QString("%1 differs from its baseline: mean dE %2 (limit %3), %4 of pixels beyond dE 20 (limit %5); see %6")
+        .arg(name)
+        .arg(d.mean_dE)
+        .arg(kMeanLimit)
+        .arg(d.outlier_fraction)
+        .arg(kOutlierLimit)
+        .arg(scratch("diff-" + name));
+  return {};
+}
+
+Scene defaultScene() {
+  return *parseScene(embeddedDefaultSceneJson(), "default").scene;
+}
+
+std::shared_ptr<widgets::LiveTraceResult> traced(const Scene& scene, std::array<double, 2> shift = {0, 0}) {
+  auto r = std::make_shared<widgets::LiveTraceResult>();
+  r->scene = scene;
+  TraceOptions o;
+  o.rays = 4000;
+  o.keep_rays = true;
+  o.hoe_shift_mm = shift;
+  r->hoe_shift_mm = shift;
+  r->trace = traceScene(scene, o);
+  r->grid = projectorGrid(scene.projector, o.rays);
+  r->cloud = gratingVectorCloud(scene, r->trace.ray_list, shift);
+  return r;
+}
+
+}  // namespace
+
+class TestViewBaselines : public QObject {
+  Q_OBJECT
+ private slots:
+  void comparatorSeesRealDifferences() {
+    // The tolerance accepts small noise and refuses a moved or missing object.
+    QImage a(400, 300, QImage::Format_RGB32);
+    a.fill(QColor(30, 30, 40));
+    QPainter(&a).fillRect(100, 100, 60, 60, QColor(250, 150, 40));
+    QImage noisy = a;
+    for (int i = 0; i < 400; ++i) noisy.setPixel((i * 37) % 400, (i * 91) % 300, qRgb(255, 255, 255));
+    QImage moved(400, 300, QImage::Format_RGB32);
+    moved.fill(QColor(30, 30, 40));
+    QPainter(&moved).fillRect(200, 150, 60, 60, QColor(250, 150, 40));
+    const auto same = test::compareImages(noisy, a), differ = test::compareImages(moved, a);
+    QVERIFY(same.mean_dE < kMeanLimit && same.outlier_fraction < kOutlierLimit);
+    QVERIFY(differ.mean_dE > kMeanLimit || differ.outlier_fraction > kOutlierLimit);
+  }
+
+  void sceneViewWithRayFans() {
+    viz::SceneView view;
+    view.resize(960, 640);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    const Scene scene = defaultScene();
+    view.setScene(scene, true);
+    viz::TraceOverlay overlay(&view);
+    const auto r = traced(scene);
+    viz::TraceOverlayOptions o;
+    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, o);
+    view.showStandardView(viz::StandardView::Top);
+    const QString e = check(view.renderToImage(), "view-rays-top.png");
+    QVERIFY2(e.isEmpty(), qPrintable(e));
+  }
+
+  void sceneViewGazeFollowedWithEfficiencyMap() {
+    viz::SceneView view;
+    view.resize(960, 640);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    Scene scene = defaultScene();
+    scene.eye.gaze_deg = {20.0, 0.0};
+    view.setScene(scene, true);
+    viz::TraceOverlay overlay(&view);
+    const auto r = traced(scene, {3.4, 0.0});  // seed A.4: x_p about 3.4 mm at 20 deg
+    viz::TraceOverlayOptions o;
+    o.efficiency_map = true;
+    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, o);
+    view.showStandardView(viz::StandardView::Isometric);
+    const QString e = check(view.renderToImage(), "view-effmap-iso-gaze20.png");
+    QVERIFY2(e.isEmpty(), qPrintable(e));
+  }
+
+  void retinaView() {
+    widgets::RetinaView retina;
+    retina.setResult(traced(defaultScene()), {});
+    const QString e = check(retina.render(QSize(720, 540)), "retina-gaze0.png");
+    QVERIFY2(e.isEmpty(), qPrintable(e));
+    Scene s = defaultScene();
+    s.eye.gaze_deg = {20.0, 0.0};
+    retina.setResult(traced(s, {3.4, 0.0}), {532.0});
+    const QString e2 = check(retina.render(QSize(720, 540)), "retina-gaze20-shift3.4-no-green.png");
+    QVERIFY2(e2.isEmpty(), qPrintable(e2));
+  }
+
+  void gratingVectorCloud() {
+    viz::KSpaceView k;
+    k.resize(720, 540);
+    k.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&k));
+    Scene s = defaultScene();
+    s.eye.gaze_deg = {20.0, 0.0};
+    k.setCloud(traced(s, {3.4, 0.0})->cloud, {});
+    QVERIFY(k.maxDephasing() > 0.01);  // the shifted plate is probed off Bragg
+    const QString e = check(k.renderToImage(), "kcloud-shift3.4.png");
+    QVERIFY2(e.isEmpty(), qPrintable(e));
+  }
+};
+
+int main(int argc, char** argv) {
+  viz::installDefaultSurfaceFormat();
+  QApplication app(argc, argv);
+  TestViewBaselines test;
+  return QTest::qExec(&test, argc, argv);
+}
+#include "tst_view_baselines.moc"

@@ -1,0 +1,144 @@
+#include "widgets/gaze_panel.h"
+
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QGridLayout>
+#include <QLabel>
+#include <QSlider>
+
+#include <cmath>
+
+#include "widgets/scene_document.h"
+
+namespace fovea::widgets {
+
+namespace {
+constexpr double kMaxGazeDeg = 40.0;
+}
+
+GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent), document_(document) {
+  auto* grid = new QGridLayout(this);
+  grid->setContentsMargins(6, 6, 6, 6);
+  auto makeRow = [&](int row, const QString& label, QSlider*& slider, QDoubleSpinBox*& spin, const QString& name) {
+    slider = new QSlider(Qt::Horizontal, this);
+    slider->setObjectName(name + "Slider");
+    slider->setRange(static_cast<int>(-kMaxGazeDeg * kStepsPerDegree), static_cast<int>(kMaxGazeDeg * kStepsPerDegree));
+    slider->setPageStep(5 * kStepsPerDegree);
+    slider->setTickPosition(QSlider::TicksBelow);
+    slider->setTickInterval(10 * kStepsPerDegree);
+    spin = new QDoubleSpinBox(this);
+    spin->setObjectName(name + "Spin");
+    spin->setRange(-kMaxGazeDeg, kMaxGazeDeg);
+    spin->setDecimals(1);
+    spin->setSingleStep(0.5);
+    spin->setSuffix(QString::fromUtf8(" °"));
+    spin->setKeyboardTracking(false);
+    grid->addWidget(new QLabel(label, this), row, 0);
+    grid->addWidget(slider, row, 1);
+    grid->addWidget(spin, row, 2);
+  };
+  makeRow(0, tr("Yaw"), yaw_, yawSpin_, "gazeYaw");
+  makeRow(1, tr("Pitch"), pitch_, pitchSpin_, "gazePitch");
+  yaw_->setToolTip(tr("Gaze yaw (+ towards the projector side, bench +x); eye.gaze_deg[0]"));
+  pitch_->setToolTip(tr("Gaze pitch (+ up); eye.gaze_deg[1]"));
+  follow_ = new QCheckBox(tr("HOE follows gaze (apply x_p(α))"), this);
+  follow_->setObjectName("followGaze");
+  follow_->setToolTip(
+      tr("Shift the HOE laterally by the travel x_p that maximises the FOV at this gaze "
+         "(searched off the GUI thread; yaw moves it along its x, pitch along its y)"));
+  grid->addWidget(follow_, 2, 0, 1, 3);
+  readout_ = new QLabel(this);
+  readout_->setObjectName("gazeReadout");
+  readout_->setWordWrap(true);
+  readout_->setTextFormat(Qt::PlainText);
+  grid->addWidget(readout_, 3, 0, 1, 3);
+  grid->setColumnStretch(1, 1);
+  grid->setRowStretch(4, 1);
+
+  auto sliderMoved = [this] {
+    if (refreshing_) return;
+    commitGaze(yaw_->value() / double(kStepsPerDegree), pitch_->value() / double(kStepsPerDegree));
+  };
+  connect(yaw_, &QSlider::valueChanged, this, sliderMoved);
+  connect(pitch_, &QSlider::valueChanged, this, sliderMoved);
+  for (QSlider* s : {yaw_, pitch_}) {
+    connect(s, &QSlider::sliderPressed, this, [this] { gesture_ = document_->newGestureId(); });
+    connect(s, &QSlider::sliderReleased, this, [this] { gesture_ = -1; });
+  }
+  auto spinChanged = [this] {
+    if (refreshing_) return;
+    commitGaze(yawSpin_->value(), pitchSpin_->value());
+  };
+  connect(yawSpin_, &QDoubleSpinBox::valueChanged, this, spinChanged);
+  connect(pitchSpin_, &QDoubleSpinBox::valueChanged, this, spinChanged);
+  connect(follow_, &QCheckBox::toggled, this, &GazePanel::followGazeChanged);
+  connect(document_, &SceneDocument::sceneChanged, this, &GazePanel::refreshFromScene);
+  refreshFromScene();
+}
+
+bool GazePanel::followGaze() const {
+  return follow_->isChecked();
+}
+void GazePanel::setFollowGaze(bool on) {
+  follow_->setChecked(on);
+}
+
+void GazePanel::setGaze(double yaw, double pitch) {
+  commitGaze(yaw, pitch);
+}
+
+void GazePanel::commitGaze(double yaw, double pitch) {
+  const auto now = document_->scene().eye.gaze_deg;
+  if (now[0] == yaw && now[1] == pitch) return;
+  const QString text = tr("Set gaze to %1°, %2°").arg(yaw, 0, 'f', 1).arg(pitch, 0, 'f', 1);
+  const QStringList problems = document_->applyEdit(
+      text,
+      [yaw, pitch](Scene& s) {
+        s.eye.gaze_deg = {yaw, pitch};
+      },
+      gesture_);
+  if (!problems.isEmpty()) {
+    readout_->setText(problems.join('\n'));
+    refreshFromScene();
+  }
+}
+
+void GazePanel::refreshFromScene() {
+  refreshing_ = true;
+  const auto g = document_->scene().eye.gaze_deg;
+  if (!yaw_->isSliderDown()) yaw_->setValue(static_cast<int>(std::lround(g[0] * kStepsPerDegree)));
+  if (!pitch_->isSliderDown()) pitch_->setValue(static_cast<int>(std::lround(g[1] * kStepsPerDegree)));
+  yawSpin_->setValue(g[0]);
+  pitchSpin_->setValue(g[1]);
+  refreshing_ = false;
+}
+
+void GazePanel::showResult(const std::shared_ptr<const LiveTraceResult>& r, bool busy) {
+  if (!r) {
+    readout_->setText(busy ? tr("tracing…") : QString());
+    return;
+  }
+  if (!r->error.empty()) {
+    readout_->setText(tr("trace failed: %1").arg(QString::fromStdString(r->error)));
+    return;
+  }
+  const TraceResult& t = r->trace;
+  QString text = QString::fromUtf8("FOV %1° × %2° (diagonal %3°)\nmean efficiency %4 · %5 of %6 rays in the pupil")
+                     .arg(t.fov_deg.horizontal, 0, 'f', 1)
+                     .arg(t.fov_deg.vertical, 0, 'f', 1)
+                     .arg(t.fov_deg.diagonal, 0, 'f', 1)
+                     .arg(t.mean_efficiency, 0, 'f', 3)
+                     .arg(t.rays_in_pupil)
+                     .arg(t.rays);
+  if (r->settings.follow_gaze)
+    text += QString::fromUtf8("\nHOE travel x_p: %1 mm (x), %2 mm (y)")
+                .arg(r->hoe_shift_mm[0], 0, 'f', 2)
+                .arg(r->hoe_shift_mm[1], 0, 'f', 2);
+  text += tr("\ntrace %1 ms%2%3")
+              .arg(r->compute_ms, 0, 'f', 0)
+              .arg(r->reused_diffraction ? tr(" (gaze stage only)") : QString())
+              .arg(busy ? tr(" · updating…") : QString());
+  readout_->setText(text);
+}
+
+}  // namespace fovea::widgets

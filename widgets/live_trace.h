@@ -1,0 +1,101 @@
+#pragma once
+// Live tracing for the studio: every scene edit, drag or gaze change asks for a new trace;
+// the trace runs on a worker thread, never on the GUI thread.
+//  - Requests are coalesced: any number of request() calls in one event-loop turn (or while
+//    a trace runs) become one job with the latest scene.
+//  - Stale results are dropped: a job whose request was superseded stops at its next
+//    checkpoint (between trace stages and between the x_p search's evaluations) and its
+//    result is never delivered; only the newest request's result reaches resultReady().
+//  - The gaze-independent half (diffractScene) is cached: a gaze change without "HOE follows
+//    gaze" only re-evaluates the pupil (evaluateGaze, ~1 ms).
+//  - "HOE follows gaze": the lateral HOE shift x_p(alpha) maximising the FOV at the gaze
+//    (model/analysis/gaze_studies.h optimiseShift: yaw -> HOE local x, pitch -> local y,
+//    each searched at the other component zero) is found first, then applied to the trace.
+
+#include <QObject>
+#include <QThreadPool>
+
+#include <array>
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/physics/grating_cloud.h"
+#include "model/physics/trace.h"
+#include "model/scene/scene.h"
+
+namespace fovea::widgets {
+
+struct LiveTraceSettings {
+  int rays = 4000;           // rays per wavelength of the displayed trace
+  int search_rays = 1000;    // rays per wavelength of each x_p search evaluation
+  bool follow_gaze = false;  // apply x_p(alpha)
+  bool operator==(const LiveTraceSettings&) const = default;
+};
+
+struct LiveTraceResult {
+  quint64 generation = 0;
+  Scene scene;  // the scene that was traced (its gaze included)
+  LiveTraceSettings settings;
+  std::array<double, 2> hoe_shift_mm{0, 0};  // x_p applied (zero unless follow_gaze)
+  std::array<int, 2> grid{0, 0};             // projector ray grid (columns, rows) per wavelength
+  TraceResult trace;                         // ray_list filled, wavelength blocks of grid[0]*grid[1]
+  std::vector<GratingVectorSample> cloud;
+  double compute_ms = 0;
+  bool reused_diffraction = false;  // only the gaze stage ran
+  std::string error;                // non-empty: the trace failed (message)
+};
+
+class LiveTrace : public QObject {
+  Q_OBJECT
+ public:
+  explicit LiveTrace(QObject* parent = nullptr);
+  ~LiveTrace() override;  // cancels the running job and waits for it
+
+  // Asks for a trace of `scene`; coalesced (see header comment).
+  void request(const Scene& scene, const LiveTraceSettings& settings);
+  const LiveTraceSettings& settings() const { return settings_; }
+
+  std::shared_ptr<const LiveTraceResult> latest() const { return latest_; }
+  bool isBusy() const { return running_ || pending_.has_value(); }
+  // Runs the event loop until the newest request's result arrived (true) or timeout.
+  bool waitForIdle(int timeout_ms = 60000);
+
+  // Counters for tests and the status line.
+  quint64 requests() const { return requests_; }
+  quint64 jobsStarted() const { return started_; }
+  quint64 resultsDelivered() const { return delivered_; }
+  quint64 resultsDropped() const { return dropped_; }
+
+ signals:
+  void resultReady(std::shared_ptr<const fovea::widgets::LiveTraceResult> result);
+  void busyChanged(bool busy);
+
+ private:
+  struct Job {
+    quint64 generation = 0;
+    Scene scene;
+    LiveTraceSettings settings;
+  };
+  struct Cache;
+  void startPending();
+  void jobFinished(std::shared_ptr<LiveTraceResult> result);
+  static std::shared_ptr<LiveTraceResult> run(const Job& job, Cache& cache, const std::atomic<quint64>& newest);
+
+  QThreadPool pool_;
+  std::shared_ptr<Cache> cache_;
+  std::shared_ptr<std::atomic<quint64>> newest_;
+  std::optional<Job> pending_;
+  LiveTraceSettings settings_;
+  bool running_ = false;
+  bool startQueued_ = false;
+  quint64 generation_ = 0;
+  std::shared_ptr<const LiveTraceResult> latest_;
+  quint64 requests_ = 0, started_ = 0, delivered_ = 0, dropped_ = 0;
+};
+
+}  // namespace fovea::widgets
+
+Q_DECLARE_METATYPE(std::shared_ptr<const fovea::widgets::LiveTraceResult>)
