@@ -6,7 +6,10 @@
 // The tracer is written in parallel on another branch; until it is merged this file
 // builds without it and the gaze studies report that the tracer is missing.
 #if __has_include("model/physics/trace.h")
+#include <memory>
+
 #include "model/physics/trace.h"
+#include "model/physics/trace_pipeline.h"
 #define FOVEA_HAVE_TRACE 1
 #else
 #define FOVEA_HAVE_TRACE 0
@@ -20,7 +23,11 @@ bool traceEvaluatorAvailable() {
 
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
 #if FOVEA_HAVE_TRACE
-  return [options](const Scene& scene, const FovQuery& q) {
+  // One memoising pipeline per concurrent caller (the gaze studies evaluate in parallel);
+  // only the FOV, the pupil efficiencies and their uniformity are used, so rays that cannot
+  // reach the pupil skip the coupled-wave step.
+  auto pool = std::make_shared<TracePipelinePool>();
+  return [options, pool](const Scene& scene, const FovQuery& q) {
     TraceOptions t;
     t.gaze_deg = q.gaze_deg;
     t.hoe_shift_mm = q.hoe_shift_mm;
@@ -28,28 +35,16 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
     t.wavelength_nm = options.wavelength_nm;
     t.rays = options.rays;
     t.efficiency_threshold = options.efficiency_threshold;
-    t.keep_rays = true;
-    const TraceResult r = traceScene(scene, t);
+    t.cull_to_pupil = true;
+    auto pipeline = pool->acquire();
+    const TraceResult r = pipeline->run(scene, t);
     FovSample f;
     f.horizontal_deg = r.fov_deg.horizontal;
     f.vertical_deg = r.fov_deg.vertical;
     f.diagonal_deg = r.fov_deg.diagonal;
     f.mean_efficiency = r.mean_efficiency;
     f.rays_in_pupil = r.rays_in_pupil;
-    // Uniformity over the rays that reach the pupil: 1 - standard deviation / mean.
-    double sum = 0, sum2 = 0;
-    int n = 0;
-    for (const TracedRay& ray : r.ray_list) {
-      if (!ray.in_pupil) continue;
-      sum += ray.efficiency;
-      sum2 += ray.efficiency * ray.efficiency;
-      ++n;
-    }
-    if (n > 0 && sum > 0) {
-      const double mean = sum / n;
-      const double var = std::max(0.0, sum2 / n - mean * mean);
-      f.efficiency_uniformity = std::max(0.0, 1.0 - std::sqrt(var) / mean);
-    }
+    f.efficiency_uniformity = r.efficiency_uniformity;  // 1 - std/mean over the rays reaching the pupil
     return f;
   };
 #else
