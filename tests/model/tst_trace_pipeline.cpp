@@ -290,8 +290,8 @@ class TestTracePipeline : public QObject {
       o.gaze_deg = q.gaze_deg;
       o.hoe_shift_mm = q.hoe_shift_mm;
       const TraceResult r = traceScene(s, o);
-      QCOMPARE(f.horizontal_deg, r.fov_deg.horizontal);
-      QCOMPARE(f.vertical_deg, r.fov_deg.vertical);
+      QCOMPARE(f.extent_horizontal_deg, r.fov_deg.horizontal);
+      QCOMPARE(f.extent_vertical_deg, r.fov_deg.vertical);
       QCOMPARE(f.mean_efficiency, r.mean_efficiency);
       QCOMPARE(f.rays_in_pupil, r.rays_in_pupil);
       QCOMPARE(f.efficiency_uniformity, r.efficiency_uniformity);
