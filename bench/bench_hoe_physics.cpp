@@ -5,8 +5,12 @@
 #include <vector>
 
 #include "app/embedded_scene.h"
+#include "model/analysis/gaze_studies.h"
+#include "model/analysis/trace_evaluator.h"
 #include "model/physics/grating.h"
+#include "model/physics/kogelnik_batch.h"
 #include "model/physics/trace.h"
+#include "model/physics/trace_pipeline.h"
 #include "model/scene/scene_io.h"
 
 namespace {
@@ -30,6 +34,26 @@ void BM_KogelnikLossless(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
 }
 BENCHMARK(BM_KogelnikLossless);
+
+// The SIMD batch (kogelnik_batch.h) over 4096 prototype-like inputs, double and float.
+template <class T>
+void BM_KogelnikBatch(benchmark::State& state) {
+  constexpr std::size_t n = 4096;
+  std::vector<T> cr(n), cs(n), vt(n), kappa(n, T(0.118)), d(n, T(16)), eta(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cr[i] = T(0.6 + 0.4 * i / n);
+    cs[i] = T((i % 4 ? -1.0 : 1.0) * (0.3 + 0.6 * i / n));
+    vt[i] = T(0.02 * (double(i) - n / 2) / n);
+  }
+  for (auto _ : state) {
+    fovea::kogelnik::losslessBatch(cr.data(), cs.data(), vt.data(), kappa.data(), d.data(), eta.data(), n);
+    benchmark::DoNotOptimize(eta.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(n));
+  state.SetLabel(fovea::kogelnik::batchInstructionSet());
+}
+BENCHMARK(BM_KogelnikBatch<double>);
+BENCHMARK(BM_KogelnikBatch<float>);
 
 void BM_Diffract3d(benchmark::State& state) {
   fovea::FilmGrating film{1.5, 0.015, 16.0, 0.0};
@@ -65,5 +89,48 @@ void BM_GazeUpdate20k(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_GazeUpdate20k)->Unit(benchmark::kMillisecond);
+
+// Gaze update through the memoised pipeline (trace_pipeline.h): pupil, FOV and analyses only.
+void BM_PipelineGazeUpdate20k(benchmark::State& state) {
+  const fovea::Scene s = prototype();
+  fovea::TraceOptions o;
+  o.rays = 6667;
+  fovea::TracePipeline p;
+  p.run(s, o);
+  double yaw = 0;
+  for (auto _ : state) {
+    o.gaze_deg = std::array<double, 2>{yaw, 0.0};
+    yaw = yaw > 10 ? -10 : yaw + 0.5;
+    benchmark::DoNotOptimize(p.run(s, o).fov_deg.horizontal);
+  }
+}
+BENCHMARK(BM_PipelineGazeUpdate20k)->Unit(benchmark::kMillisecond);
+
+// Gaze and HOE shift together (x_p follows the gaze): everything after the projector grid
+// reruns, with the pupil cull.
+void BM_PipelineGazeAndShift20k(benchmark::State& state) {
+  const fovea::Scene s = prototype();
+  fovea::TraceOptions o;
+  o.rays = 6667;
+  o.cull_to_pupil = true;
+  fovea::TracePipeline p;
+  double yaw = 0;
+  for (auto _ : state) {
+    o.gaze_deg = std::array<double, 2>{yaw, 0.0};
+    o.hoe_shift_mm = {0.17 * yaw, 0.0};
+    yaw = yaw > 10 ? -10 : yaw + 0.5;
+    benchmark::DoNotOptimize(p.run(s, o).fov_deg.horizontal);
+  }
+}
+BENCHMARK(BM_PipelineGazeAndShift20k)->Unit(benchmark::kMillisecond);
+
+// The 41-gaze x_p sweep (-20..20 deg by 1 deg) of the gaze studies, default evaluator.
+void BM_Sweep41Gazes(benchmark::State& state) {
+  const fovea::Scene s = prototype();
+  const fovea::FovEvaluator eval = fovea::traceEvaluator({});
+  for (auto _ : state)
+    benchmark::DoNotOptimize(fovea::sweepGaze(s, eval, -20, 20, 1, fovea::GazeAxis::Yaw, fovea::ShiftMethod::Hoe).ok());
+}
+BENCHMARK(BM_Sweep41Gazes)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <utility>
 #include <vector>
 
 #include "model/physics/trace.h"
+#include "model/physics/trace_pipeline.h"
 
 namespace fovea {
 
@@ -107,7 +109,11 @@ ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficienc
 }
 
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
-  return [options](const Scene& scene, const FovQuery& q) {
+  // One memoising pipeline per concurrent caller (the gaze studies evaluate in parallel). Only
+  // rays entering the pupil matter here (FOV, efficiencies, uniformity), so the others skip the
+  // coupled-wave step (cull_to_pupil: exact for everything read below).
+  auto pool = std::make_shared<TracePipelinePool>();
+  return [options, pool](const Scene& scene, const FovQuery& q) {
     TraceOptions t;
     t.gaze_deg = q.gaze_deg;
     t.hoe_shift_mm = q.hoe_shift_mm;
@@ -116,7 +122,9 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
     t.rays = options.rays;
     t.efficiency_threshold = options.efficiency_threshold;
     t.keep_rays = true;
-    const TraceResult r = traceScene(scene, t);
+    t.cull_to_pupil = true;
+    auto pipeline = pool->acquire();
+    const TraceResult r = pipeline->run(scene, t);
     FovSample f;
     const ContinuousFov c = continuousFov(r.ray_list, options.efficiency_threshold);
     f.horizontal_deg = c.horizontal_deg;
@@ -126,20 +134,7 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
     f.extent_vertical_deg = r.fov_deg.vertical;
     f.mean_efficiency = r.mean_efficiency;
     f.rays_in_pupil = r.rays_in_pupil;
-    // Uniformity over the rays that reach the pupil: 1 - standard deviation / mean.
-    double sum = 0, sum2 = 0;
-    int n = 0;
-    for (const TracedRay& ray : r.ray_list) {
-      if (!ray.in_pupil) continue;
-      sum += ray.efficiency;
-      sum2 += ray.efficiency * ray.efficiency;
-      ++n;
-    }
-    if (n > 0 && sum > 0) {
-      const double mean = sum / n;
-      const double var = std::max(0.0, sum2 / n - mean * mean);
-      f.efficiency_uniformity = std::max(0.0, 1.0 - std::sqrt(var) / mean);
-    }
+    f.efficiency_uniformity = r.efficiency_uniformity;  // 1 - std/mean over the rays reaching the pupil
     return f;
   };
 }

@@ -29,77 +29,123 @@ std::optional<Polarization> parsePolarization(const std::string& text);
 const char* polarizationName(Polarization p);
 
 // Material of one grating layer.
-struct FilmGrating {
-  double n0 = 1.5;  // mean index
-  double n1 = 0.0;  // index modulation amplitude
-  double thickness_um = 0.0;
-  double alpha_per_um = 0.0;  // Kogelnik's *amplitude* absorption constant (half the intensity one)
+template <class T>
+struct FilmGratingT {
+  T n0 = T(1.5);  // mean index
+  T n1 = 0;       // index modulation amplitude
+  T thickness_um = 0;
+  T alpha_per_um = 0;  // Kogelnik's *amplitude* absorption constant (half the intensity one)
+  template <class U>
+  FilmGratingT<U> cast() const {
+    return {U(n0), U(n1), U(thickness_um), U(alpha_per_um)};
+  }
 };
+using FilmGrating = FilmGratingT<double>;
 
-struct GratingDiffraction {
-  kogelnik::Result kogelnik;                        // efficiency, zero order, nu, xi (s or p; averaged if unpolarised)
-  double c_r = 0.0, c_s = 0.0;                      // obliquity factors
-  double vartheta = 0.0;                            // dephasing, rad/µm
-  double p_factor = 1.0;                            // rho_hat . sigma_hat
-  Eigen::Vector3d sigma = Eigen::Vector3d::Zero();  // Kogelnik's sigma = rho - K (rad/µm)
-  Eigen::Vector3d diffracted = Eigen::Vector3d::Zero();  // physical diffracted wave vector inside
-  bool evanescent = false;  // |sigma_t| > beta: the order does not propagate (efficiency 0)
+template <class T>
+using Vec3T = Eigen::Matrix<T, 3, 1>;
+
+template <class T>
+struct GratingDiffractionT {
+  kogelnik::ResultT<T> kogelnik;           // efficiency, zero order, nu, xi (s or p; averaged if unpolarised)
+  T c_r = 0, c_s = 0;                      // obliquity factors
+  T vartheta = 0;                          // dephasing, rad/µm
+  T p_factor = 1;                          // rho_hat . sigma_hat
+  Vec3T<T> sigma = Vec3T<T>::Zero();       // Kogelnik's sigma = rho - K (rad/µm)
+  Vec3T<T> diffracted = Vec3T<T>::Zero();  // physical diffracted wave vector inside
+  bool evanescent = false;                 // |sigma_t| > beta: the order does not propagate (efficiency 0)
   bool reflection() const { return kogelnik.reflection; }
 };
+using GratingDiffraction = GratingDiffractionT<double>;
 
 namespace detail {
-inline kogelnik::Result polarised(double c_r, double c_s, double vartheta, double kappa, double p_factor, double alpha,
-                                  double d, Polarization pol) {
-  if (pol == Polarization::S) return kogelnik::evaluate(c_r, c_s, vartheta, kappa, alpha, d);
-  if (pol == Polarization::P) return kogelnik::evaluate(c_r, c_s, vartheta, kappa * p_factor, alpha, d);
-  kogelnik::Result s = kogelnik::evaluate(c_r, c_s, vartheta, kappa, alpha, d);
-  const kogelnik::Result p = kogelnik::evaluate(c_r, c_s, vartheta, kappa * p_factor, alpha, d);
-  s.efficiency = 0.5 * (s.efficiency + p.efficiency);
-  s.zero_order = 0.5 * (s.zero_order + p.zero_order);
-  s.nu = 0.5 * (s.nu + p.nu);  // reported nu: the mean coupling of the two polarisations
+template <class T>
+inline kogelnik::ResultT<T> polarised(T c_r, T c_s, T vartheta, T kappa, T p_factor, T alpha, T d, Polarization pol) {
+  if (pol == Polarization::S) return kogelnik::evaluateT<T>(c_r, c_s, vartheta, kappa, alpha, d);
+  if (pol == Polarization::P) return kogelnik::evaluateT<T>(c_r, c_s, vartheta, kappa * p_factor, alpha, d);
+  kogelnik::ResultT<T> s = kogelnik::evaluateT<T>(c_r, c_s, vartheta, kappa, alpha, d);
+  const kogelnik::ResultT<T> p = kogelnik::evaluateT<T>(c_r, c_s, vartheta, kappa * p_factor, alpha, d);
+  s.efficiency = T(0.5) * (s.efficiency + p.efficiency);
+  s.zero_order = T(0.5) * (s.zero_order + p.zero_order);
+  s.nu = T(0.5) * (s.nu + p.nu);  // reported nu: the mean coupling of the two polarisations
   return s;
 }
 }  // namespace detail
 
 // Shared tail of the planar and 3-D paths: given c_R, c_S, vartheta and the p factor.
-inline GratingDiffraction diffractCore(double c_r, double c_s, double vartheta, double p_factor,
-                                       const FilmGrating& film, double wavelength_um, Polarization pol) {
-  GratingDiffraction g;
+template <class T>
+inline GratingDiffractionT<T> diffractCoreT(T c_r, T c_s, T vartheta, T p_factor, const FilmGratingT<T>& film,
+                                            T wavelength_um, Polarization pol) {
+  GratingDiffractionT<T> g;
   g.c_r = c_r;
   g.c_s = c_s;
   g.vartheta = vartheta;
   g.p_factor = p_factor;
-  const double kappa = std::numbers::pi * film.n1 / wavelength_um;  // Kogelnik Eq. 8, lossless modulation
-  g.kogelnik = detail::polarised(c_r, c_s, vartheta, kappa, p_factor, film.alpha_per_um, film.thickness_um, pol);
+  const T kappa = std::numbers::pi_v<T> * film.n1 / wavelength_um;  // Kogelnik Eq. 8, lossless modulation
+  g.kogelnik = detail::polarised<T>(c_r, c_s, vartheta, kappa, p_factor, film.alpha_per_um, film.thickness_um, pol);
+  return g;
+}
+inline GratingDiffraction diffractCore(double c_r, double c_s, double vartheta, double p_factor,
+                                       const FilmGrating& film, double wavelength_um, Polarization pol) {
+  return diffractCoreT<double>(c_r, c_s, vartheta, p_factor, film, wavelength_um, pol);
+}
+
+// The geometric part of diffract3d (everything but the coupled-wave solve): obliquity
+// factors, dephasing, p factor, sigma and the physical diffracted wave vector.
+template <class T>
+struct DiffractionGeometryT {
+  T c_r = 0, c_s = 0, vartheta = 0, p_factor = 1;
+  Vec3T<T> sigma = Vec3T<T>::Zero();       // in the caller's frame (z not mirrored)
+  Vec3T<T> diffracted = Vec3T<T>::Zero();  // physical diffracted wave vector (caller's frame)
+  bool evanescent = false;
+};
+
+// rho: probe wave vector inside (|rho| = beta), k: Kogelnik's grating vector, both rad/µm.
+template <class T>
+inline DiffractionGeometryT<T> diffractionGeometryT(const Vec3T<T>& rho_in, const Vec3T<T>& k_in, T beta) {
+  using std::sqrt;
+  DiffractionGeometryT<T> g;
+  const T flip = rho_in.z() < T(0) ? T(-1) : T(1);  // mirror z so that the probe travels +z
+  const T rz = flip * rho_in.z();
+  // sigma = rho - K, component by component (z mirrored).
+  const T sx = rho_in.x() - k_in.x(), sy = rho_in.y() - k_in.y(), sz = rz - flip * k_in.z();
+  const T t2 = sx * sx + sy * sy;
+  const T sigma2 = t2 + sz * sz;
+  g.c_r = rz / beta;
+  g.c_s = sz / beta;
+  g.vartheta = (beta * beta - sigma2) / (T(2) * beta);  // Kogelnik Eq. 17 in vector form
+  g.p_factor = sigma2 > T(0) ? (rho_in.x() * sx + rho_in.y() * sy + rz * sz) / (beta * sqrt(sigma2)) : T(1);
+  g.sigma = Vec3T<T>(sx, sy, flip * sz);
+  if (t2 >= beta * beta) {
+    g.evanescent = true;
+  } else {
+    const T kz = (g.c_s < T(0) ? T(-1) : T(1)) * sqrt(beta * beta - t2);
+    g.diffracted = Vec3T<T>(sx, sy, flip * kz);
+  }
   return g;
 }
 
 // 3-D: rho is the probe wave vector inside the film (|rho| = beta = 2 pi n0 / lambda, any
 // direction with rho_z != 0), K the grating vector in Kogelnik's sign. Pure, allocation-free.
-inline GratingDiffraction diffract3d(const Eigen::Vector3d& rho_in, const Eigen::Vector3d& k_in,
-                                     const FilmGrating& film, double wavelength_um, Polarization pol) {
-  const double beta = 2.0 * std::numbers::pi * film.n0 / wavelength_um;
-  const double flip = rho_in.z() < 0.0 ? -1.0 : 1.0;  // mirror z so that the probe travels +z
-  const Eigen::Vector3d rho(rho_in.x(), rho_in.y(), flip * rho_in.z());
-  const Eigen::Vector3d kg(k_in.x(), k_in.y(), flip * k_in.z());
-  const Eigen::Vector3d sigma = rho - kg;
-  const double sigma2 = sigma.squaredNorm();
-  const double c_r = rho.z() / beta;
-  const double c_s = sigma.z() / beta;
-  const double vartheta = (beta * beta - sigma2) / (2.0 * beta);  // Kogelnik Eq. 17 in vector form
-  const double p_factor = sigma2 > 0.0 ? rho.dot(sigma) / (beta * std::sqrt(sigma2)) : 1.0;
-  GratingDiffraction g = diffractCore(c_r, c_s, vartheta, p_factor, film, wavelength_um, pol);
-  g.sigma = Eigen::Vector3d(sigma.x(), sigma.y(), flip * sigma.z());
-  const double t2 = sigma.x() * sigma.x() + sigma.y() * sigma.y();
-  if (t2 >= beta * beta) {
-    g.evanescent = true;
-    g.kogelnik.zero_order = g.kogelnik.zero_order + g.kogelnik.efficiency;  // nothing leaves in the order
-    g.kogelnik.efficiency = 0.0;
-  } else {
-    const double kz = (c_s < 0.0 ? -1.0 : 1.0) * std::sqrt(beta * beta - t2);
-    g.diffracted = Eigen::Vector3d(sigma.x(), sigma.y(), flip * kz);
+template <class T>
+inline GratingDiffractionT<T> diffract3dT(const Vec3T<T>& rho_in, const Vec3T<T>& k_in, const FilmGratingT<T>& film,
+                                          T wavelength_um, Polarization pol) {
+  const T beta = T(2) * std::numbers::pi_v<T> * film.n0 / wavelength_um;
+  const DiffractionGeometryT<T> geo = diffractionGeometryT<T>(rho_in, k_in, beta);
+  GratingDiffractionT<T> g = diffractCoreT<T>(geo.c_r, geo.c_s, geo.vartheta, geo.p_factor, film, wavelength_um, pol);
+  g.sigma = geo.sigma;
+  g.evanescent = geo.evanescent;
+  g.diffracted = geo.diffracted;
+  if (geo.evanescent) {
+    g.kogelnik.zero_order =
+        std::min(T(1), g.kogelnik.zero_order + g.kogelnik.efficiency);  // nothing leaves in the order
+    g.kogelnik.efficiency = T(0);
   }
   return g;
+}
+inline GratingDiffraction diffract3d(const Eigen::Vector3d& rho_in, const Eigen::Vector3d& k_in,
+                                     const FilmGrating& film, double wavelength_um, Polarization pol) {
+  return diffract3dT<double>(rho_in, k_in, film, wavelength_um, pol);
 }
 
 // Planar grating in the x-z plane (Kogelnik's geometry), all inputs in the film.
@@ -112,13 +158,52 @@ struct PlanarGrating {
   Polarization polarization = Polarization::S;
 };
 
-struct PlanarDiffraction {
-  GratingDiffraction grating;
-  std::optional<double> diffracted_deg;  // angle of the diffracted wave from +z, (-180, 180]
+template <class T>
+struct PlanarDiffractionT {
+  GratingDiffractionT<T> grating;
+  std::optional<T> diffracted_deg;  // angle of the diffracted wave from +z, (-180, 180]
 };
+using PlanarDiffraction = PlanarDiffractionT<double>;
 
 // Kogelnik's scalar formulas: c_R = cos theta, c_S = cos theta - (K/beta) cos phi,
-// vartheta = K cos(phi - theta) - K^2 / (2 beta) (Kogelnik Eqs. 17, 23, 24).
+// vartheta = K cos(phi - theta) - K^2 / (2 beta) (Kogelnik Eqs. 17, 23, 24). The inputs are
+// taken as given (double) and everything is evaluated in T.
+template <class T>
+PlanarDiffractionT<T> diffractPlanarT(const PlanarGrating& g) {
+  using std::cos, std::sin, std::sqrt, std::abs;
+  const T pi = std::numbers::pi_v<T>;
+  const T deg = pi / T(180);
+  const T milli = T(1) / T(1000);  // 1e-3 rounded in T
+  const T lambda_um = T(g.wavelength_nm) * milli;
+  const T beta = T(2) * pi * T(g.film.n0) / lambda_um;
+  const T k = T(2) * pi / (T(g.period_nm) * milli);
+  const T theta = T(g.probe_deg) * deg, phi = T(g.slant_deg) * deg;
+  const T c_r = cos(theta);
+  const T c_s = cos(theta) - k / beta * cos(phi);
+  const T vartheta = k * cos(phi - theta) - k * k / (T(2) * beta);
+  // sigma = rho - K in the x-z plane; p factor rho_hat . sigma_hat (see above).
+  const T sx = beta * sin(theta) - k * sin(phi);
+  const T sz = beta * c_s;
+  const T smag = std::hypot(sx, sz);
+  const T p_factor = smag > T(0) ? (beta - k * cos(theta - phi)) / smag : T(1);
+
+  PlanarDiffractionT<T> out;
+  out.grating = diffractCoreT<T>(c_r, c_s, vartheta, p_factor, g.film.cast<T>(), lambda_um, g.polarization);
+  out.grating.sigma = Vec3T<T>(sx, T(0), sz);
+  if (abs(sx) >= beta) {
+    out.grating.evanescent = true;
+    out.grating.kogelnik.zero_order = std::min(T(1), out.grating.kogelnik.zero_order + out.grating.kogelnik.efficiency);
+    out.grating.kogelnik.efficiency = T(0);
+  } else {
+    const T kz = (c_s < T(0) ? T(-1) : T(1)) * sqrt(beta * beta - sx * sx);
+    out.grating.diffracted = Vec3T<T>(sx, T(0), kz);
+    T angle = std::atan2(sx, kz) / deg;
+    if (angle <= T(-180)) angle += T(360);  // (-180, 180]
+    out.diffracted_deg = angle;
+  }
+  return out;
+}
+
 PlanarDiffraction diffractPlanar(const PlanarGrating& g);
 
 }  // namespace fovea

@@ -5,123 +5,27 @@
 #include <limits>
 #include <numeric>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "model/physics/eye_model.h"
-#include "model/physics/hoe_recording.h"
-#include "model/physics/projector_rays.h"
+#include "model/physics/trace_internal.h"
+#include "model/physics/trace_pipeline.h"
 #include "model/scene/scene_geometry.h"
 
 namespace fovea {
 
-namespace {
+using detail::FovAccumulator;
+using detail::tracedWavelengths;
 
-struct FovAccumulator {
-  double yaw_min = std::numeric_limits<double>::infinity(), yaw_max = -yaw_min;
-  double pitch_min = yaw_min, pitch_max = -yaw_min;
-  double sum_max = -yaw_min, sum_min = yaw_min, diff_max = -yaw_min, diff_min = yaw_min;
-  Eigen::Vector3d d_sum_max, d_sum_min, d_diff_max, d_diff_min;
-  int count = 0;
-
-  void add(const std::array<double, 2>& f, const Eigen::Vector3d& arrival_from) {
-    ++count;
-    yaw_min = std::min(yaw_min, f[0]);
-    yaw_max = std::max(yaw_max, f[0]);
-    pitch_min = std::min(pitch_min, f[1]);
-    pitch_max = std::max(pitch_max, f[1]);
-    const double s = f[0] + f[1], d = f[0] - f[1];
-    if (s > sum_max) sum_max = s, d_sum_max = arrival_from;
-    if (s < sum_min) sum_min = s, d_sum_min = arrival_from;
-    if (d > diff_max) diff_max = d, d_diff_max = arrival_from;
-    if (d < diff_min) diff_min = d, d_diff_min = arrival_from;
+// The gaze-independent half as a list of rays (no pupil information): the pipeline's rays.
+std::vector<TracedRay> diffractScene(const Scene& scene, const TraceOptions& options) {
+  TraceOptions o = options;
+  o.keep_rays = true;
+  o.cull_to_pupil = false;
+  std::vector<TracedRay> rays = TracePipeline().run(scene, o).ray_list;
+  for (TracedRay& r : rays) {
+    r.in_pupil = false;
+    r.field_deg = {0.0, 0.0};
+    r.pupil_radius_mm = 0.0;
   }
-  static double angleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
-  }
-  FovDeg result() const {
-    if (count == 0) return {};
-    return {yaw_max - yaw_min, pitch_max - pitch_min,
-            std::max(angleDeg(d_sum_max, d_sum_min), angleDeg(d_diff_max, d_diff_min))};
-  }
-};
-
-std::vector<double> tracedWavelengths(const Scene& scene, const TraceOptions& o) {
-  if (o.wavelength_nm) return {*o.wavelength_nm};
-  return scene.projector.wavelengths_nm;
-}
-
-}  // namespace
-
-std::vector<TracedRay> diffractScene(const Scene& scene, const TraceOptions& o) {
-  const Frame nominal = frameOf(scene.hoe.pose);
-  Frame plate = nominal;
-  plate.origin += o.hoe_shift_mm[0] * nominal.x() + o.hoe_shift_mm[1] * nominal.y();
-
-  std::vector<LayerModel> layers;
-  for (const auto& l : scene.hoe_layers) layers.push_back(makeLayerModel(scene.hoe, l));
-  // Depth order along local +z (a probe from the world side walks it backwards).
-  std::vector<int> order(layers.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return layers[a].offset_um < layers[b].offset_um; });
-
-  const Eigen::Vector3d source = projectorSource(scene.projector, o.source_shift_mm);
-  const std::vector<ProjectorRay> grid = projectorRays(scene.projector, o.rays);
-  const std::vector<double> wavelengths = tracedWavelengths(scene, o);
-  const double half_w = 0.5 * scene.hoe.size_mm[0], half_h = 0.5 * scene.hoe.size_mm[1];
-  const double n_cover = scene.hoe.cover_index, n_sub = scene.hoe.substrate_index;
-
-  std::vector<TracedRay> rays(grid.size() * wavelengths.size());
-  const Eigen::Vector3d source_local = plate.toLocal(source);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const ProjectorRay& pr = grid[i % grid.size()];
-      TracedRay& r = rays[i];
-      r.source = source;
-      r.projector_direction = pr.direction;
-      r.pixel = pr.pixel;
-      r.wavelength_nm = wavelengths[i / grid.size()];
-      const Eigen::Vector3d d = plate.axes.transpose() * pr.direction;
-      if (d.z() == 0.0) continue;
-      const double t = -source_local.z() / d.z();
-      if (!(t > 0.0)) continue;
-      const Eigen::Vector3d p = source_local + t * d;
-      r.hoe_point = plate.toBench(p);
-      if (std::abs(p.x()) > half_w || std::abs(p.y()) > half_h) continue;
-      r.hits_hoe = true;
-
-      const double n_in = source_local.z() < 0.0 ? n_cover : n_sub;
-      double power = 1.0, best = -1.0;
-      bool any_evanescent = false;
-      for (std::size_t k = 0; k < order.size(); ++k) {
-        const int li = d.z() > 0.0 ? order[k] : order[order.size() - 1 - k];
-        const LayerModel& m = layers[li];
-        const RecordedGrating g = recordAt(m, p.x(), p.y());
-        if (!g.valid) continue;
-        const LayerDiffraction ld =
-            diffractLayer(m, g.k_recorded, d, n_in, n_cover, n_sub, r.wavelength_nm, o.polarization);
-        if (!ld.entered) break;  // cannot enter the stack at all
-        const double contribution = power * ld.grating.kogelnik.efficiency;
-        any_evanescent = any_evanescent || ld.grating.evanescent;
-        if (ld.exits) r.efficiency += contribution;
-        if (contribution > best && (ld.exits || ld.tir)) {
-          best = contribution;
-          r.layer = li;
-          r.tir = ld.tir;
-          r.exits = ld.exits;
-          r.xi = ld.grating.kogelnik.xi;
-          r.nu = ld.grating.kogelnik.nu;
-          if (ld.exits) {
-            r.out_direction = plate.axes * ld.out_dir;
-            r.towards_eye = (ld.out_dir.z() < 0.0) == (source_local.z() < 0.0);
-          }
-        }
-        power *= ld.grating.kogelnik.zero_order;
-      }
-      r.evanescent = r.layer < 0 && any_evanescent;
-      if (r.tir) r.exits = false;
-    }
-  });
   return rays;
 }
 
@@ -173,6 +77,14 @@ TraceResult evaluateGaze(const Scene& scene, std::vector<TracedRay> rays, const 
   res.fov_deg = all.result();
   res.mean_efficiency = res.rays_in_pupil ? sum_pupil_all / res.rays_in_pupil : 0.0;
   res.mean_efficiency_on_hoe = res.rays_on_hoe ? sum_hoe / res.rays_on_hoe : 0.0;
+  double sum2 = 0.0;
+  for (const TracedRay& r : rays)
+    if (r.in_pupil) sum2 += r.efficiency * r.efficiency;
+  if (res.rays_in_pupil > 0 && sum_pupil_all > 0) {
+    const double mean = sum_pupil_all / res.rays_in_pupil;
+    res.efficiency_uniformity =
+        std::max(0.0, 1.0 - std::sqrt(std::max(0.0, sum2 / res.rays_in_pupil - mean * mean)) / mean);
+  }
   for (std::size_t w = 0; w < wavelengths.size(); ++w) {
     auto& wt = res.per_wavelength[w];
     wt.wavelength_nm = wavelengths[w];
@@ -184,7 +96,7 @@ TraceResult evaluateGaze(const Scene& scene, std::vector<TracedRay> rays, const 
 }
 
 TraceResult traceScene(const Scene& scene, const TraceOptions& options) {
-  return evaluateGaze(scene, diffractScene(scene, options), options);
+  return TracePipeline().run(scene, options);
 }
 
 }  // namespace fovea

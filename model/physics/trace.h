@@ -22,6 +22,11 @@
 //      diagonal   = the larger angle between the two rays extreme along yaw + pitch and the
 //                   two rays extreme along yaw - pitch (true 3-D angle between directions).
 //  - mean_efficiency: mean efficiency of the rays entering the pupil (0 if none).
+//
+// Computation (trace_pipeline.h): a graph of memoised stages, each keyed by a hash of exactly
+// the inputs it reads (geometry -> recording per layer -> diffraction and coupled wave per
+// layer and wavelength -> stack per wavelength -> pupil -> FOV -> analyses). traceScene()
+// runs a fresh pipeline; keep a TracePipeline to reuse stages between calls (gaze updates).
 
 #include <array>
 #include <optional>
@@ -43,7 +48,16 @@ struct TraceOptions {
   double efficiency_threshold = 0.1;              // rays below it do not count for the FOV
   bool keep_rays = false;                         // fill TraceResult::ray_list (drawing)
   Polarization polarization = Polarization::Unpolarized;  // projector light (scene has no polarisation)
+  // Skip the coupled-wave step for rays whose every diffracted order misses the pupil (they
+  // cannot count for the FOV, rays_in_pupil or mean_efficiency; TracedRay::culled is set). The
+  // whole-plate statistics (mean_efficiency_on_hoe) are then not computed (NaN).
+  bool cull_to_pupil = false;
 };
+
+// Rays per wavelength for interactive work (the studio's default): the least that hold the
+// prototype's retinal FOV to 0.1 deg of its converged value (docs/benchmarks.md, "Ray count vs
+// FOV error"; measured by `fovea-cli bench`).
+inline constexpr int kInteractiveRays = 20000;
 
 struct FovDeg {
   double horizontal = 0, vertical = 0, diagonal = 0;
@@ -63,6 +77,7 @@ struct TracedRay {
   double xi = 0, nu = 0;       // Kogelnik parameters of the dominant layer
   double pupil_radius_mm = 0;  // where it crosses the pupil plane, from the pupil centre
   std::array<int, 2> pixel{0, 0};
+  bool culled = false;  // cull_to_pupil skipped its coupled-wave step (efficiency not computed)
 };
 
 struct WavelengthTrace {
@@ -79,7 +94,8 @@ struct TraceResult {
   std::vector<TracedRay> ray_list;  // only with keep_rays
   // Additions:
   int rays_on_hoe = 0;
-  double mean_efficiency_on_hoe = 0;  // mean over the rays that hit the plate
+  double mean_efficiency_on_hoe = 0;  // mean over the rays that hit the plate (NaN with cull_to_pupil)
+  double efficiency_uniformity = 0;   // 1 - std/mean of the efficiencies of the rays entering the pupil
   std::array<double, 2> gaze_deg{0, 0};
   std::vector<WavelengthTrace> per_wavelength;
 };

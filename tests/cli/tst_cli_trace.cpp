@@ -1,6 +1,10 @@
 // fovea-cli trace: the issue-4 JSON contract and exit codes.
 #include <QtTest>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 namespace {
@@ -50,6 +54,60 @@ class TestCliTrace : public QObject {
     QCOMPARE(r.code, 0);
     j = nlohmann::json::parse(r.out.toStdString());
     QVERIFY(j["fov_deg"]["horizontal"].get<double>() > 80.0);
+  }
+
+  void statsAndRepeatedGaze() {
+    // One --gaze-deg: an object (with --stats, its stats). Several: a list, one result per gaze,
+    // each with its own stats; only the first records the HOE.
+    Run r = runCli({"trace", "-", "--gaze-deg", "0", "--rays", "1000", "--stats", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    auto j = nlohmann::json::parse(r.out.toStdString());
+    QVERIFY(j.is_object());
+    QVERIFY(j["stats"]["evaluations"].get<long long>() > 0);
+    QVERIFY(j["stats"]["stages_recomputed"].is_array());
+
+    r = runCli({"trace", "-", "--gaze-deg", "0", "--gaze-deg", "10,2", "--gaze-deg", "0", "--rays", "1000",
+                "--wavelength-nm", "532", "--stats", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    j = nlohmann::json::parse(r.out.toStdString());
+    QVERIFY(j.is_array());
+    QCOMPARE(j.size(), std::size_t{3});
+    const auto stages = [&](int i) {
+      std::vector<std::string> v;
+      for (const auto& s : j[i]["stats"]["stages_recomputed"]) v.push_back(s.get<std::string>());
+      return v;
+    };
+    const auto first = stages(0);
+    QVERIFY(std::find(first.begin(), first.end(), "recording:green") != first.end());
+    QVERIFY(std::find(first.begin(), first.end(), "coupled_wave:red@532nm") != first.end());
+    for (const auto& s : first) QVERIFY2(s.find("660nm") == std::string::npos, s.c_str());  // not asked for
+    QCOMPARE(j[0]["stats"]["evaluations"].get<long long>(), 3LL * j[0]["rays_on_hoe"].get<long long>());
+    QCOMPARE(stages(1), (std::vector<std::string>{"pupil", "fov", "analyses"}));
+    QCOMPARE(j[1]["stats"]["evaluations"].get<long long>(), 0LL);
+    QCOMPARE(j[1]["gaze_deg"][0].get<double>(), 10.0);
+    QCOMPARE(j[1]["gaze_deg"][1].get<double>(), 2.0);
+    for (int i = 0; i < 3; ++i)  // the issue-4 keys in every element
+      for (const char* k : {"fov_deg", "rays", "rays_in_pupil", "rays_efficient", "mean_efficiency"})
+        QVERIFY2(j[i].contains(k), k);
+    QCOMPARE(j[2]["fov_deg"], j[0]["fov_deg"]);
+    // Each gaze equals its own single run.
+    const Run single =
+        runCli({"trace", "-", "--gaze-deg", "10,2", "--rays", "1000", "--wavelength-nm", "532", "--json"});
+    const auto js = nlohmann::json::parse(single.out.toStdString());
+    QCOMPARE(js["fov_deg"], j[1]["fov_deg"]);
+    QCOMPARE(js["mean_efficiency"], j[1]["mean_efficiency"]);
+    QVERIFY(!js.contains("stats"));
+
+    // --cull: rays that cannot reach the pupil are not solved (at 20 deg without the HOE shift
+    // only a few cross-talk orders cross the pupil); the whole-plate mean is then null.
+    r = runCli({"trace", "-", "--gaze-deg", "20", "--gaze-deg", "0", "--rays", "1000", "--cull", "--stats", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    j = nlohmann::json::parse(r.out.toStdString());
+    QVERIFY(j[0]["stats"]["evaluations"].get<long long>() < 3 * j[0]["rays_on_hoe"].get<long long>() / 5);
+    QCOMPARE(j[0]["rays_in_pupil"].get<int>(), 0);
+    QVERIFY(j[0]["mean_efficiency_on_hoe"].is_null());
+    QVERIFY(j[1]["stats"]["evaluations"].get<long long>() > 0);
+    QVERIFY(j[1]["fov_deg"]["horizontal"].get<double>() > 85.0);
   }
 
   void badArgumentsAndInput() {
