@@ -41,9 +41,9 @@ void install(CLI::App& app) {
       GazeStudyOptions g;
       g.tolerance_deg = opt->tolerance_deg;
       int done = 0;
-      for (ShiftMethod m : {ShiftMethod::Hoe, ShiftMethod::Source}) {
+      for (ShiftMethod m : {ShiftMethod::Hoe, ShiftMethod::Source, ShiftMethod::None}) {
         StudyControl control;
-        control.on_progress = [&progress, done](double f) { progress.update(0.5 * (done + f)); };
+        control.on_progress = [&progress, done](double f) { progress.update((done + f) / 3.0); };
         const auto r = sweepGaze(scene, eval, *from, *to, *step, ax, m, g, control);
         if (!r.ok()) inputError("compare-shift did not complete");
         const EyeBox& eb = r.value->eyebox;
@@ -52,13 +52,18 @@ void install(CLI::App& app) {
                          {"eyebox_mm", eb.width_mm},
                          {"eyebox", eyeboxJson(eb)},
                          {"shift_axis", m == ShiftMethod::Hoe ? (ax == GazeAxis::Yaw ? "HOE local x" : "HOE local y")
-                                                              : "projector along bench z"}};
-        j[m == ShiftMethod::Hoe ? "hoe_shift" : "source_shift"] = e;
+                                        : m == ShiftMethod::Source ? "projector along bench z"
+                                                                   : "none"}};
+        j[m == ShiftMethod::Hoe ? "hoe_shift" : m == ShiftMethod::Source ? "source_shift" : "static"] = e;
         ++done;
       }
       const double src = j["source_shift"]["eyebox_mm"].get<double>();
       j["eyebox_ratio"] =
           src > 0 ? nlohmann::json(j["hoe_shift"]["eyebox_mm"].get<double>() / src) : nlohmann::json(nullptr);
+      // What each method adds to the static eye box (nothing moving).
+      const double fixed = j["static"]["eyebox_mm"].get<double>();
+      j["hoe_shift"]["gain_mm"] = j["hoe_shift"]["eyebox_mm"].get<double>() - fixed;
+      j["source_shift"]["gain_mm"] = src - fixed;
       return j;
     });
     if (*json) {

@@ -38,6 +38,7 @@ void install(CLI::App& app) {
   auto from = std::make_shared<double>(-20.0), to = std::make_shared<double>(20.0),
        step = std::make_shared<double>(5.0);
   auto axis = std::make_shared<std::string>("yaw");
+  auto method = std::make_shared<std::string>("hoe");
   auto json = std::make_shared<bool>(false);
   auto opt = std::make_shared<StudyCliOptions>();
   cmd->add_option("SCENE", *path, "scene file (default: the embedded prototype bench)");
@@ -45,15 +46,19 @@ void install(CLI::App& app) {
   cmd->add_option("--gaze-to", *to, "last gaze angle (deg)");
   cmd->add_option("--gaze-step", *step, "gaze step (deg, > 0)");
   cmd->add_option("--axis", *axis, "yaw (horizontal, HOE x) or pitch (vertical, HOE y)");
+  cmd->add_option("--method", *method,
+                  "hoe (move the HOE laterally, default) or source (move the projector along bench z)")
+      ->check(CLI::IsMember({"hoe", "source"}));
   cmd->add_flag("--json", *json, "print JSON");
   addStudyOptions(cmd, *opt);
   cmd->callback([=] {
     const GazeAxis ax = parseAxis(*axis);
+    const ShiftMethod m = *method == "source" ? ShiftMethod::Source : ShiftMethod::Hoe;
     if (!(*step > 0) || !std::isfinite(*step)) usageError("--gaze-step: must be > 0");
     if (!(*to >= *from)) usageError("--gaze-to: must be >= --gaze-from");
     if ((*to - *from) / *step > 2000) usageError("--gaze-step: more than 2000 gaze samples");
     const Scene scene = loadSceneOrExit(*path);
-    const nlohmann::json params{{"from", *from}, {"to", *to}, {"step", *step}, {"axis", *axis}};
+    const nlohmann::json params{{"from", *from}, {"to", *to}, {"step", *step}, {"axis", *axis}, {"method", *method}};
     const nlohmann::json out = cachedStudy("sweep", params, scene, *opt, [&] {
       const FovEvaluator eval = studyEvaluator(*opt);
       Progress progress("sweep");
@@ -61,18 +66,24 @@ void install(CLI::App& app) {
       control.on_progress = [&progress](double f) { progress.update(f); };
       GazeStudyOptions g;
       g.tolerance_deg = opt->tolerance_deg;
-      const auto r = sweepGaze(scene, eval, *from, *to, *step, ax, ShiftMethod::Hoe, g, control);
+      const auto r = sweepGaze(scene, eval, *from, *to, *step, ax, m, g, control);
       if (!r.ok()) inputError("sweep did not complete");
       nlohmann::json j;
       j["axis"] = *axis;
+      j["method"] = *method;
       nlohmann::json arr = nlohmann::json::array();
       for (const auto& s : r.value->samples)
-        arr.push_back({{"gaze_deg", s.gaze_deg},
-                       {"hoe_shift_mm", s.shift_mm},
-                       {"fov_deg", fovJson(s.fov)},
-                       {"mean_efficiency", s.fov.mean_efficiency},
-                       {"efficiency_uniformity", s.fov.efficiency_uniformity},
-                       {"pupil_position_mm", s.pupil_position_mm}});
+        arr.push_back(
+            {{"gaze_deg", s.gaze_deg},
+             {"hoe_shift_mm", m == ShiftMethod::Hoe ? s.shift_mm : 0.0},
+             {"source_shift_mm", m == ShiftMethod::Source ? s.shift_mm : 0.0},
+             {"fov_extent_deg", {{"horizontal", s.fov.extent_horizontal_deg}, {"vertical", s.fov.extent_vertical_deg}}},
+             {"fov_deg", fovJson(s.fov)},
+             {"mean_efficiency", s.fov.mean_efficiency},
+             {"efficiency_uniformity", s.fov.efficiency_uniformity},
+             {"pupil_position_mm", s.pupil_position_mm},
+             {"shift_plateau_mm", s.plateau_mm},
+             {"best_fov_deg", s.best_fov_deg}});
       j["samples"] = arr;
       j["eyebox_mm"] = r.value->eyebox.width_mm;
       j["eyebox"] = eyeboxJson(r.value->eyebox);
@@ -82,12 +93,12 @@ void install(CLI::App& app) {
       printJson(out);
       return;
     }
-    std::cout << "gaze_deg  hoe_shift_mm  fov_h  fov_v  fov_d\n" << std::fixed << std::setprecision(2);
+    std::cout << "gaze_deg      shift_mm  fov_h  fov_v  fov_d\n" << std::fixed << std::setprecision(2);
     for (const auto& s : out["samples"])
-      std::cout << std::setw(8) << s["gaze_deg"].get<double>() << std::setw(14) << s["hoe_shift_mm"].get<double>()
-                << std::setw(7) << s["fov_deg"]["horizontal"].get<double>() << std::setw(7)
-                << s["fov_deg"]["vertical"].get<double>() << std::setw(7) << s["fov_deg"]["diagonal"].get<double>()
-                << "\n";
+      std::cout << std::setw(8) << s["gaze_deg"].get<double>() << std::setw(14)
+                << (s["hoe_shift_mm"].get<double>() + s["source_shift_mm"].get<double>()) << std::setw(7)
+                << s["fov_deg"]["horizontal"].get<double>() << std::setw(7) << s["fov_deg"]["vertical"].get<double>()
+                << std::setw(7) << s["fov_deg"]["diagonal"].get<double>() << "\n";
     std::cout << "eye box " << out["eyebox_mm"].get<double>() << " mm\n";
   });
 }

@@ -11,15 +11,15 @@
 namespace fovea::cli {
 
 void addStudyOptions(CLI::App* cmd, StudyCliOptions& options) {
-  cmd->add_option("--rays", options.rays, "rays per wavelength per trace (default 1500)")
+  cmd->add_option("--rays", options.rays, "rays per wavelength per trace (default 12000)")
       ->check(CLI::Range(50, 1000000));
-  cmd->add_option("--tolerance-deg", options.tolerance_deg, "eye-box criterion: FOV within this of the zero-gaze FOV")
+  cmd->add_option("--tolerance-deg", options.tolerance_deg,
+                  "eye-box criterion: FOV within this of the zero-gaze FOV (default 3 deg)")
       ->check(CLI::Range(0.0, 90.0));
   cmd->add_flag("--no-cache", options.no_cache, "recompute even when an identical study is cached");
 }
 
 FovEvaluator studyEvaluator(const StudyCliOptions& options) {
-  if (!traceEvaluatorAvailable()) inputError("the HOE ray tracer is not part of this build");
   TraceEvaluatorOptions t;
   t.rays = options.rays;
   return traceEvaluator(t);

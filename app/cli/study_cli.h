@@ -14,14 +14,14 @@
 namespace fovea::cli {
 
 struct StudyCliOptions {
-  int rays = 1500;
-  double tolerance_deg = 1.0;
+  int rays = 12000;
+  double tolerance_deg = 3.0;
   bool no_cache = false;
 };
 
 void addStudyOptions(CLI::App* cmd, StudyCliOptions& options);
 
-// The tracer-backed evaluator, or exit 1 when the tracer is not in this build.
+// The tracer-backed evaluator.
 FovEvaluator studyEvaluator(const StudyCliOptions& options);
 
 // Returns the cached result of (study, parameters, scene) or computes, stores and returns

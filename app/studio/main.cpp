@@ -1,7 +1,9 @@
 // fovea-studio [SCENE] [--screenshot FILE.png [--size WxH]]
+//              [--report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]]
 // Opens the studio on SCENE, or on the embedded prototype bench without one. With
 // --screenshot it loads, renders, saves a PNG of the whole main window and exits (0 on
-// success, 1 when the scene or the PNG fails, 2 for bad arguments).
+// success, 1 when the scene or the PNG fails, 2 for bad arguments). With --report it writes
+// the design report (report_mode.h) and exits.
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -13,7 +15,9 @@
 #include <cstdio>
 
 #include "app/studio/main_window.h"
+#include "app/studio/report_mode.h"
 #include "app/studio/window_capture.h"
+#include "app/studio/workbench.h"
 #include "fovea/version.h"
 #include "viz/scene_view.h"
 #include "viz/vtk_gl_widget.h"
@@ -50,6 +54,13 @@ int main(int argc, char** argv) {
   parser.addOption(sizeOpt);
   parser.addOption(viewOpt);
   parser.addOption(selectOpt);
+  QCommandLineOption reportOpt("report", "Write the design report (.pdf or .html) and exit.", "FILE");
+  QCommandLineOption gazeOpt("gaze-deg", "Report: a gaze YAW[,PITCH] (deg) for ray and retina figures; repeatable.",
+                             "A[,B]");
+  QCommandLineOption raysOpt("rays", "Report: rays per wavelength (default 1500).", "N", "1500");
+  parser.addOption(reportOpt);
+  parser.addOption(gazeOpt);
+  parser.addOption(raysOpt);
   parser.process(app);
 
   QTextStream err(stderr);
@@ -64,7 +75,14 @@ int main(int argc, char** argv) {
         << "\"\n";
     return 2;
   }
-  const bool screenshot = parser.isSet(shotOpt);
+  const bool report = parser.isSet(reportOpt);
+  const bool screenshot = parser.isSet(shotOpt) || report;
+  bool raysOk = false;
+  const int rays = parser.value(raysOpt).toInt(&raysOk);
+  if (!raysOk || rays < 50 || rays > 1000000) {
+    err << "fovea-studio: --rays: expected a whole number in 50 .. 1000000, got \"" << parser.value(raysOpt) << "\"\n";
+    return 2;
+  }
   const QMap<QString, fovea::viz::StandardView> views{{"iso", fovea::viz::StandardView::Isometric},
                                                       {"top", fovea::viz::StandardView::Top},
                                                       {"side", fovea::viz::StandardView::Side},
@@ -86,8 +104,10 @@ int main(int argc, char** argv) {
   }
   if (parser.isSet(viewOpt)) window.sceneView()->showStandardView(views.value(parser.value(viewOpt)));
   if (parser.isSet(selectOpt)) window.selectElement(parser.value(selectOpt));
+  if (report) return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays);
   if (!screenshot) {
     window.show();
+    window.workbench()->startSession();  // preferences, autosave, recovery offer after a crash
     return QApplication::exec();
   }
 

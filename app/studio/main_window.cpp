@@ -16,9 +16,11 @@
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
 #include "app/studio/window_capture.h"
+#include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
 #include "widgets/message_log.h"
+#include "widgets/preview_panel.h"
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
 #include "widgets/scene_tree.h"
@@ -45,6 +47,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setCentralWidget(view_);
   createDocks();
   createMenus();
+  workbench_ = new Workbench(this);
   statusBar()->showMessage(tr("Drag: orbit · Shift+drag or middle: pan · wheel or right-drag: zoom · click: select"));
 
   connect(document_, &widgets::SceneDocument::sceneChanged, this, [this] { view_->setScene(document_->scene()); });
@@ -75,6 +78,7 @@ void MainWindow::createDocks() {
   addPanel(properties_, tr("Properties"), "PropertiesDock", Qt::RightDockWidgetArea);
   log_ = new widgets::MessageLog(this);
   addPanel(log_, tr("Messages"), "MessagesDock", Qt::BottomDockWidgetArea);
+  addPanel(new widgets::PreviewPanel(document_, this), tr("Foveated preview"), "PreviewDock", Qt::RightDockWidgetArea);
   resizeDocks({findChild<QDockWidget*>("SceneTreeDock"), findChild<QDockWidget*>("PropertiesDock")}, {300, 380},
               Qt::Horizontal);
   resizeDocks({findChild<QDockWidget*>("MessagesDock")}, {130}, Qt::Vertical);

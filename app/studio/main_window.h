@@ -25,6 +25,8 @@ class MessageLog;
 
 namespace fovea::studio {
 
+class Workbench;
+
 class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
@@ -59,6 +61,8 @@ class MainWindow : public QMainWindow {
   widgets::PropertyEditor* propertyEditor() const { return properties_; }
   widgets::MessageLog* messageLog() const { return log_; }
   QStringList recentFiles() const { return recent_; }
+  // Analyses, plots, preferences, report export, autosave and recovery (workbench.h).
+  Workbench* workbench() const { return workbench_; }
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -89,6 +93,7 @@ class MainWindow : public QMainWindow {
   QString selected_;
   QStringList recent_;
   bool persistSettings_ = false;
+  Workbench* workbench_ = nullptr;
 };
 
 }  // namespace fovea::studio

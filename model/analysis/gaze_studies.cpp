@@ -21,7 +21,7 @@ FovQuery makeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double sh
   if (method == ShiftMethod::Hoe)
     q.hoe_shift_mm =
         axis == GazeAxis::Yaw ? std::array<double, 2>{shift_mm, 0.0} : std::array<double, 2>{0.0, shift_mm};
-  else
+  else if (method == ShiftMethod::Source)
     q.source_shift_mm = shift_mm;
   return q;
 }
@@ -41,52 +41,53 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
   // The source shift has no simple guess (it moves along z): bracket around zero, wider.
   const double guess = method == ShiftMethod::Hoe ? pupil - pupil0 : 0.0;
   const double half = method == ShiftMethod::Hoe ? options.shift_half_range_mm : 2.5 * options.shift_half_range_mm;
-  const int n = std::max(3, options.bracket_points + (method == ShiftMethod::Source ? 4 : 0));
+  const int n = std::max(3, options.bracket_points);
+  auto fovAt = [&](double s) { return axisFov(eval(scene, makeQuery(gaze_deg, axis, method, s)), axis); };
+  if (method == ShiftMethod::None) {
+    GazeSample fixed;
+    fixed.gaze_deg = gaze_deg;
+    fixed.fov = eval(scene, makeQuery(gaze_deg, axis, method, 0.0));
+    fixed.pupil_position_mm = pupil;
+    fixed.best_fov_deg = axisFov(fixed.fov, axis);
+    return fixed;
+  }
 
-  double best_s = guess, best_f = -1e300;
-  FovSample best_fov;
-  auto evaluate = [&](double s) {
-    const FovSample f = eval(scene, makeQuery(gaze_deg, axis, method, s));
-    const double objective = axisFov(f, axis) + f.mean_efficiency;
-    // Strictly better, or equal and closer to the guess (plateaus: stay near the geometry).
-    if (objective > best_f || (objective == best_f && std::abs(s - guess) < std::abs(best_s - guess))) {
-      best_f = objective;
-      best_s = s;
-      best_fov = f;
-    }
-    return objective;
-  };
+  // 1. Coarse bracket: the best FOV F* over the grid.
   std::vector<double> grid(n), values(n);
   for (int i = 0; i < n; ++i) {
     grid[i] = guess - half + 2.0 * half * i / (n - 1);
-    values[i] = evaluate(grid[i]);
+    values[i] = fovAt(grid[i]);
   }
-  const int b = static_cast<int>(std::max_element(values.begin(), values.end()) - values.begin());
-  // Golden-section refinement inside the bracket around the best grid point.
-  double lo = grid[std::max(0, b - 1)], hi = grid[std::min(n - 1, b + 1)];
-  constexpr double kInvPhi = 0.6180339887498949;
-  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
-  double f1 = evaluate(x1), f2 = evaluate(x2);
-  for (int it = 0; it < options.golden_iterations; ++it) {
-    if (f1 >= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - kInvPhi * (hi - lo);
-      f1 = evaluate(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + kInvPhi * (hi - lo);
-      f2 = evaluate(x2);
+  const double best = *std::max_element(values.begin(), values.end());
+  // 2. The plateau: from the first to the last grid point within plateau_tolerance_deg of F*
+  //    (dips inside it are ray-sampling noise), its two edges bisected against the
+  //    neighbouring grid points outside it.
+  const double level = best - options.plateau_tolerance_deg;
+  int first = 0, last = n - 1;
+  while (first < n - 1 && values[first] < level) ++first;
+  while (last > 0 && values[last] < level) --last;
+  auto edge = [&](double in, double out) {
+    for (int k = 0; k < options.edge_bisections; ++k) {
+      const double mid = 0.5 * (in + out);
+      (fovAt(mid) >= level ? in : out) = mid;
     }
+    return 0.5 * (in + out);
+  };
+  double lo = grid[first], hi = grid[last];
+  if (best > 0) {
+    if (first > 0) lo = edge(grid[first], grid[first - 1]);
+    if (last < n - 1) hi = edge(grid[last], grid[last + 1]);
+  } else {
+    lo = hi = guess;  // no light in the pupil anywhere in the bracket
   }
+  // 3. x_p: the middle of the plateau; the FOV reported is the one traced there.
   GazeSample out;
   out.gaze_deg = gaze_deg;
-  out.shift_mm = best_s;
-  out.fov = best_fov;
+  out.shift_mm = 0.5 * (lo + hi);
+  out.fov = eval(scene, makeQuery(gaze_deg, axis, method, out.shift_mm));
   out.pupil_position_mm = pupil;
+  out.plateau_mm = {lo, hi};
+  out.best_fov_deg = best;
   return out;
 }
 

@@ -4,11 +4,17 @@
 // trace_evaluator.h; tests may pass a closed-form one).
 //
 // HOE travel x_p(alpha): for each gaze the lateral HOE shift (HOE local x for yaw, y for
-// pitch) that maximises the retinal FOV along the swept axis, with the mean efficiency as
-// a small tie-breaker on the FOV's plateau (objective = FOV_deg + mean_efficiency). The
-// FOV of a ray-sampled trace is a step function of the shift, so the search is a coarse
-// bracket (grid around the geometric guess: the pupil's lateral travel r sin(alpha)) then
-// golden-section refinement inside the best bracket.
+// pitch) that maximises the retinal FOV along the swept axis. With a Maxwellian focus the
+// FOV is a plateau in the shift: full while the focus stays inside the pupil (about a pupil
+// diameter of travel), then a cliff when it leaves, or a slope where Bragg mismatch
+// darkens the field. On the plateau the ray-sampled FOV only jitters by a ray spacing
+// (1-3 deg), so its argmax is noise. x_p is therefore the middle of the plateau: a bracket
+// of bracket_points shifts around the geometric guess (the pupil's lateral travel, r sin
+// alpha) gives the best FOV F*; the plateau spans the shifts whose FOV is within
+// plateau_tolerance_deg of F*, its two edges bisected (edge_bisections); x_p is their
+// midpoint and the FOV reported is the one traced at x_p. (The seed's "shift giving the
+// maximum FOV" in A.3; the midpoint is that maximum made well-defined and centres the
+// Maxwellian focus on the pupil.)
 // Eye box: the pupil-centre positions (bench mm along the axis) over the contiguous gaze
 // range around zero gaze whose optimised FOV stays within tolerance_deg of the zero-gaze
 // FOV; its borders are refined by bisection of the gaze angle.
@@ -28,10 +34,12 @@
 namespace fovea {
 
 enum class GazeAxis { Yaw, Pitch };
-enum class ShiftMethod { Hoe, Source };
+// None: nothing moves (the static eye box, the baseline both dynamic methods extend).
+enum class ShiftMethod { Hoe, Source, None };
 
 struct FovSample {
   double horizontal_deg = 0, vertical_deg = 0, diagonal_deg = 0;
+  double extent_horizontal_deg = 0, extent_vertical_deg = 0;  // lit extent incl. holes (tracer's FOV)
   double mean_efficiency = 0;
   double efficiency_uniformity = 0;  // 1 - coefficient of variation of the efficiencies of rays reaching the pupil
   int rays_in_pupil = 0;
@@ -46,10 +54,11 @@ struct FovQuery {
 using FovEvaluator = std::function<FovSample(const Scene&, const FovQuery&)>;
 
 struct GazeStudyOptions {
-  double tolerance_deg = 1.0;        // eye-box criterion: FOV >= FOV(0) - tolerance
-  double shift_half_range_mm = 4.0;  // bracket half-width around the geometric guess
-  int bracket_points = 9;
-  int golden_iterations = 10;
+  double tolerance_deg = 3.0;          // eye-box criterion: FOV >= FOV(0) - tolerance (above the ~1-2 deg ray jitter)
+  double plateau_tolerance_deg = 5.0;  // x_p plateau: FOV within this of the best (above the ray jitter)
+  double shift_half_range_mm = 4.0;    // bracket half-width around the geometric guess (x2.5 for the source)
+  int bracket_points = 17;
+  int edge_bisections = 6;
   int border_bisections = 6;
 };
 
@@ -57,7 +66,9 @@ struct GazeSample {
   double gaze_deg = 0;
   double shift_mm = 0;  // optimal HOE shift (or source shift)
   FovSample fov;
-  double pupil_position_mm = 0;  // pupil centre along the axis (bench x for yaw, y for pitch)
+  double pupil_position_mm = 0;            // pupil centre along the axis (bench x for yaw, y for pitch)
+  std::array<double, 2> plateau_mm{0, 0};  // shifts whose FOV is within plateau_tolerance_deg of the best
+  double best_fov_deg = 0;                 // best FOV of the bracket (F*)
 };
 
 struct EyeBox {

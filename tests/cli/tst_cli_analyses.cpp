@@ -106,6 +106,81 @@ class TestCliAnalyses : public QObject {
     QVERIFY(r.err.contains("eye.pupil_diameter_mm"));
   }
 
+  void sweepContract() {
+    const QStringList args{"sweep",       "--gaze-from", "-10",    "--gaze-to", "10",
+                           "--gaze-step", "10",          "--rays", "1500",      "--json"};
+    const Run r = cli(args + QStringList{"--no-cache"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(r.err.isEmpty());  // no progress bar when piped
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["samples"].size(), std::size_t{3});
+    double previous = -1e9;
+    for (const auto& s : j["samples"]) {
+      QVERIFY(s["gaze_deg"].is_number() && s["hoe_shift_mm"].is_number());
+      for (const char* k : {"horizontal", "vertical", "diagonal"}) QVERIFY(s["fov_deg"][k].is_number());
+      QVERIFY(s["fov_deg"]["horizontal"].get<double>() > 60);
+      QVERIFY(s["hoe_shift_mm"].get<double>() > previous);  // the shift follows the gaze
+      previous = s["hoe_shift_mm"].get<double>();
+    }
+    QCOMPARE(j["samples"][1]["gaze_deg"].get<double>(), 0.0);
+    QVERIFY(j["eyebox_mm"].is_number() && j["eyebox_mm"].get<double>() > 0);
+    QCOMPARE(j["cached"].get<bool>(), false);
+    // The same study again: from the scene-content cache, same numbers.
+    const Run again = cli(args);
+    QCOMPARE(again.code, 0);
+    const auto k = nlohmann::json::parse(again.out.toStdString());
+    QCOMPARE(k["cached"].get<bool>(), true);
+    QCOMPARE(k["samples"], j["samples"]);
+  }
+
+  void compareShiftContract() {
+    const Run r = cli({"compare-shift", "--gaze-from", "-30", "--gaze-to", "30", "--gaze-step", "10", "--rays", "1500",
+                       "--no-cache", "--json"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(r.err.isEmpty());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    for (const char* m : {"hoe_shift", "source_shift"}) {
+      const auto& e = j[m];
+      QVERIFY2(e["gaze_range_deg"].is_array() && e["gaze_range_deg"].size() == 2, m);
+      QVERIFY(e["travel_mm"].is_array() && e["travel_mm"].size() == 2);
+      QVERIFY(e["eyebox_mm"].is_number() && e["eyebox_mm"].get<double>() > 0);
+      QVERIFY(e["gaze_range_deg"][0].get<double>() < 0 && e["gaze_range_deg"][1].get<double>() > 0);
+    }
+    QVERIFY(j["hoe_shift"]["eyebox_mm"].get<double>() > j["source_shift"]["eyebox_mm"].get<double>());
+  }
+
+  void sensitivityContract() {
+    const Run r = cli({"sensitivity", "--parameter", "eye.relief_mm", "--from", "20", "--to", "24", "--steps", "3",
+                       "--rays", "1500", "--no-cache", "--json"});
+    QCOMPARE(r.code, 0);
+    QVERIFY(r.err.isEmpty());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["samples"].size(), std::size_t{3});
+    QCOMPARE(j["samples"][1]["value"].get<double>(), 22.0);
+    for (const auto& s : j["samples"]) {
+      for (const char* k : {"horizontal", "vertical", "diagonal"}) QVERIFY(s["fov_deg"][k].is_number());
+      QVERIFY(s["mean_efficiency"].get<double>() > 0 && s["mean_efficiency"].get<double>() <= 1);
+    }
+  }
+
+  void progressBarOnATerminalOnly() {
+    if (!QFile::exists("/usr/bin/script")) QSKIP("util-linux script(1) is needed for a pseudo-terminal");
+    // Under script(1) stderr is a terminal: the bar is drawn and reaches 100 %.
+    QProcess p;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("FOVEA_CACHE_DIR", qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/cli_analyses_cache");
+    p.setProcessEnvironment(env);
+    p.start(
+        "/usr/bin/script",
+        {"-qec",
+         QString("%1 sweep --gaze-from 0 --gaze-to 10 --gaze-step 10 --rays 500 --no-cache --json").arg(FOVEA_CLI_PATH),
+         "/dev/null"});
+    QVERIFY(p.waitForFinished(120000));
+    QCOMPARE(p.exitCode(), 0);
+    const QByteArray tty = p.readAllStandardOutput();
+    QVERIFY2(tty.contains("sweep [") && tty.contains("100%"), tty.constData());
+  }
+
   void sweepValidatesTheRange() {
     QCOMPARE(cli({"sweep", "--gaze-from", "0", "--gaze-to", "10", "--gaze-step", "0", "--json"}).code, 2);
     QCOMPARE(cli({"sweep", "--gaze-from", "0", "--gaze-to", "10", "--gaze-step", "5", "--axis", "roll", "--json"}).code,

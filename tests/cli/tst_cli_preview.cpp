@@ -9,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "model/color/color_calibration.h"
+#include "model/gaze/eye_camera.h"
+#include "model/gaze/gaze_calibration.h"
+#include "model/image/image_io.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -152,6 +155,145 @@ class TestCliPreview : public QObject {
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("non-finite"), qPrintable(r.err));
     QCOMPARE(cli({"fit-warp", "--pairs", file, "--model", "poly9"}).code, 2);
+  }
+
+  void blendProfile() {
+    Run r = cli({"blend-profile", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json j = r.j();
+    const auto& s = j["samples"];
+    QCOMPARE(s.size(), std::size_t{41});  // 0 to 10 deg in 0.25 deg steps
+    QCOMPARE(s.front()["eccentricity_deg"].get<double>(), 0.0);
+    QCOMPARE(s.back()["eccentricity_deg"].get<double>(), 10.0);
+    for (std::size_t i = 1; i < s.size(); ++i)
+      QVERIFY(s[i]["eccentricity_deg"].get<double>() - s[i - 1]["eccentricity_deg"].get<double>() <= 0.25 + 1e-12);
+    QCOMPARE(s[12]["foveal_weight"].get<double>(), 1.0);  // 3 deg
+    QCOMPARE(s[12]["blur_sigma_deg"].get<double>(), 0.0);
+    QVERIFY(std::abs(s[22]["foveal_weight"].get<double>() - 0.5) < 1e-12);  // 5.5 deg
+    QCOMPARE(s[24]["foveal_weight"].get<double>(), 0.0);                    // 6 deg
+    const double sm = j["blur_sigma_match_deg"].get<double>();
+    QVERIFY(sm > 0);
+    QVERIFY(std::abs(s[16]["blur_sigma_deg"].get<double>() - sm / 2) < 1e-15);  // 4 deg
+    QCOMPARE(s[20]["blur_sigma_deg"].get<double>(), sm);                        // 5 deg
+    QCOMPARE(cli({"blend-profile", "--scene", "/nonexistent.json"}).code, 1);
+  }
+
+  void composite() {
+    cv::Mat img(540, 960, CV_32FC3);
+    for (int y = 0; y < img.rows; ++y)
+      for (int x = 0; x < img.cols; ++x)
+        img.at<cv::Vec3f>(y, x) = cv::Vec3f(((x / 24 + y / 24) % 2) ? 0.8f : 0.1f, 0.4f, x / 960.0f);
+    const std::string in = (tmpDir() / "target.png").string();
+    fovea::image::writeLinearRgb(in, img);
+    auto out = [](const char* n) { return QString::fromStdString((tmpDir() / n).string()); };
+    const QStringList common{"--out-foveal", out("f.png"), "--out-peripheral", out("p.png"), "--out-perceived",
+                             out("q.png"),   "--json"};
+    Run r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2"} + common);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json soft = r.j();
+    QVERIFY(soft["seam_metric"].get<double>() > 0 && soft["seam_metric"].get<double>() < 1);
+    QVERIFY(soft["timings_ms"]["gaze_update"].get<double>() > 0);
+    const cv::Mat f = fovea::image::readLinearRgb(out("f.png").toStdString());
+    const cv::Mat p = fovea::image::readLinearRgb(out("p.png").toStdString());
+    const cv::Mat q = fovea::image::readLinearRgb(out("q.png").toStdString());
+    QCOMPARE(f.size(), cv::Size(1920, 1080));
+    QCOMPARE(p.size(), cv::Size(1280, 720));
+    QCOMPARE(q.size(), img.size());
+    // Geometric pre-warp: a projector whose pixel (x, y) lands where the ideal image has
+    // pixel (x + 10, y) must show that ideal pixel: the output is the ideal one shifted.
+    json shift = {{"pairs", json::array()}};
+    for (double x : {0.0, 400.0, 1279.0})
+      for (double y : {0.0, 300.0, 719.0}) shift["pairs"].push_back({{"src", {x, y}}, {"dst", {x + 10, y}}});
+    const QString shiftFile = writeJson("shift.json", shift);
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--warp-peripheral",
+                        shiftFile, "--warp-model", "poly1", "--out-foveal", out("fw.png"), "--out-peripheral",
+                        out("pw.png"), "--out-perceived", out("qw.png"), "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QCOMPARE(r.j()["prewarp"]["peripheral"].get<bool>(), true);
+    const cv::Mat pw = fovea::image::readLinearRgb(out("pw.png").toStdString());
+    QCOMPARE(cv::norm(pw(cv::Rect(0, 0, 1270, 720)), p(cv::Rect(10, 0, 1270, 720)), cv::NORM_INF), 0.0);
+    QVERIFY(cv::norm(pw.col(1275)) == 0.0);  // beyond the ideal image's edge: dark
+    QCOMPARE(cv::norm(fovea::image::readLinearRgb(out("fw.png").toStdString()), f, cv::NORM_INF), 0.0);
+    json collinear = {{"pairs", json::array()}};
+    for (double x : {0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0})
+      collinear["pairs"].push_back({{"src", {x, x}}, {"dst", {x, x}}});
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "0,0", "--warp-foveal",
+                        writeJson("collinear.json", collinear)} +
+            common);
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("collinear.json"), qPrintable(r.err));
+
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--no-blend"} +
+            common);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY(r.j()["seam_metric"].get<double>() > soft["seam_metric"].get<double>());
+
+    // Unreadable and unsupported images name the file.
+    r = cli(QStringList{"composite", "--image", "/nonexistent/target.png", "--gaze-deg", "0,0"} + common);
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("/nonexistent/target.png"));
+    const std::string junk = (tmpDir() / "junk.png").string();
+    std::ofstream(junk) << "this is not a PNG";
+    r = cli(QStringList{"composite", "--image", QString::fromStdString(junk), "--gaze-deg", "0,0"} + common);
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("junk.png"), qPrintable(r.err));
+    QCOMPARE(cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "x"} + common).code, 2);
+  }
+  void gazeFit() {
+    // 9 targets + 4 held out, 12 samples each (the first two off target: saccade landing).
+    const fovea::gaze::EyeCamera cam;
+    auto samplesFile = [&](bool nine) {
+      std::vector<fovea::gaze::GazeTarget> t;
+      auto add = [&](double yaw, double pitch, bool holdout) {
+        fovea::gaze::GazeTarget g;
+        g.target_deg = {yaw, pitch};
+        g.holdout = holdout;
+        const Eigen::Vector2d p = fovea::gaze::pupilCentrePx(cam, yaw, pitch);
+        const Eigen::Vector2d landing(holdout ? -25 : 25, 0);  // the saccade overshoots
+        g.pupil_px = {p + landing, p + landing};
+        for (int i = 0; i < 10; ++i) g.pupil_px.push_back(p);
+        t.push_back(g);
+      };
+      for (double p : {-10.0, 0.0, 10.0})
+        for (double y : {-15.0, 0.0, 15.0})
+          if (nine || (p != 0) == (y != 0)) add(y, p, false);
+      for (double p : {-5.0, 5.0})
+        for (double y : {-7.5, 7.5}) add(y, p, true);
+      return writeJson(nine ? "gaze9.json" : "gaze5.json", fovea::gaze::gazeSamplesToJson(t));
+    };
+    Run r = cli({"gaze-fit", "--samples", samplesFile(true), "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    json j = r.j();
+    QCOMPARE(j["model"].get<std::string>(), std::string("poly2"));
+    QCOMPARE(j["calibration_targets"].get<int>(), 9);
+    QCOMPARE(j["averaged_samples"].get<int>(), 10);
+    QCOMPARE(j["coefficients"]["yaw_deg"].size(), std::size_t{6});
+    QCOMPARE(j["validation"]["method"].get<std::string>(), std::string("holdout"));
+    QCOMPARE(j["validated_targets"].size(), std::size_t{4});
+    const double acc9 = j["accuracy_deg"]["mean"].get<double>();
+    QVERIFY(acc9 > 0.1 && acc9 < 0.3);  // see tst_gaze_calibration: 0.23 deg
+    QVERIFY(j["precision_deg"]["rms_s2s"].get<double>() >= 0);
+
+    r = cli({"gaze-fit", "--samples", samplesFile(false), "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    j = r.j();
+    QCOMPARE(j["model"].get<std::string>(), std::string("bilinear"));
+    QCOMPARE(j["calibration_targets"].get<int>(), 5);
+    QVERIFY(j["accuracy_deg"]["mean"].get<double>() > acc9);
+    // Averaging all 12 samples takes in the overshoot (+25 px on calibration targets, -25 px
+    // on held-out ones): a relative shift of 50 * 2/12 = 8.3 px, about 1.9 deg at 0.22 deg/px.
+    r = cli({"gaze-fit", "--samples", samplesFile(false), "--average", "12", "--json"});
+    QVERIFY(r.j()["accuracy_deg"]["mean"].get<double>() > 1.0);
+
+    // Bad input: exit 1 naming the file and the reason; bad arguments exit 2.
+    json bad = fovea::gaze::gazeSamplesToJson({});
+    bad["targets"] = json::array({{{"target_deg", {0, 0}}, {"pupil_px", {{1, nullptr}}}}});
+    const QString badFile = writeJson("gaze_bad.json", bad);
+    r = cli({"gaze-fit", "--samples", badFile, "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("gaze_bad.json") && r.err.contains("pupil_px[0]"), qPrintable(r.err));
+    QCOMPARE(cli({"gaze-fit", "--samples", "/nonexistent/gaze.json"}).code, 1);
+    QCOMPARE(cli({"gaze-fit", "--samples", badFile, "--model", "poly7"}).code, 2);
   }
 };
 

@@ -1,0 +1,157 @@
+// fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--json]
+// The design report of a scene: title page with the scene summary, 3-D views, the bench at
+// each gaze, retina maps, the analyses' plots and key numbers (app/studio/report_document.h).
+//
+// Why this command drives `fovea-studio --report` instead of linking the GUI: the report's
+// 3-D figures need VTK's OpenGL rendering inside a Qt window, i.e. an X display (Xvfb when
+// headless; Qt's offscreen platform gives VTK no GL context, PLATFORM.md quirk 6). Linking
+// Qt Widgets + VTK into fovea-cli would make every command load them, slow every start, and
+// break the GUI-less builds (the ASan preset builds fovea-cli with FOVEA_BUILD_GUI=OFF). So
+// fovea-cli stays model-only and headless: it validates the arguments and the scene itself,
+// then runs the fovea-studio next to it ($FOVEA_STUDIO overrides), under `xvfb-run` when
+// there is no DISPLAY, and relays its JSON manifest. Exit codes: 0 written; 1 invalid scene,
+// no studio or no display, or the report failed; 2 bad arguments.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "app/cli/cli_common.h"
+
+namespace fovea::cli {
+namespace {
+
+struct ReportArgs {
+  std::string scene, out;
+  std::vector<std::string> gazes;
+  int rays = 1500;
+  bool json = false;
+};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string findStudio() {
+  if (const char* env = std::getenv("FOVEA_STUDIO"); env && *env) return env;
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto next = self.parent_path() / "fovea-studio";
+    if (std::filesystem::exists(next)) return next.string();
+  }
+  return {};
+}
+
+std::string findInPath(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return {};
+  std::string p(path);
+  std::size_t start = 0;
+  while (start <= p.size()) {
+    const std::size_t end = p.find(':', start);
+    const std::string dir = p.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    const auto candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return {};
+}
+
+// Runs argv, returns its exit status; its stdout is captured into `output`, stderr passes.
+int runCapturing(const std::vector<std::string>& argv, std::string& output) {
+  int pipefd[2];
+  if (::pipe(pipefd) != 0) inputError(std::string("cannot create a pipe: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) inputError(std::string("cannot start fovea-studio: ") + std::strerror(errno));
+  if (pid == 0) {
+    ::dup2(pipefd[1], STDOUT_FILENO);
+    ::close(pipefd[0]);
+    ::close(pipefd[1]);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execv(args[0], args.data());
+    std::cerr << "fovea-cli: cannot run " << argv[0] << ": " << std::strerror(errno) << "\n";
+    ::_exit(127);
+  }
+  ::close(pipefd[1]);
+  char buffer[4096];
+  ssize_t n;
+  while ((n = ::read(pipefd[0], buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))
+    if (n > 0) output.append(buffer, static_cast<std::size_t>(n));
+  ::close(pipefd[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+void install(CLI::App& app) {
+  auto* cmd =
+      app.add_subcommand("report", "Design report of a scene as PDF or self-contained HTML (needs fovea-studio)");
+  auto a = std::make_shared<ReportArgs>();
+  cmd->add_option("SCENE", a->scene, "scene file (default: the embedded prototype bench)");
+  cmd->add_option("--out", a->out, "FILE.pdf or FILE.html")->required();
+  cmd->add_option("--gaze-deg", a->gazes,
+                  "gazes YAW[,PITCH] (deg) for the ray and retina figures (default: the scene's)");
+  cmd->add_option("--rays", a->rays, "rays per wavelength for the traces and the sweep (default 1500)")
+      ->check(CLI::Range(50, 1000000));
+  cmd->add_flag("--json", a->json, "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\"}");
+  cmd->callback([a] {
+    const std::string ext = lower(std::filesystem::path(a->out).extension().string());
+    if (ext != ".pdf" && ext != ".html" && ext != ".htm") usageError("--out: the file must end in .pdf or .html");
+    for (const auto& g : a->gazes) {
+      const auto v = parseNumberList(g, "--gaze-deg", 1, 2);
+      for (double x : v)
+        if (!(std::abs(x) <= 90.0)) usageError("--gaze-deg: angles must lie in -90 .. 90, got '" + g + "'");
+    }
+    loadSceneOrExit(a->scene);  // exit 1 with every problem before starting the studio
+
+    const std::string studio = findStudio();
+    if (studio.empty())
+      inputError("report: fovea-studio was not found next to fovea-cli (build the GUI, or set FOVEA_STUDIO)");
+    std::vector<std::string> argv;
+    const bool display = (std::getenv("DISPLAY") && *std::getenv("DISPLAY")) ||
+                         (std::getenv("WAYLAND_DISPLAY") && *std::getenv("WAYLAND_DISPLAY"));
+    if (!display) {
+      const std::string xvfb = findInPath("xvfb-run");
+      if (xvfb.empty()) inputError("report: no DISPLAY and no xvfb-run to render the 3-D views (install xvfb)");
+      argv = {xvfb, "-a", "-s", "-screen 0 1920x1080x24"};
+    }
+    argv.push_back(studio);
+    if (!a->scene.empty()) argv.push_back(std::filesystem::absolute(a->scene).string());
+    argv.push_back("--report");
+    argv.push_back(std::filesystem::absolute(a->out).string());
+    for (const auto& g : a->gazes) argv.push_back("--gaze-deg=" + g);
+    argv.push_back("--rays");
+    argv.push_back(std::to_string(a->rays));
+    std::string manifest;
+    const int code = runCapturing(argv, manifest);
+    if (code == 2) usageError("report: fovea-studio refused the arguments");
+    if (code != 0) inputError("report: fovea-studio failed (exit " + std::to_string(code) + ")");
+    nlohmann::json m;
+    try {
+      m = nlohmann::json::parse(manifest);
+    } catch (const std::exception&) {
+      inputError("report: unexpected output from fovea-studio: " + manifest.substr(0, 200));
+    }
+    if (a->json) return printJson(m);
+    std::cout << "report written to " << m.value("out", a->out) << " (" << m.value("figures", 0) << " figures";
+    if (m.contains("pages") && m["pages"].is_number()) std::cout << ", " << m["pages"].get<int>() << " pages";
+    std::cout << ")\n";
+  });
+}
+
+const Registrar reg{"report", &install};
+
+}  // namespace
+}  // namespace fovea::cli

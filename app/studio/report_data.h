@@ -1,0 +1,53 @@
+#pragma once
+// What a design report needs computed (any thread, cancellable): a trace at every chosen
+// gaze (with its rays, for the retina maps), the gaze sweep (FOV and HOE travel vs gaze, eye
+// box), the angular resolution at the first gaze, the HOE layers' selectivity and the
+// Kogelnik-vs-RCWA error/time map. Every analysis goes through the studio's analysis
+// catalogue (the same numbers as fovea-cli and the analyses panel; cached studies are
+// reused). An analysis that fails is recorded in `problems` and left out of the report.
+
+#include <QList>
+#include <QString>
+#include <QStringList>
+
+#include <array>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "model/analysis/study_runner.h"
+#include "model/physics/trace.h"
+#include "model/scene/scene.h"
+
+namespace fovea::studio {
+
+struct ReportOptions {
+  QList<std::array<double, 2>> gazes_deg;  // yaw, pitch; empty: the scene's gaze
+  int rays = 1500;                         // per wavelength, traces and sweep
+  double sweep_step_deg = 5.0;
+  bool kogelnik_vs_rcwa = true;
+  QString title;  // empty: "Design report: <scene name>"
+};
+
+struct GazeTrace {
+  std::array<double, 2> gaze_deg{0, 0};
+  nlohmann::json json;  // the trace analysis' result
+  TraceResult rays;     // the same trace with its ray list (retina map)
+};
+
+struct ReportData {
+  Scene scene;
+  QString scenePath;
+  ReportOptions options;
+  QList<GazeTrace> traces;
+  nlohmann::json sweep, resolution, selectivity, kogelnikVsRcwa;  // null when not computed
+  QStringList problems;
+};
+
+// Parses "10" or "10,-5" (yaw[,pitch] in degrees); false on anything else.
+bool parseGaze(const QString& text, std::array<double, 2>* gaze);
+
+std::optional<ReportData> computeReportData(const Scene& scene, const QString& scenePath, ReportOptions options,
+                                            const StudyControl& control = {});
+
+}  // namespace fovea::studio

@@ -1,0 +1,17 @@
+#pragma once
+// `fovea-studio [SCENE] --report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]`: the
+// headless report (what `fovea-cli report` drives). The window is shown (an X display, e.g.
+// Xvfb, gives VTK its OpenGL context), the analyses are computed, the report is written and
+// a JSON manifest {"out","format","pages","figures","problems"} is printed to stdout.
+// Exit codes: 0 written, 1 the report could not be written, 2 bad arguments.
+
+#include <QString>
+#include <QStringList>
+
+namespace fovea::studio {
+
+class MainWindow;
+
+int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays);
+
+}  // namespace fovea::studio

@@ -1,0 +1,327 @@
+#include "app/studio/workbench.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QLineEdit>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QProgressDialog>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QThread>
+#include <QUndoStack>
+
+#include <algorithm>
+#include <atomic>
+
+#include "app/studio/main_window.h"
+#include "app/studio/report_document.h"
+#include "model/scene/scene_io.h"
+#include "widgets/analyses/analyses_panel.h"
+#include "widgets/autosave.h"
+#include "widgets/message_log.h"
+#include "widgets/plots/plot_builders.h"
+#include "widgets/plots/plots_panel.h"
+#include "widgets/preferences.h"
+#include "widgets/scene_document.h"
+
+namespace fovea::studio {
+
+using widgets::Preferences;
+
+namespace {
+
+QMenu* menuNamed(QMenuBar* bar, const QString& title) {
+  for (QAction* a : bar->actions())
+    if (a->menu() && a->text().remove('&') == title) return a->menu();
+  return nullptr;
+}
+
+QAction* actionNamed(QMenu* menu, const QString& text) {
+  if (!menu) return nullptr;
+  for (QAction* a : menu->actions())
+    if (a->text().remove('&').startsWith(text)) return a;
+  return nullptr;
+}
+
+}  // namespace
+
+Workbench::Workbench(MainWindow* window) : QObject(window), window_(window) {
+  setObjectName("Workbench");
+  analyses_ = new widgets::AnalysesPanel(window->document(), window);
+  analysesDock_ = window->addPanel(analyses_, tr("Analyses"), "AnalysesDock", Qt::RightDockWidgetArea);
+  plots_ = new widgets::PlotsPanel(window);
+  plotsDock_ = window->addPanel(plots_, tr("Plots"), "PlotsDock", Qt::BottomDockWidgetArea);
+  if (auto* props = window->findChild<QDockWidget*>("PropertiesDock")) {
+    window->tabifyDockWidget(props, analysesDock_);
+    props->raise();
+  }
+  if (auto* messages = window->findChild<QDockWidget*>("MessagesDock")) {
+    window->tabifyDockWidget(messages, plotsDock_);
+    messages->raise();
+  }
+  // Keep the foundation's dock proportions now that two more docks share the areas.
+  auto* tree = window->findChild<QDockWidget*>("SceneTreeDock");
+  auto* props = window->findChild<QDockWidget*>("PropertiesDock");
+  if (tree && props) window->resizeDocks({tree, props}, {300, 400}, Qt::Horizontal);
+  connect(analyses_, &widgets::AnalysesPanel::resultReady, this, &Workbench::onResult);
+  connect(plots_, &widgets::PlotsPanel::plotExported, this, [this](const QString& id, const QString& path) {
+    window_->messageLog()->info(tr("Exported %1 to %2").arg(widgets::plotTitle(id), path));
+  });
+  connect(plots_, &widgets::PlotsPanel::exportFailed, this, [this](const QString& id, const QString& message) {
+    window_->messageLog()->error(tr("Export of %1 failed: %2").arg(widgets::plotTitle(id), message));
+  });
+  createMenus();
+}
+
+Workbench::~Workbench() = default;
+
+void Workbench::createMenus() {
+  QMenuBar* bar = window_->menuBar();
+  QMenu* file = menuNamed(bar, "File");
+  auto* report = new QAction(tr("Export &Report…"), this);
+  report->setObjectName("exportReport");
+  report->setShortcut(QKeySequence(tr("Ctrl+Shift+R")));
+  connect(report, &QAction::triggered, this, &Workbench::exportReportDialog);
+  if (file) file->insertAction(actionNamed(file, "Quit"), report);
+  if (file) file->insertSeparator(actionNamed(file, "Quit"));
+
+  QMenu* edit = menuNamed(bar, "Edit");
+  auto* prefs = new QAction(tr("&Preferences…"), this);
+  prefs->setObjectName("preferences");
+  prefs->setShortcut(QKeySequence::Preferences);
+  prefs->setMenuRole(QAction::PreferencesRole);
+  connect(prefs, &QAction::triggered, this, &Workbench::showPreferences);
+  if (edit) {
+    edit->addSeparator();
+    edit->addAction(prefs);
+  }
+
+  auto* menu = new QMenu(tr("&Analyses"), window_);
+  menu->setObjectName("AnalysesMenu");
+  QAction* run = menu->addAction(tr("&Run Selected Analysis"), this, [this] {
+    analysesDock_->show();
+    analysesDock_->raise();
+    analyses_->run();
+  });
+  run->setShortcut(QKeySequence(tr("Ctrl+R")));
+  menu->addAction(tr("&Cancel Analysis"), this, [this] { analyses_->cancel(); })
+      ->setShortcut(QKeySequence(tr("Ctrl+.")));
+  menu->addSeparator();
+  for (const widgets::AnalysisSpec& s : widgets::analysisCatalog())
+    menu->addAction(s.title + "…", this, [this, id = s.id] {
+      analyses_->selectAnalysis(id);
+      analysesDock_->show();
+      analysesDock_->raise();
+    });
+  menu->addSeparator();
+  menu->addAction(tr("Show &Plots"), this, [this] {
+    plotsDock_->show();
+    plotsDock_->raise();
+  });
+  QMenu* help = menuNamed(bar, "Help");
+  bar->insertMenu(help ? help->menuAction() : nullptr, menu);
+}
+
+void Workbench::onResult(const widgets::AnalysisResult& r) {
+  if (!r.json) return;
+  const widgets::AnalysisSpec* spec = widgets::findAnalysis(r.id);
+  const QString source = spec ? widgets::cliCommandLine(*spec, r.params, window_->document()->filePath()) : r.id;
+  plots_->showResult(r.id, *r.json, source);
+  if (spec && !spec->plots.isEmpty()) {
+    plotsDock_->show();
+    plotsDock_->raise();
+    if (!plotsDock_->isFloating() && plotsDock_->height() < 360)
+      window_->resizeDocks({plotsDock_}, {std::max(360, window_->height() * 2 / 5)}, Qt::Vertical);
+  }
+  window_->messageLog()->info(tr("%1 finished in %2 s").arg(spec ? spec->title : r.id).arg(r.seconds, 0, 'f', 1));
+}
+
+void Workbench::startSession(const QString& recoveryDir, bool offer) {
+  Preferences::instance().load();
+  recoveryDir_ = recoveryDir.isEmpty() ? widgets::Autosaver::defaultDirectory() : recoveryDir;
+  // This session's autosaver first: its lock keeps its own files from ever looking orphaned,
+  // and a recovered scene is then autosaved by this session.
+  autosaver_ = std::make_unique<widgets::Autosaver>(window_->document(), recoveryDir_);
+  autosaver_->setIntervalSeconds(Preferences::instance().values().autosaveSeconds);
+  connect(&Preferences::instance(), &Preferences::changed, autosaver_.get(),
+          [a = autosaver_.get()] { a->setIntervalSeconds(Preferences::instance().values().autosaveSeconds); });
+  connect(autosaver_.get(), &widgets::Autosaver::autosaveFailed, this,
+          [this](const QString& m) { window_->messageLog()->warning(m); });
+  if (offer) offerRecovery(recoveryDir_);
+}
+
+int Workbench::offerRecovery(const QString& recoveryDir) {
+  int recovered = 0;
+  for (const widgets::RecoveryEntry& e : widgets::Autosaver::findOrphans(recoveryDir)) {
+    QMessageBox box(QMessageBox::Warning, tr("Recover unsaved changes?"),
+                    tr("Foveated AR Studio did not close normally. Unsaved changes to <b>%1</b> were autosaved at "
+                       "%2.")
+                        .arg(e.displayName.toHtmlEscaped(), e.savedAt.toLocalTime().toString("yyyy-MM-dd HH:mm:ss")),
+                    QMessageBox::NoButton, window_);
+    box.setObjectName("RecoveryOffer");
+    box.setInformativeText(e.originalPath.isEmpty()
+                               ? tr("The scene had never been saved.")
+                               : tr("Recovering opens %1 with the changes applied, unsaved (Undo goes back to the "
+                                    "file).")
+                                     .arg(e.originalPath.toHtmlEscaped()));
+    QPushButton* rec = box.addButton(tr("Recover"), QMessageBox::AcceptRole);
+    rec->setObjectName("recover");
+    QPushButton* dis = box.addButton(tr("Discard"), QMessageBox::DestructiveRole);
+    dis->setObjectName("discard");
+    QPushButton* later = box.addButton(tr("Later"), QMessageBox::RejectRole);
+    later->setObjectName("later");
+    box.setDefaultButton(rec);
+    box.exec();
+    if (box.clickedButton() == rec) {
+      if (recover(e)) ++recovered;
+    } else if (box.clickedButton() == dis) {
+      widgets::Autosaver::discard(e);
+      window_->messageLog()->info(tr("Discarded the autosaved changes to %1").arg(e.displayName));
+    }
+  }
+  return recovered;
+}
+
+bool Workbench::recover(const widgets::RecoveryEntry& e) {
+  QString error;
+  const std::optional<Scene> scene = widgets::Autosaver::loadEntry(e, &error);
+  if (!scene) {
+    window_->messageLog()->error(tr("The recovery file %1 cannot be read (%2); it is kept.").arg(e.scenePath, error));
+    return false;
+  }
+  widgets::SceneDocument* doc = window_->document();
+  const SceneLoadResult original =
+      e.originalPath.isEmpty() ? SceneLoadResult{} : loadSceneFile(e.originalPath.toStdString());
+  if (original.ok()) {
+    doc->resetTo(*original.scene, QFileInfo(e.originalPath).absoluteFilePath());
+    const QStringList problems = doc->applyEdit(tr("Recovered unsaved changes"), [&](Scene& s) { s = *scene; });
+    if (!problems.isEmpty()) {
+      window_->messageLog()->error(problems.join("; "));
+      return false;
+    }
+  } else {
+    doc->resetTo(*scene, e.originalPath, e.displayName);
+  }
+  if (!doc->isModified()) doc->undoStack()->push(new QUndoCommand(tr("Recovered unsaved changes")));
+  widgets::Autosaver::discard(e);
+  if (autosaver_) autosaver_->saveNow();  // now owned by this session
+  window_->messageLog()->info(tr("Recovered the unsaved changes to %1 (autosaved %2)")
+                                  .arg(e.displayName, e.savedAt.toLocalTime().toString("yyyy-MM-dd HH:mm:ss")));
+  return true;
+}
+
+void Workbench::showPreferences() {
+  widgets::PreferencesDialog dialog(window_);
+  dialog.exec();
+}
+
+bool Workbench::exportReport(const QString& path, const ReportOptions& options, QString* error, int* pages,
+                             int* figures) {
+  const Scene scene = window_->document()->scene();
+  const QString scenePath = window_->document()->filePath();
+  auto cancel = std::make_shared<std::atomic<bool>>(false);
+  auto permille = std::make_shared<std::atomic<int>>(0);
+  std::optional<ReportData> data;
+  QString failure;
+  QThread* worker = QThread::create([&, cancel, permille] {
+    StudyControl c;
+    c.cancel = cancel.get();
+    c.on_progress = [permille](double f) { permille->store(static_cast<int>(f * 1000)); };
+    try {
+      data = computeReportData(scene, scenePath, options, c);
+    } catch (const std::exception& e) {
+      failure = QString::fromUtf8(e.what());
+    }
+  });
+  std::unique_ptr<QProgressDialog> progress;
+  if (window_->isVisible() && window_->isActiveWindow()) {
+    progress =
+        std::make_unique<QProgressDialog>(tr("Computing the report's analyses…"), tr("Cancel"), 0, 1000, window_);
+    progress->setWindowModality(Qt::WindowModal);
+    progress->setMinimumDuration(300);
+  }
+  worker->start();
+  while (!worker->isFinished()) {
+    QApplication::processEvents(QEventLoop::AllEvents, 30);
+    if (progress) {
+      progress->setValue(permille->load());
+      if (progress->wasCanceled()) cancel->store(true);
+    }
+    QThread::msleep(5);
+  }
+  worker->wait();
+  delete worker;
+  progress.reset();
+  auto fail = [&](const QString& m) {
+    if (error) *error = m;
+    window_->messageLog()->error(tr("Report not written: %1").arg(m));
+    return false;
+  };
+  if (!failure.isEmpty()) return fail(failure);
+  if (!data) return fail(tr("cancelled"));
+
+  // Plots filled in the studio for this very scene (or scene-independent ones) join the report.
+  QList<widgets::PlotData> extra;
+  const std::string sceneText = serializeScene(scene);
+  for (const QString& id : plots_->filledPlots())
+    for (const QString& a : widgets::plotSources(id)) {
+      const auto r = analyses_->lastResult(a);
+      if (r && (r->sceneText == sceneText || a == "grating" || a == "kogelnik-vs-rcwa")) {
+        extra << plots_->plot(id);
+        break;
+      }
+    }
+  const ReportContent content = composeReport(*window_, *data, extra, Preferences::instance().units());
+  QString writeError;
+  if (!writeReport(content, path, &writeError, pages)) return fail(writeError);
+  if (figures) *figures = content.figureCount();
+  window_->messageLog()->info(tr("Report written to %1 (%n figure(s))", "", content.figureCount()).arg(path));
+  for (const QString& p : data->problems) window_->messageLog()->warning(tr("report: %1").arg(p));
+  return true;
+}
+
+void Workbench::exportReportDialog() {
+  QDialog dialog(window_);
+  dialog.setWindowTitle(tr("Export Report"));
+  auto* form = new QFormLayout(&dialog);
+  auto* gazes = new QLineEdit(&dialog);
+  const auto g = window_->document()->scene().eye.gaze_deg;
+  gazes->setText(QString("%1,%2; -10,0; 10,0").arg(g[0]).arg(g[1]));
+  gazes->setToolTip(tr("Gazes for the ray/retina figures: yaw[,pitch] in degrees, separated by ';'"));
+  auto* rays = new QSpinBox(&dialog);
+  rays->setRange(50, 1000000);
+  rays->setValue(Preferences::instance().values().defaultRays);
+  form->addRow(tr("Gazes (deg)"), gazes);
+  form->addRow(tr("Rays per wavelength"), rays);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+  connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+  form->addRow(buttons);
+  if (dialog.exec() != QDialog::Accepted) return;
+  ReportOptions options;
+  options.rays = rays->value();
+  for (const QString& part : gazes->text().split(';', Qt::SkipEmptyParts)) {
+    std::array<double, 2> gz{};
+    if (!parseGaze(part, &gz)) {
+      QMessageBox::warning(window_, tr("Export Report"), tr("Not a gaze: \"%1\" (yaw[,pitch] in degrees)").arg(part));
+      return;
+    }
+    options.gazes_deg << gz;
+  }
+  const QString base = QFileInfo(window_->document()->displayName()).completeBaseName();
+  const QString path = QFileDialog::getSaveFileName(window_, tr("Export report"), base + "-report.pdf",
+                                                    tr("PDF documents (*.pdf);;HTML pages (*.html)"));
+  if (path.isEmpty()) return;
+  QString error;
+  if (!exportReport(path, options, &error) && error != tr("cancelled"))
+    QMessageBox::critical(window_, tr("Export Report"), tr("The report could not be written: %1").arg(error));
+}
+
+}  // namespace fovea::studio

@@ -1,0 +1,34 @@
+#pragma once
+// JSON forms of the analysis results, with the keys of the fovea-cli commands' --json output
+// (trace, sweep, compare-shift, sensitivity, resolution, optimize-lens, selectivity) so the
+// studio, its plots and its reports read the very same documents as the CLI. The GUI test
+// tests/gui/tst_analyses_panel.cpp checks the key sets against the CLI's output.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "model/analysis/angular_resolution.h"
+#include "model/analysis/beam_shaping.h"
+#include "model/analysis/gaze_studies.h"
+#include "model/analysis/hoe_selectivity.h"
+#include "model/physics/trace.h"
+#include "model/rigorous/kogelnik_vs_rcwa.h"
+
+namespace fovea {
+
+nlohmann::json traceResultJson(const TraceResult& r, const TraceOptions& o);
+nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis);
+// One method's part of compare-shift ("hoe_shift" / "source_shift" values).
+nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod method, GazeAxis axis);
+nlohmann::json eyeBoxJson(const EyeBox& eb);
+nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& samples, const std::string& parameter,
+                                     double nominal_value);
+nlohmann::json resolutionResultJson(const ResolutionResult& r, const Scene& scene);
+nlohmann::json lensOptimizationJson(const LensOptimization& r);
+nlohmann::json selectivityResultJson(const SelectivityResult& r);
+// {"points":[...every grid point...], "by_rho":[...summariseByRho rows...]}
+nlohmann::json kogelnikVsRcwaJson(const std::vector<rigorous::KogelnikRcwaPoint>& points);
+
+}  // namespace fovea

@@ -1,0 +1,279 @@
+#include "widgets/analyses/analyses_panel.h"
+
+#include <QApplication>
+#include <QClipboard>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSpinBox>
+#include <QTextBrowser>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+#include "widgets/analyses/analysis_summary.h"
+#include "widgets/preferences.h"
+#include "widgets/scene_document.h"
+
+namespace fovea::widgets {
+
+AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
+    : QWidget(parent), document_(document), runner_(new AnalysisRunner(this)) {
+  setObjectName("AnalysesPanel");
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 4, 4, 4);
+  combo_ = new QComboBox(this);
+  combo_->setObjectName("analysis");
+  for (const AnalysisSpec& s : analysisCatalog()) combo_->addItem(s.title, s.id);
+  layout->addWidget(combo_);
+  description_ = new QLabel(this);
+  description_->setWordWrap(true);
+  description_->setObjectName("description");
+  layout->addWidget(description_);
+
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  formHost_ = new QWidget(scroll);
+  form_ = new QFormLayout(formHost_);
+  form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+  scroll->setWidget(formHost_);
+  layout->addWidget(scroll, 1);
+
+  auto* buttons = new QHBoxLayout;
+  runButton_ = new QPushButton(tr("Run"), this);
+  runButton_->setObjectName("run");
+  runButton_->setDefault(true);
+  cancelButton_ = new QPushButton(tr("Cancel"), this);
+  cancelButton_->setObjectName("cancel");
+  cancelButton_->setEnabled(false);
+  defaultsButton_ = new QPushButton(tr("Defaults"), this);
+  defaultsButton_->setObjectName("defaults");
+  cliButton_ = new QPushButton(tr("Copy CLI"), this);
+  cliButton_->setObjectName("copyCli");
+  cliButton_->setToolTip(tr("Copy the equivalent fovea-cli command"));
+  buttons->addWidget(runButton_);
+  buttons->addWidget(cancelButton_);
+  buttons->addStretch(1);
+  buttons->addWidget(defaultsButton_);
+  buttons->addWidget(cliButton_);
+  layout->addLayout(buttons);
+  progress_ = new QProgressBar(this);
+  progress_->setObjectName("progress");
+  progress_->setRange(0, 1000);
+  progress_->setValue(0);
+  progress_->setTextVisible(true);
+  progress_->setFormat("%p%");
+  layout->addWidget(progress_);
+  status_ = new QLabel(tr("Ready."), this);
+  status_->setObjectName("status");
+  status_->setWordWrap(true);
+  layout->addWidget(status_);
+  summary_ = new QTextBrowser(this);
+  summary_->setObjectName("summary");
+  summary_->setMinimumHeight(120);
+  layout->addWidget(summary_, 1);
+
+  connect(combo_, &QComboBox::currentIndexChanged, this, [this] { rebuildForm(); });
+  connect(runButton_, &QPushButton::clicked, this, [this] { run(); });
+  connect(cancelButton_, &QPushButton::clicked, this, &AnalysesPanel::cancel);
+  connect(defaultsButton_, &QPushButton::clicked, this, &AnalysesPanel::resetParameters);
+  connect(cliButton_, &QPushButton::clicked, this, [this] {
+    const QString cmd = cliCommand();
+    if (!cmd.isEmpty()) QApplication::clipboard()->setText(cmd);
+    status_->setText(cmd.isEmpty() ? tr("This analysis has no fovea-cli twin.") : tr("Copied: %1").arg(cmd));
+  });
+  connect(runner_, &AnalysisRunner::progress, this,
+          [this](const QString&, double f) { progress_->setValue(static_cast<int>(std::lround(1000.0 * f))); });
+  connect(runner_, &AnalysisRunner::finished, this, [this](const AnalysisResult& r) {
+    results_[r.id] = r;
+    progress_->setValue(1000);
+    const AnalysisSpec* s = findAnalysis(r.id);
+    status_->setText(tr("%1 finished in %2 s.").arg(s ? s->title : r.id).arg(r.seconds, 0, 'f', 1));
+    showSummary(r);
+    emit resultReady(r);
+  });
+  connect(runner_, &AnalysisRunner::failed, this, [this](const QString&, const QString& message) {
+    progress_->setValue(0);
+    status_->setText(tr("Failed: %1").arg(message));
+  });
+  connect(runner_, &AnalysisRunner::cancelled, this, [this](const QString&) {
+    progress_->setValue(0);
+    status_->setText(tr("Cancelled; no result."));
+  });
+  connect(runner_, &AnalysisRunner::idle, this, [this] { setBusy(false); });
+  connect(&Preferences::instance(), &Preferences::changed, this, [this] {
+    const QString id = currentAnalysis();
+    if (results_.contains(id)) showSummary(results_[id]);
+  });
+  rebuildForm();
+}
+
+QString AnalysesPanel::currentAnalysis() const {
+  return combo_->currentData().toString();
+}
+
+void AnalysesPanel::selectAnalysis(const QString& id) {
+  const int i = combo_->findData(id);
+  if (i >= 0) combo_->setCurrentIndex(i);
+}
+
+void AnalysesPanel::rememberForm() {
+  const QString id = fields_.isEmpty() ? QString() : fields_.first()->property("analysis").toString();
+  if (!id.isEmpty()) edited_[id] = parameters();
+}
+
+void AnalysesPanel::rebuildForm() {
+  rememberForm();
+  while (form_->rowCount() > 0) form_->removeRow(0);
+  fields_.clear();
+  const AnalysisSpec* spec = findAnalysis(currentAnalysis());
+  if (!spec) return;
+  description_->setText(spec->description);
+  const AnalysisParams values =
+      edited_.value(spec->id, defaultParameters(*spec, Preferences::instance().values().defaultRays));
+  for (const AnalysisParameter& p : spec->parameters) {
+    QWidget* field = nullptr;
+    const QVariant v = values.value(p.key, p.defaultValue);
+    switch (p.kind) {
+      case AnalysisParameter::Kind::Number: {
+        auto* box = new QDoubleSpinBox(formHost_);
+        box->setDecimals(p.decimals);
+        box->setRange(p.minimum, p.maximum);
+        box->setValue(v.toDouble());
+        box->setSingleStep(std::pow(10.0, -std::min(p.decimals, 2)) * (p.decimals > 0 ? 1 : 1));
+        box->setKeyboardTracking(false);
+        if (!p.unit.isEmpty()) box->setSuffix(" " + p.unit);
+        field = box;
+        break;
+      }
+      case AnalysisParameter::Kind::Integer: {
+        auto* box = new QSpinBox(formHost_);
+        box->setRange(static_cast<int>(p.minimum), static_cast<int>(std::min(p.maximum, 2e9)));
+        box->setValue(v.toInt());
+        field = box;
+        break;
+      }
+      case AnalysisParameter::Kind::Choice: {
+        auto* box = new QComboBox(formHost_);
+        box->addItems(p.choices);
+        box->setCurrentText(v.toString());
+        field = box;
+        break;
+      }
+      case AnalysisParameter::Kind::Text: {
+        auto* box = new QComboBox(formHost_);
+        box->setEditable(true);
+        box->addItems(p.choices);
+        box->setCurrentText(v.toString());
+        field = box;
+        break;
+      }
+    }
+    field->setObjectName(p.key);
+    field->setProperty("analysis", spec->id);
+    field->setToolTip(QString("--%1: %2").arg(p.key, p.help));
+    form_->addRow(p.label, field);
+    fields_.insert(p.key, field);
+  }
+  cliButton_->setEnabled(spec->hasCliTwin);
+  if (results_.contains(spec->id))
+    showSummary(results_[spec->id]);
+  else
+    summary_->clear();
+}
+
+AnalysisParams AnalysesPanel::parameters() const {
+  AnalysisParams p;
+  for (auto it = fields_.begin(); it != fields_.end(); ++it) {
+    if (auto* d = qobject_cast<QDoubleSpinBox*>(it.value()))
+      p[it.key()] = d->value();
+    else if (auto* i = qobject_cast<QSpinBox*>(it.value()))
+      p[it.key()] = i->value();
+    else if (auto* c = qobject_cast<QComboBox*>(it.value()))
+      p[it.key()] = c->currentText();
+  }
+  return p;
+}
+
+bool AnalysesPanel::setParameter(const QString& key, const QVariant& value) {
+  QWidget* w = fields_.value(key);
+  if (!w) return false;
+  if (auto* d = qobject_cast<QDoubleSpinBox*>(w))
+    d->setValue(value.toDouble());
+  else if (auto* i = qobject_cast<QSpinBox*>(w))
+    i->setValue(value.toInt());
+  else if (auto* c = qobject_cast<QComboBox*>(w))
+    c->setCurrentText(value.toString());
+  return true;
+}
+
+void AnalysesPanel::resetParameters() {
+  edited_.remove(currentAnalysis());
+  fields_.clear();  // do not remember the form being replaced
+  rebuildForm();
+}
+
+bool AnalysesPanel::run() {
+  if (runner_->isRunning()) {
+    status_->setText(tr("An analysis is already running."));
+    return false;
+  }
+  const AnalysisSpec* spec = findAnalysis(currentAnalysis());
+  if (!spec) return false;
+  AnalysisParams p = parameters();
+  const QStringList problems = validateParameters(*spec, p);
+  if (!problems.isEmpty()) {
+    status_->setText(tr("Not started: %1").arg(problems.join("; ")));
+    return false;
+  }
+  progress_->setValue(0);
+  status_->setText(tr("Running %1 on %2…").arg(spec->title, document_->displayName()));
+  setBusy(true);
+  runner_->start(spec->id, document_->scene(), p);
+  return true;
+}
+
+void AnalysesPanel::cancel() {
+  if (!runner_->isRunning()) return;
+  runner_->cancel();
+  cancelButton_->setEnabled(false);
+  status_->setText(tr("Cancelling: the running samples finish, no new one starts…"));
+}
+
+std::optional<AnalysisResult> AnalysesPanel::lastResult(const QString& id) const {
+  if (!results_.contains(id)) return std::nullopt;
+  return results_[id];
+}
+
+QString AnalysesPanel::statusText() const {
+  return status_->text();
+}
+
+QString AnalysesPanel::cliCommand() const {
+  const AnalysisSpec* spec = findAnalysis(currentAnalysis());
+  return spec ? cliCommandLine(*spec, parameters(), document_->filePath()) : QString();
+}
+
+void AnalysesPanel::setBusy(bool busy) {
+  runButton_->setEnabled(!busy);
+  cancelButton_->setEnabled(busy);
+  combo_->setEnabled(!busy);
+  formHost_->setEnabled(!busy);
+  progress_->setFormat(busy ? tr("%p% — running") : tr("%p%"));
+}
+
+void AnalysesPanel::showSummary(const AnalysisResult& r) {
+  if (r.id != currentAnalysis() || !r.json) return;
+  summary_->setHtml(QString("<p><b>%1</b> on %2</p>")
+                        .arg(findAnalysis(r.id) ? findAnalysis(r.id)->title : r.id, r.sceneName.toHtmlEscaped()) +
+                    analysisSummaryHtml(r.id, *r.json, Preferences::instance().units()));
+}
+
+}  // namespace fovea::widgets

@@ -1,0 +1,566 @@
+#include "widgets/plots/plot_builders.h"
+
+#include <QColor>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace fovea::widgets {
+
+namespace {
+
+using Style = PlotSeries::Style;
+
+// A number of a JSON object, or NaN when absent / null / not a number.
+double num(const nlohmann::json& j, const char* key) {
+  if (!j.is_object()) return NAN;
+  const auto it = j.find(key);
+  if (it == j.end() || !it->is_number()) return NAN;
+  return it->get<double>();
+}
+double num(const nlohmann::json& j, const char* a, const char* b) {
+  if (!j.is_object() || !j.contains(a)) return NAN;
+  return num(j.at(a), b);
+}
+QVariant cell(double v) {
+  return std::isfinite(v) ? QVariant(v) : QVariant();
+}
+QString str(const nlohmann::json& j, const char* key) {
+  if (!j.is_object() || !j.contains(key) || !j.at(key).is_string()) return {};
+  return QString::fromStdString(j.at(key).get<std::string>());
+}
+const nlohmann::json& arr(const nlohmann::json& j, const char* key) {
+  static const nlohmann::json empty = nlohmann::json::array();
+  if (!j.is_object() || !j.contains(key) || !j.at(key).is_array()) return empty;
+  return j.at(key);
+}
+void addPoint(PlotSeries& s, double x, double y) {
+  if (std::isfinite(x) && std::isfinite(y)) s.points.append(QPointF(x, y));
+}
+PlotSeries series(const QString& name, Style style = Style::Line, QColor color = {}, bool right = false) {
+  PlotSeries s;
+  s.name = name;
+  s.style = style;
+  s.color = color;
+  s.rightAxis = right;
+  return s;
+}
+QString withUnit(const QString& what, const QString& unit) {
+  return unit.isEmpty() ? what : what + " (" + unit + ")";
+}
+QString fmt(double v, int significant = 4) {
+  return std::isfinite(v) ? QString::number(v, 'g', significant) : QStringLiteral("—");
+}
+
+const QColor kBlue(31, 119, 180), kOrange(255, 127, 14), kGreen(44, 160, 44), kRed(214, 39, 40), kPurple(148, 103, 189),
+    kGray(120, 120, 120), kBrown(140, 86, 75);
+
+// ---- sweep --------------------------------------------------------------------------------
+QList<PlotData> fromSweep(const nlohmann::json& r, const DisplayUnits& u, const QString& source) {
+  const QString axis = str(r, "axis").isEmpty() ? QStringLiteral("yaw") : str(r, "axis");
+  const QString gazeCol = withUnit("gaze " + axis, u.angleSymbol());
+  const nlohmann::json eb = r.contains("eyebox") ? r["eyebox"] : nlohmann::json::object();
+  const double eyebox = num(r, "eyebox_mm");
+  const auto gr = eb.contains("gaze_range_deg") ? eb["gaze_range_deg"] : nlohmann::json::array();
+  const auto tr = eb.contains("travel_mm") ? eb["travel_mm"] : nlohmann::json::array();
+  const QString eyeboxText = QString("Eye box %1 over gaze %2 .. %3 %4 (FOV within the tolerance of the zero-gaze FOV)")
+                                 .arg(u.length(eyebox))
+                                 .arg(gr.size() == 2 ? fmt(u.angleFromDeg(gr[0].get<double>())) : "—")
+                                 .arg(gr.size() == 2 ? fmt(u.angleFromDeg(gr[1].get<double>())) : "—")
+                                 .arg(u.angleSymbol());
+
+  PlotData fov;
+  fov.id = "fov-vs-gaze";
+  fov.title = plotTitle(fov.id);
+  fov.x.title = gazeCol;
+  fov.y.title = withUnit("retinal FOV", u.angleSymbol());
+  fov.y.min = 0;
+  PlotSeries h = series("horizontal", Style::Line, kBlue), v = series("vertical", Style::Line, kOrange),
+             d = series("diagonal", Style::Dashed, kGreen);
+  PlotData travel;
+  travel.id = "travel-vs-gaze";
+  travel.title = plotTitle(travel.id);
+  travel.x.title = gazeCol;
+  travel.y.title = withUnit("position", u.lengthSymbol());
+  PlotSeries shift = series(axis == "pitch" ? "optimal HOE shift (local y)" : "optimal HOE shift (local x)",
+                            Style::Line, kBlue),
+             pupil = series("pupil centre", Style::Dashed, kGray);
+  fov.columns = {gazeCol,
+                 withUnit("FOV horizontal", u.angleSymbol()),
+                 withUnit("FOV vertical", u.angleSymbol()),
+                 withUnit("FOV diagonal", u.angleSymbol()),
+                 "mean efficiency",
+                 "efficiency uniformity"};
+  travel.columns = {gazeCol, withUnit("HOE shift", u.lengthSymbol()), withUnit("pupil position", u.lengthSymbol())};
+  for (const auto& s : arr(r, "samples")) {
+    const double g = u.angleFromDeg(num(s, "gaze_deg"));
+    const double fh = u.angleFromDeg(num(s, "fov_deg", "horizontal")),
+                 fv = u.angleFromDeg(num(s, "fov_deg", "vertical")), fd = u.angleFromDeg(num(s, "fov_deg", "diagonal"));
+    addPoint(h, g, fh);
+    addPoint(v, g, fv);
+    addPoint(d, g, fd);
+    fov.rows.append({cell(g), cell(fh), cell(fv), cell(fd), cell(num(s, "mean_efficiency")),
+                     cell(num(s, "efficiency_uniformity"))});
+    const double sh = u.lengthFromMm(num(s, "hoe_shift_mm")), pp = u.lengthFromMm(num(s, "pupil_position_mm"));
+    addPoint(shift, g, sh);
+    addPoint(pupil, g, pp);
+    travel.rows.append({cell(g), cell(sh), cell(pp)});
+  }
+  fov.series = {h, v, d};
+  travel.series = {shift, pupil};
+  fov.caption = QString("Retinal FOV vs gaze %1 with the FOV-maximising HOE shift at each gaze (sweep). %2.")
+                    .arg(axis, eyeboxText);
+  travel.caption = QString(
+                       "HOE travel x_p vs gaze %1: the lateral HOE shift that maximises the FOV, beside the pupil "
+                       "centre's position. Travel at the eye-box borders %2 .. %3.")
+                       .arg(axis)
+                       .arg(tr.size() == 2 ? u.length(tr[0].get<double>()) : "—")
+                       .arg(tr.size() == 2 ? u.length(tr[1].get<double>()) : "—");
+  fov.source = travel.source = source;
+  return {fov, travel};
+}
+
+// ---- selectivity --------------------------------------------------------------------------
+QList<PlotData> fromSelectivity(const nlohmann::json& r, const DisplayUnits& u, const QString& source) {
+  PlotData ang;
+  ang.id = "efficiency-vs-angle";
+  ang.title = plotTitle(ang.id);
+  ang.x.title = withUnit("probe detuning from the projector's direction", u.angleSymbol());
+  ang.y.title = "diffraction efficiency";
+  ang.y.min = 0;
+  ang.y.max = 1;
+  PlotData spec;
+  spec.id = "efficiency-vs-wavelength";
+  spec.title = plotTitle(spec.id);
+  spec.x.title = "probe wavelength (nm)";
+  spec.y.title = "diffraction efficiency";
+  spec.y.min = 0;
+  spec.y.max = 1;
+  spec.columns = {"layer", "wavelength (nm)", "efficiency", "xi"};
+  ang.columns = {withUnit("detuning", u.angleSymbol())};
+  const auto& layers = arr(r, "layers");
+  std::vector<const nlohmann::json*> angleCurves;
+  QStringList summary;
+  for (const auto& l : layers) {
+    const QString name = str(l, "name");
+    const double probe = num(l, "probe_wavelength_nm");
+    const QString label = QString("%1 layer (%2 nm)").arg(name, fmt(probe));
+    PlotSeries a = series(label, Style::Line, wavelengthColor(probe));
+    for (const auto& s : arr(l, "angle")) addPoint(a, u.angleFromDeg(num(s, "detuning_deg")), num(s, "efficiency"));
+    PlotSeries w = series(label, Style::Line, wavelengthColor(probe));
+    for (const auto& s : arr(l, "spectrum")) {
+      addPoint(w, num(s, "wavelength_nm"), num(s, "efficiency"));
+      spec.rows.append({name, cell(num(s, "wavelength_nm")), cell(num(s, "efficiency")), cell(num(s, "xi"))});
+    }
+    ang.series.append(a);
+    spec.series.append(w);
+    ang.columns << withUnit(name + " efficiency", {});
+    angleCurves.push_back(&arr(l, "angle"));
+    summary << QString("%1: η %2 at the nominal probe, peak %3 at %4, FWHM %5 / %6 nm")
+                   .arg(name, fmt(num(l, "nominal_efficiency"), 3), fmt(num(l, "peak_angle_efficiency"), 3),
+                        u.angle(num(l, "peak_detuning_deg"), 3), u.angle(num(l, "angular_fwhm_deg"), 3),
+                        fmt(num(l, "spectral_fwhm_nm"), 3));
+  }
+  // Wide table: the layers share the detuning samples.
+  const std::size_t n = angleCurves.empty() ? 0 : angleCurves.front()->size();
+  for (std::size_t i = 0; i < n; ++i) {
+    QVariantList row{cell(u.angleFromDeg(num((*angleCurves.front())[i], "detuning_deg")))};
+    for (const auto* c : angleCurves) row << (i < c->size() ? cell(num((*c)[i], "efficiency")) : QVariant());
+    ang.rows.append(row);
+  }
+  const auto pt = r.contains("point_mm") ? r["point_mm"] : nlohmann::json::array();
+  const QString where =
+      pt.size() == 2
+          ? QString("at plate point (%1, %2)").arg(u.length(pt[0].get<double>()), u.length(pt[1].get<double>()))
+          : QString();
+  ang.caption = QString(
+                    "Angular selectivity of each HOE layer alone %1: efficiency as the projector's probe is "
+                    "tilted in its plane of incidence (Kogelnik, selectivity). %2.")
+                    .arg(where, summary.join("; "));
+  spec.caption = QString(
+                     "Spectral selectivity of each HOE layer alone %1 at the nominal probe direction "
+                     "(Kogelnik, selectivity).")
+                     .arg(where);
+  ang.source = spec.source = source;
+  return {ang, spec};
+}
+
+// ---- grating ------------------------------------------------------------------------------
+QList<PlotData> fromGrating(const nlohmann::json& r, const DisplayUnits& u, const QString& source) {
+  PlotData p;
+  p.id = "efficiency-vs-angle";
+  p.title = plotTitle(p.id);
+  p.x.title = withUnit("probe detuning (inside the film)", u.angleSymbol());
+  p.y.title = "diffraction efficiency";
+  p.y.min = 0;
+  p.y.max = 1;
+  const bool rcwa = r.contains("models") && r["models"].size() > 1;
+  PlotSeries k = series("Kogelnik", Style::Line, kBlue), w = series("RCWA", Style::Dashed, kRed);
+  p.columns = {withUnit("probe angle", u.angleSymbol()), withUnit("detuning", u.angleSymbol()), "Kogelnik efficiency"};
+  if (rcwa) p.columns << "RCWA efficiency";
+  for (const auto& s : arr(r, "samples")) {
+    const double x = u.angleFromDeg(num(s, "detuning_deg"));
+    addPoint(k, x, num(s, "kogelnik_efficiency"));
+    QVariantList row{cell(u.angleFromDeg(num(s, "probe_deg"))), cell(x), cell(num(s, "kogelnik_efficiency"))};
+    if (rcwa) {
+      addPoint(w, x, num(s, "rcwa_efficiency"));
+      row << cell(num(s, "rcwa_efficiency"));
+    }
+    p.rows.append(row);
+  }
+  p.series = {k};
+  if (rcwa) p.series.append(w);
+  const nlohmann::json c = r.contains("center") ? r["center"] : nlohmann::json::object();
+  p.caption = QString(
+                  "Planar %1 grating: efficiency vs probe angle around the request's probe (η %2, ν %3, "
+                  "ξ %4 there)%5.")
+                  .arg(str(c, "type"), fmt(num(c, "efficiency"), 4), fmt(num(c, "nu"), 4), fmt(num(c, "xi"), 4),
+                       rcwa ? ", Kogelnik against converged RCWA" : "");
+  p.source = source;
+  return {p};
+}
+
+// ---- resolution ---------------------------------------------------------------------------
+QList<PlotData> fromResolution(const nlohmann::json& r, const DisplayUnits& u, const QString& source) {
+  PlotData p;
+  p.id = "resolution-vs-eccentricity";
+  p.title = plotTitle(p.id);
+  p.x.title = withUnit("eccentricity", u.angleSymbol());
+  p.y.title = "resolution (cycles per degree)";
+  p.y.min = 0;
+  PlotSeries perceived = series("perceived", Style::Line, QColor(20, 20, 20)),
+             foveal = series("foveal display", Style::Line, kBlue),
+             peripheral = series("peripheral display", Style::Line, kOrange),
+             optical = series("foveal optics (MTF30, traced)", Style::Dashed, kPurple),
+             eye = series("eye limit", Style::Dashed, kGray);
+  p.columns = {withUnit("eccentricity", u.angleSymbol()),
+               "foveal (cpd)",
+               "peripheral (cpd)",
+               "optical limit (cpd)",
+               "optical limit model (cpd)",
+               "perceived (cpd)",
+               "foveal shown"};
+  const double eyeLimit = num(r, "eye_limit_cpd");
+  double xmin = INFINITY, xmax = -INFINITY;
+  for (const auto& s : arr(r, "samples")) {
+    const double e = u.angleFromDeg(num(s, "eccentricity_deg"));
+    addPoint(perceived, e, num(s, "perceived_cpd"));
+    addPoint(foveal, e, num(s, "foveal_cpd"));
+    addPoint(peripheral, e, num(s, "peripheral_cpd"));
+    addPoint(optical, e, num(s, "optical_limit_cpd"));
+    if (std::isfinite(e)) xmin = std::min(xmin, e), xmax = std::max(xmax, e);
+    p.rows.append(
+        {cell(e), cell(num(s, "foveal_cpd")), cell(num(s, "peripheral_cpd")), cell(num(s, "optical_limit_cpd")),
+         cell(num(s, "optical_limit_model_cpd")), cell(num(s, "perceived_cpd")),
+         s.contains("foveal_shown") && s["foveal_shown"].is_boolean() ? QVariant(s["foveal_shown"].get<bool>())
+                                                                      : QVariant()});
+  }
+  if (std::isfinite(eyeLimit) && xmin < xmax) eye.points = {QPointF(xmin, eyeLimit), QPointF(xmax, eyeLimit)};
+  perceived.markerSize = 0;
+  p.series = {foveal, peripheral, optical, eye, perceived};
+  const auto g = r.contains("gaze_deg") ? r["gaze_deg"] : nlohmann::json::array();
+  p.caption = QString(
+                  "Angular resolution vs eccentricity at gaze (%1, %2) %3: the foveal micro-OLED, the "
+                  "peripheral projector, the ray-traced optical limit of the foveal combiner and what the eye "
+                  "perceives (resolution). Peripheral pixel integral %4 of %5 pixels.")
+                  .arg(g.size() == 2 ? fmt(u.angleFromDeg(g[0].get<double>())) : "—")
+                  .arg(g.size() == 2 ? fmt(u.angleFromDeg(g[1].get<double>())) : "—")
+                  .arg(u.angleSymbol())
+                  .arg(fmt(num(r, "peripheral_pixel_integral"), 4))
+                  .arg(fmt(num(r, "pixels_horizontal"), 5));
+  p.source = source;
+  return {p};
+}
+
+// ---- kogelnik vs rcwa ---------------------------------------------------------------------
+QList<PlotData> fromKogelnikVsRcwa(const nlohmann::json& r, const DisplayUnits&, const QString& source) {
+  PlotData p;
+  p.id = "time-vs-error";
+  p.title = plotTitle(p.id);
+  p.x.title = "validity parameter ρ = λ²/(Λ² n0 n1)";
+  p.x.log = true;
+  p.y.title = "|η Kogelnik − η RCWA|";
+  p.y.log = true;
+  constexpr double kFloor = 1e-7;  // zero errors are drawn at the floor of the log axis
+  p.y.min = kFloor;
+  p.y.max = 1.0;
+  p.columns = {"geometry",
+               "thickness (um)",
+               "n1",
+               "xi",
+               "rho",
+               "Klein Q",
+               "Kogelnik efficiency",
+               "RCWA efficiency",
+               "abs error",
+               "Kogelnik (ns)",
+               "RCWA converged (ms)"};
+  std::map<std::string, PlotSeries> byGeometry;
+  std::vector<std::string> order;
+  const QColor palette[] = {kBlue, kOrange, kGreen, kRed, kPurple, kBrown, kGray};
+  for (const auto& s : arr(r, "points")) {
+    const std::string g = s.value("geometry", std::string("?"));
+    if (!byGeometry.count(g)) {
+      byGeometry[g] = series(QString::fromStdString(g), Style::Scatter, palette[order.size() % 7]);
+      order.push_back(g);
+    }
+    addPoint(byGeometry[g], num(s, "rho"), std::max(kFloor, num(s, "abs_error")));
+    p.rows.append({QString::fromStdString(g), cell(num(s, "thickness_um")), cell(num(s, "n1")),
+                   cell(num(s, "xi_target")), cell(num(s, "rho")), cell(num(s, "klein_q")),
+                   cell(num(s, "kogelnik_efficiency")), cell(num(s, "rcwa_efficiency")), cell(num(s, "abs_error")),
+                   cell(num(s, "kogelnik_ns")), cell(num(s, "rcwa_ms"))});
+  }
+  for (const auto& g : order) p.series.append(byGeometry[g]);
+  QString html =
+      "<table border='1' cellspacing='0' cellpadding='3'><tr><th>ρ range</th><th>points</th><th>max |Δη|</th>"
+      "<th>median |Δη|</th><th>max |Δη| at ν ≤ π/2</th><th>Kogelnik (ns)</th><th>RCWA (ms)</th>"
+      "<th>RCWA / Kogelnik time</th></tr>";
+  for (const auto& b : arr(r, "by_rho")) {
+    const double hi = num(b, "rho_max");
+    const double ratio = num(b, "mean_rcwa_ms") * 1e6 / num(b, "mean_kogelnik_ns");
+    html += QString(
+                "<tr><td>%1 – %2</td><td align='right'>%3</td><td align='right'>%4</td><td align='right'>%5</td>"
+                "<td align='right'>%6</td><td align='right'>%7</td><td align='right'>%8</td>"
+                "<td align='right'>%9</td></tr>")
+                .arg(fmt(num(b, "rho_min")), std::isfinite(hi) ? fmt(hi) : QStringLiteral("∞"), fmt(num(b, "points")),
+                     QString::number(num(b, "max_error"), 'e', 2), QString::number(num(b, "median_error"), 'e', 2),
+                     QString::number(num(b, "max_error_weak"), 'e', 2), fmt(num(b, "mean_kogelnik_ns"), 3),
+                     fmt(num(b, "mean_rcwa_ms"), 3),
+                     std::isfinite(ratio) ? QString::number(ratio, 'e', 1) : QStringLiteral("—"));
+  }
+  p.summaryHtml = html + "</table>";
+  p.caption = QString(
+                  "Kogelnik's two-wave theory against converged RCWA (%1 grid, %2 points): the error vs the "
+                  "validity parameter ρ per grating geometry; the table gives the error and the run time of "
+                  "each model by ρ decade (errors below 1e-7 drawn at 1e-7).")
+                  .arg(str(r, "grid").isEmpty() ? "quick" : str(r, "grid"))
+                  .arg(arr(r, "points").size());
+  p.source = source;
+  return {p};
+}
+
+// ---- sensitivity --------------------------------------------------------------------------
+QList<PlotData> fromSensitivity(const nlohmann::json& r, const DisplayUnits& u, const QString& source) {
+  PlotData p;
+  p.id = "sensitivity";
+  p.title = plotTitle(p.id);
+  const QString param = str(r, "parameter");
+  p.x.title = param;
+  p.y.title = withUnit("retinal FOV", u.angleSymbol());
+  p.y.min = 0;
+  p.hasY2 = true;
+  p.y2.title = "efficiency";
+  p.y2.min = 0;
+  p.y2.max = 1;
+  PlotSeries h = series("FOV horizontal", Style::Line, kBlue), v = series("FOV vertical", Style::Line, kOrange),
+             e = series("mean efficiency", Style::Dashed, kGreen, true),
+             un = series("efficiency uniformity", Style::Dashed, kPurple, true);
+  p.columns = {param,
+               withUnit("FOV horizontal", u.angleSymbol()),
+               withUnit("FOV vertical", u.angleSymbol()),
+               withUnit("FOV diagonal", u.angleSymbol()),
+               "mean efficiency",
+               "efficiency uniformity",
+               "rays in pupil"};
+  for (const auto& s : arr(r, "samples")) {
+    const double x = num(s, "value");
+    const double fh = u.angleFromDeg(num(s, "fov_deg", "horizontal")),
+                 fv = u.angleFromDeg(num(s, "fov_deg", "vertical"));
+    addPoint(h, x, fh);
+    addPoint(v, x, fv);
+    addPoint(e, x, num(s, "mean_efficiency"));
+    addPoint(un, x, num(s, "efficiency_uniformity"));
+    p.rows.append({cell(x), cell(fh), cell(fv), cell(u.angleFromDeg(num(s, "fov_deg", "diagonal"))),
+                   cell(num(s, "mean_efficiency")), cell(num(s, "efficiency_uniformity")),
+                   cell(num(s, "rays_in_pupil"))});
+  }
+  p.series = {h, v, e, un};
+  p.caption = QString(
+                  "Sensitivity of the retinal FOV (left axis), the mean efficiency and its uniformity (right "
+                  "axis) to %1 (nominal %2), at the scene's gaze.")
+                  .arg(param, fmt(num(r, "nominal_value"), 5));
+  p.source = source;
+  return {p};
+}
+
+// ---- optimize-lens ------------------------------------------------------------------------
+QList<PlotData> fromLens(const nlohmann::json& r, const DisplayUnits& u, const QString& source) {
+  PlotData p;
+  p.id = "lens-candidates";
+  p.title = plotTitle(p.id);
+  p.x.title = withUnit("focal length", u.lengthSymbol());
+  p.y.title = "RMS pixel spot on the HOE (µm)";
+  p.y.min = 0;
+  std::map<double, PlotSeries> byDiameter;
+  p.columns = {"part",
+               withUnit("focal length", u.lengthSymbol()),
+               withUnit("diameter", u.lengthSymbol()),
+               withUnit("distance", u.lengthSymbol()),
+               withUnit("decentre", u.lengthSymbol()),
+               withUnit("tilt", u.angleSymbol()),
+               "RMS spot (um)",
+               "evaluations"};
+  double fmin = INFINITY, fmax = -INFINITY;
+  for (const auto& c : arr(r, "candidates")) {
+    const double dia = num(c, "diameter_mm"), f = u.lengthFromMm(num(c, "focal_length_mm"));
+    if (!byDiameter.count(dia))
+      byDiameter[dia] = series(QString("Ø %1 stock lenses").arg(u.length(dia, 3)), Style::Scatter,
+                               byDiameter.empty() ? kBlue : kOrange);
+    addPoint(byDiameter[dia], f, num(c, "rms_spot_um"));
+    if (std::isfinite(f)) fmin = std::min(fmin, f), fmax = std::max(fmax, f);
+    p.rows.append({QString::fromStdString(c.value("part", std::string())), cell(f), cell(u.lengthFromMm(dia)),
+                   cell(u.lengthFromMm(num(c, "distance_mm"))), cell(u.lengthFromMm(num(c, "decenter_mm"))),
+                   cell(u.angleFromDeg(num(c, "tilt_deg"))), cell(num(c, "rms_spot_um")), cell(num(c, "evaluations"))});
+  }
+  for (auto& [d, s] : byDiameter) p.series.append(s);
+  const double before = num(r, "rms_spot_um", "before");
+  if (std::isfinite(before) && fmin < fmax) {
+    PlotSeries b = series("no lens", Style::Dashed, kGray);
+    b.points = {QPointF(fmin, before), QPointF(fmax, before)};
+    p.series.append(b);
+  }
+  p.caption = QString(
+                  "Beam-shaping lens candidates (optimize-lens): the best placement of each stock lens. Best: "
+                  "%1, RMS spot %2 µm → %3 µm (%4 % sharper).")
+                  .arg(str(r, "vendor") + " " + str(r, "part"), fmt(before), fmt(num(r, "rms_spot_um", "after")),
+                       fmt(num(r, "improvement_percent"), 3));
+  p.source = source;
+  return {p};
+}
+
+}  // namespace
+
+QStringList plotIds() {
+  return {"fov-vs-gaze",
+          "travel-vs-gaze",
+          "efficiency-vs-angle",
+          "efficiency-vs-wavelength",
+          "resolution-vs-eccentricity",
+          "time-vs-error",
+          "sensitivity",
+          "lens-candidates"};
+}
+
+QString plotTitle(const QString& id) {
+  static const QMap<QString, QString> titles{{"fov-vs-gaze", "FOV vs gaze"},
+                                             {"travel-vs-gaze", "HOE travel vs gaze"},
+                                             {"efficiency-vs-angle", "Efficiency vs detuning"},
+                                             {"efficiency-vs-wavelength", "Efficiency vs wavelength"},
+                                             {"resolution-vs-eccentricity", "Resolution vs eccentricity"},
+                                             {"time-vs-error", "Kogelnik vs RCWA: error and time"},
+                                             {"sensitivity", "Sensitivity"},
+                                             {"lens-candidates", "Beam-shaping lens candidates"}};
+  return titles.value(id, id);
+}
+
+QStringList plotSources(const QString& id) {
+  if (id == "fov-vs-gaze" || id == "travel-vs-gaze") return {"sweep"};
+  if (id == "efficiency-vs-angle") return {"selectivity", "grating"};
+  if (id == "efficiency-vs-wavelength") return {"selectivity"};
+  if (id == "resolution-vs-eccentricity") return {"resolution"};
+  if (id == "time-vs-error") return {"kogelnik-vs-rcwa"};
+  if (id == "sensitivity") return {"sensitivity"};
+  if (id == "lens-candidates") return {"optimize-lens"};
+  return {};
+}
+
+QList<PlotData> plotsFromResult(const QString& id, const nlohmann::json& r, const DisplayUnits& u,
+                                const QString& source) {
+  if (!r.is_object()) return {};
+  if (id == "sweep") return fromSweep(r, u, source);
+  if (id == "selectivity") return fromSelectivity(r, u, source);
+  if (id == "grating") return fromGrating(r, u, source);
+  if (id == "resolution") return fromResolution(r, u, source);
+  if (id == "kogelnik-vs-rcwa") return fromKogelnikVsRcwa(r, u, source);
+  if (id == "sensitivity") return fromSensitivity(r, u, source);
+  if (id == "optimize-lens") return fromLens(r, u, source);
+  return {};
+}
+
+PlotData retinaMapPlot(const TraceResult& trace, double threshold, const DisplayUnits& u) {
+  PlotData p;
+  p.id = "retina-map";
+  p.title = QString("Retina map at gaze (%1, %2) %3")
+                .arg(fmt(u.angleFromDeg(trace.gaze_deg[0])), fmt(u.angleFromDeg(trace.gaze_deg[1])), u.angleSymbol());
+  p.x.title = withUnit("visual angle, yaw", u.angleSymbol());
+  p.y.title = withUnit("visual angle, pitch", u.angleSymbol());
+  struct Bin {
+    double lo, hi;
+    QColor color;
+  };
+  const Bin bins[] = {{0.0, threshold, QColor(175, 175, 175)}, {threshold, 0.3, QColor(68, 1, 84)},
+                      {0.3, 0.5, QColor(59, 82, 139)},         {0.5, 0.7, QColor(33, 145, 140)},
+                      {0.7, 0.85, QColor(94, 201, 98)},        {0.85, 1.0 + 1e-9, QColor(253, 200, 37)}};
+  QVector<PlotSeries> classes;
+  for (const Bin& b : bins) {
+    PlotSeries s = series(b.lo == 0.0 ? QString("η < %1").arg(fmt(threshold, 2))
+                                      : QString("η %1–%2").arg(fmt(b.lo, 2), fmt(std::min(1.0, b.hi), 2)),
+                          Style::Scatter, b.color);
+    s.markerSize = 4.0;
+    classes << s;
+  }
+  p.columns = {withUnit("yaw", u.angleSymbol()),
+               withUnit("pitch", u.angleSymbol()),
+               "wavelength (nm)",
+               "efficiency",
+               "pixel x",
+               "pixel y"};
+  double ymin = INFINITY, ymax = -INFINITY, pmin = INFINITY, pmax = -INFINITY;
+  for (const TracedRay& r : trace.ray_list) {
+    if (!r.in_pupil) continue;
+    const double y = u.angleFromDeg(r.field_deg[0]), pt = u.angleFromDeg(r.field_deg[1]);
+    for (int b = 0; b < 6; ++b)
+      if (r.efficiency >= bins[b].lo && r.efficiency < bins[b].hi) {
+        addPoint(classes[b], y, pt);
+        break;
+      }
+    if (r.efficiency >= threshold) {
+      ymin = std::min(ymin, y), ymax = std::max(ymax, y);
+      pmin = std::min(pmin, pt), pmax = std::max(pmax, pt);
+    }
+    p.rows.append(
+        {cell(y), cell(pt), cell(r.wavelength_nm), cell(r.efficiency), QVariant(r.pixel[0]), QVariant(r.pixel[1])});
+  }
+  for (const PlotSeries& s : classes)
+    if (!s.points.isEmpty()) p.series << s;
+  if (ymin < ymax) {
+    PlotSeries box = series("FOV box", Style::Dashed, QColor(20, 20, 20));
+    box.points = {QPointF(ymin, pmin), QPointF(ymax, pmin), QPointF(ymax, pmax), QPointF(ymin, pmax),
+                  QPointF(ymin, pmin)};
+    p.series << box;
+  }
+  p.caption = QString(
+                  "Retina map at gaze (%1, %2) %3: the visual angle of every projector ray entering the pupil "
+                  "(all wavelengths), coloured by diffraction efficiency; the dashed box is the FOV of the rays "
+                  "with η ≥ %4: %5 × %6 %3 (diagonal %7 %3), mean efficiency %8.")
+                  .arg(fmt(u.angleFromDeg(trace.gaze_deg[0])), fmt(u.angleFromDeg(trace.gaze_deg[1])), u.angleSymbol(),
+                       fmt(threshold, 2), fmt(u.angleFromDeg(trace.fov_deg.horizontal)),
+                       fmt(u.angleFromDeg(trace.fov_deg.vertical)), fmt(u.angleFromDeg(trace.fov_deg.diagonal)),
+                       fmt(trace.mean_efficiency, 3));
+  return p;
+}
+
+QColor wavelengthColor(double nm) {
+  // Piecewise-linear approximation of the spectral locus in sRGB (Bruton), darkened a little
+  // so that lines stay visible on white.
+  double r = 0, g = 0, b = 0;
+  if (nm >= 380 && nm < 440)
+    r = (440 - nm) / 60, b = 1;
+  else if (nm >= 440 && nm < 490)
+    g = (nm - 440) / 50, b = 1;
+  else if (nm >= 490 && nm < 510)
+    g = 1, b = (510 - nm) / 20;
+  else if (nm >= 510 && nm < 580)
+    r = (nm - 510) / 70, g = 1;
+  else if (nm >= 580 && nm < 645)
+    r = 1, g = (645 - nm) / 65;
+  else if (nm >= 645 && nm <= 780)
+    r = 1;
+  else
+    return QColor(90, 90, 90);
+  const double k = 0.85;
+  return QColor::fromRgbF(float(k * r), float(k * g), float(k * b));
+}
+
+}  // namespace fovea::widgets

@@ -1,0 +1,85 @@
+#pragma once
+// The studio's preferences, persisted with QSettings ("preferences/..."): how lengths and
+// angles are displayed (plots, analysis summaries, reports), the default ray count of the
+// analyses, the colour theme and the autosave interval. One shared instance; widgets follow
+// changes through changed(). Values are always stored in the model's units (mm, deg);
+// only their display is converted.
+
+#include <QDialog>
+#include <QObject>
+#include <QString>
+
+class QComboBox;
+class QSpinBox;
+class QApplication;
+
+namespace fovea::widgets {
+
+enum class LengthUnit { Millimetre, Micrometre, Inch };
+enum class AngleUnit { Degree, Radian };
+enum class Theme { System, Light, Dark };
+
+struct PreferenceValues {
+  LengthUnit length = LengthUnit::Millimetre;
+  AngleUnit angle = AngleUnit::Degree;
+  int defaultRays = 1500;  // rays per wavelength of new analyses (50 .. 1e6)
+  Theme theme = Theme::System;
+  int autosaveSeconds = 5;  // 1 .. 600
+  bool operator==(const PreferenceValues&) const = default;
+};
+
+// Display conversion of the model's units.
+struct DisplayUnits {
+  LengthUnit lengthUnit = LengthUnit::Millimetre;
+  AngleUnit angleUnit = AngleUnit::Degree;
+  double lengthFromMm(double mm) const;
+  double angleFromDeg(double deg) const;
+  QString lengthSymbol() const;                          // "mm", "µm", "in"
+  QString angleSymbol() const;                           // "deg", "rad"
+  QString length(double mm, int significant = 4) const;  // "12.5 mm"
+  QString angle(double deg, int significant = 4) const;  // "20 deg"
+};
+
+class Preferences : public QObject {
+  Q_OBJECT
+ public:
+  static Preferences& instance();
+
+  const PreferenceValues& values() const { return values_; }
+  DisplayUnits units() const { return {values_.length, values_.angle}; }
+  // Applies (theme included) and, when persistent, writes them to QSettings.
+  void setValues(const PreferenceValues& v);
+  // Reads QSettings (missing or invalid entries keep their defaults) and enables writing.
+  void load();
+  void setPersistent(bool on) { persistent_ = on; }
+  static void applyTheme(Theme theme);
+
+  static QString lengthUnitKey(LengthUnit u);
+  static QString angleUnitKey(AngleUnit u);
+  static QString themeKey(Theme t);
+
+ signals:
+  void changed();
+
+ private:
+  Preferences() = default;
+  PreferenceValues values_;
+  bool persistent_ = false;
+};
+
+class PreferencesDialog : public QDialog {
+  Q_OBJECT
+ public:
+  explicit PreferencesDialog(QWidget* parent = nullptr);
+  PreferenceValues chosen() const;
+  void accept() override;  // applies through Preferences::setValues
+
+ private:
+  QComboBox* length_ = nullptr;
+  QComboBox* angle_ = nullptr;
+  QSpinBox* rays_ = nullptr;
+  QComboBox* theme_ = nullptr;
+  QSpinBox* autosave_ = nullptr;
+};
+
+}  // namespace fovea::widgets

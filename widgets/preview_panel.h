@@ -1,0 +1,101 @@
+#pragma once
+// Foveated preview (seed B.2.3): the target, the foveal image (micro-OLED), the peripheral
+// image (projector) and the perceived composite, updating live as the gaze sliders move.
+// The compositing runs on a worker thread (model FoveatedCompositor, which recomputes only
+// what a gaze change touches); the GUI thread only shows finished frames. Requests made
+// while the worker is busy are coalesced to the newest gaze. The FLIP seam figure is
+// computed once the gaze has rested for a moment.
+
+#include <QImage>
+#include <QPointer>
+#include <QThread>
+#include <QWidget>
+
+#include <array>
+#include <optional>
+
+class QCheckBox;
+class QLabel;
+class QSlider;
+class QTimer;
+
+namespace fovea::widgets {
+
+class SceneDocument;
+class PreviewWorker;
+
+// A titled image that keeps its aspect ratio, with optional gaze rings (degrees) drawn
+// on an image spanning `fov_deg`.
+class PreviewImageView : public QWidget {
+  Q_OBJECT
+ public:
+  PreviewImageView(const QString& title, QWidget* parent = nullptr);
+  void setImage(const QImage& image);
+  void setRings(std::array<double, 2> fov_deg, std::array<double, 2> centre_deg, std::vector<double> radii_deg);
+  const QImage& image() const { return image_; }
+  QSize sizeHint() const override { return {320, heightForWidth(320)}; }
+  // Title line plus the image's height at this width (16:9 until an image arrives).
+  bool hasHeightForWidth() const override { return true; }
+  int heightForWidth(int width) const override;
+
+ protected:
+  void paintEvent(QPaintEvent*) override;
+
+ private:
+  QString title_;
+  QImage image_, scaled_;
+  std::array<double, 2> fov_{0, 0}, centre_{0, 0};
+  std::vector<double> radii_;
+};
+
+struct PreviewFrame {
+  QImage target, foveal, peripheral, perceived;
+  std::array<double, 2> gaze_deg{0, 0};
+  std::array<double, 2> target_fov_deg{0, 0}, foveal_fov_deg{0, 0};
+  std::array<double, 3> ring_deg{0, 0, 0};
+  double update_ms = 0;
+  std::optional<double> seam_flip;
+  QString error;
+  int generation = 0;
+};
+
+class PreviewPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit PreviewPanel(SceneDocument* document, QWidget* parent = nullptr);
+  ~PreviewPanel() override;
+
+  // Loads a target image (any format OpenImageIO reads) on the worker; errors show in
+  // the panel's status line and leave the current target.
+  void loadTarget(const QString& path);
+  void setGaze(double yaw_deg, double pitch_deg);
+  std::array<double, 2> gaze() const;
+  // Number of frames shown so far and the newest one (for tests).
+  int framesShown() const { return framesShown_; }
+  const PreviewFrame& lastFrame() const { return last_; }
+
+ signals:
+  void frameShown();
+
+ private:
+  friend class PreviewWorker;
+  void rebuild();                 // scene or blending changed: new compositor (keeps the target)
+  void requestRender(bool seam);  // coalesced
+  void showFrame(const PreviewFrame& frame);
+
+  SceneDocument* document_;
+  QThread thread_;
+  PreviewWorker* worker_ = nullptr;
+  QSlider *yaw_ = nullptr, *pitch_ = nullptr;
+  QLabel *yawLabel_ = nullptr, *pitchLabel_ = nullptr, *status_ = nullptr;
+  QCheckBox* blend_ = nullptr;
+  PreviewImageView *targetView_ = nullptr, *fovealView_ = nullptr, *peripheralView_ = nullptr,
+                   *perceivedView_ = nullptr;
+  QTimer* seamTimer_ = nullptr;
+  bool busy_ = false;
+  std::optional<bool> pending_;  // a request waiting (with or without the seam figure)
+  int framesShown_ = 0;
+  PreviewFrame last_;
+};
+
+}  // namespace fovea::widgets
