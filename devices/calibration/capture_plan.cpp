@@ -117,8 +117,6 @@ CaptureStep captureStepFromJson(const nlohmann::json& j) {
 }
 
 std::function<std::array<double, 2>(std::array<double, 2>)> analysedHoeShift(const Scene& scene, int rays) {
-  if (!traceEvaluatorAvailable())
-    return [scene](std::array<double, 2> g) { return geometricHoeShiftForGaze(scene, g); };
   TraceEvaluatorOptions o;
   o.rays = rays;
   const FovEvaluator eval = traceEvaluator(o);
