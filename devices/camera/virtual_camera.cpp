@@ -37,10 +37,13 @@ Frame VirtualCamera::grab() {
   if (radiance.type() != CV_32F) radiance.convertTo(radiance, CV_32F);
   // Signal: 0..1 radiance maps to 0..255 DN at 10 ms and gain 1; Gaussian read noise.
   cv::Mat dn = radiance * (255.0 * gain_ * exposure_s_ / 0.01);
-  cv::Mat noise(dn.size(), CV_32F);
-  std::normal_distribution<float> n(0.0f, static_cast<float>(noise_sigma_));
-  for (auto it = noise.begin<float>(); it != noise.end<float>(); ++it) *it = n(rng_);
-  dn += noise;
+  if (noise_sigma_ > 0) {
+    std::normal_distribution<float> n(0.0f, static_cast<float>(noise_sigma_));
+    for (int y = 0; y < dn.rows; ++y) {
+      float* row = dn.ptr<float>(y);
+      for (int x = 0; x < dn.cols; ++x) row[x] += n(rng_);
+    }
+  }
   Frame f;
   dn.convertTo(f.image, CV_8U);  // saturates at 0 and 255
   f.exposure_start_s = start;

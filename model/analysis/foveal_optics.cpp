@@ -20,10 +20,11 @@ double diffractionMtf(double nu_cpd, double cutoff_cpd) {
   if (s >= 1) return 0;
   return 2 / std::numbers::pi * (std::acos(s) - s * std::sqrt(1 - s * s));
 }
+}  // namespace
 
 // Backward ray from pupil point `p` aimed at `q`; returns the display-plane hit (x, y).
-std::optional<Eigen::Vector2d> traceToDisplay(const CombinerPrescription& c, const Eigen::Vector3d& p,
-                                              const Eigen::Vector3d& q) {
+std::optional<Eigen::Vector2d> traceCombinerToDisplay(const CombinerPrescription& c, const Eigen::Vector3d& p,
+                                                      const Eigen::Vector3d& q) {
   const Eigen::Vector3d d = (q - p).normalized();
   const double R = 2 * c.focal_length_mm;
   const Eigen::Vector3d centre(0, 0, c.mirror_distance_mm - R);  // concave towards the eye
@@ -43,7 +44,6 @@ std::optional<Eigen::Vector2d> traceToDisplay(const CombinerPrescription& c, con
   const Eigen::Vector3d h = x + s * r;
   return Eigen::Vector2d(h.x(), h.y());
 }
-}  // namespace
 
 CombinerPrescription combinerPrescription(const Scene& scene) {
   const auto& ic = scene.foveal_display.combiner;
@@ -82,8 +82,8 @@ FovealOpticsSample tracedCombinerMtf30(const Scene& scene, double gaze_yaw_deg, 
   const Eigen::Vector3d q = imagePoint(field_deg);
   // Plate scale: display mm per radian of field, from neighbouring chief rays.
   constexpr double h = 0.01;
-  const auto c1 = traceToDisplay(c, pupil, imagePoint(field_deg + h));
-  const auto c0 = traceToDisplay(c, pupil, imagePoint(field_deg - h));
+  const auto c1 = traceCombinerToDisplay(c, pupil, imagePoint(field_deg + h));
+  const auto c0 = traceCombinerToDisplay(c, pupil, imagePoint(field_deg - h));
   FovealOpticsSample out;
   out.best_focus_mm = (q - pupil).norm();
   if (!c1 || !c0) return out;
@@ -101,7 +101,7 @@ FovealOpticsSample tracedCombinerMtf30(const Scene& scene, double gaze_yaw_deg, 
       for (int j = 0; j < n; ++j) {
         const double u = -1 + (2.0 * i + 1) / n, w = -1 + (2.0 * j + 1) / n;
         if (u * u + w * w > 1) continue;
-        const auto hit = traceToDisplay(c, pupil + rp * (u * ex + w * ey), target);
+        const auto hit = traceCombinerToDisplay(c, pupil + rp * (u * ex + w * ey), target);
         if (!hit) continue;
         sx += hit->x();
         sxx += hit->x() * hit->x();

@@ -14,6 +14,10 @@
 // scale (chief rays at neighbouring fields). MTF(nu) = MTF_diffraction(nu; pupil, 550 nm)
 // * exp(-2 pi^2 sigma^2 nu^2) (Gaussian blur); the MTF30 frequency solves MTF = 0.3.
 
+#include <optional>
+
+#include <Eigen/Core>
+
 #include "model/scene/scene.h"
 
 namespace fovea {
@@ -25,6 +29,13 @@ struct CombinerPrescription {
 };
 
 CombinerPrescription combinerPrescription(const Scene& scene);
+
+// One backward ray of the unfolded combiner: from point `p` (the frame above: zero-gaze pupil
+// at the origin, +z along bench +z) aimed at `q`, reflected by the spherical mirror, to the
+// display plane z = b - u. Returns the (x, y) hit in mm, or nullopt when it misses the mirror
+// or never reaches the plane. Used by the virtual bench camera (devices/virtual).
+std::optional<Eigen::Vector2d> traceCombinerToDisplay(const CombinerPrescription& c, const Eigen::Vector3d& p,
+                                                      const Eigen::Vector3d& q);
 
 struct FovealOpticsSample {
   double rms_blur_arcmin = 0;  // 1-D (horizontal) angular RMS blur from aberrations

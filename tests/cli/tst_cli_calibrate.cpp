@@ -1,0 +1,64 @@
+// fovea-cli calibrate geometric --virtual contract: exactly the keys captures,
+// residual_px_rms, ground_truth_error_px; the virtual calibration recovers the ground-truth
+// warps to < 0.5 px RMS; --output keeps the session; missing --virtual is a usage error.
+#include <QtTest>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+Run cli(const QStringList& args) {
+  QProcess p;
+  p.start(FOVEA_CLI_PATH, args);
+  p.waitForFinished(900000);
+  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput().toStdString(),
+          p.readAllStandardError().toStdString()};
+}
+}  // namespace
+
+class TestCliCalibrate : public QObject {
+  Q_OBJECT
+ private slots:
+  void geometricVirtualJson() {
+    namespace fs = std::filesystem;
+    const fs::path out = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_calibrate";
+    fs::remove_all(out);
+    const Run r =
+        cli({"calibrate", "geometric", "--virtual", "--json", "--output", QString::fromStdString(out.string())});
+    QVERIFY2(r.code == 0, r.err.c_str());
+    const auto j = nlohmann::json::parse(r.out);
+    QCOMPARE(j.size(), std::size_t{3});
+    QVERIFY(j["captures"].is_number_integer());
+    QVERIFY(j["residual_px_rms"].is_number());
+    QVERIFY(j["ground_truth_error_px"].is_number());
+    QCOMPARE(j["captures"].get<int>(), 8);  // 5 gazes x projector + 3 within the micro-OLED's reach
+    qInfo("residual %.3f px, ground truth %.3f px", j["residual_px_rms"].get<double>(),
+          j["ground_truth_error_px"].get<double>());
+    QVERIFY(j["residual_px_rms"].get<double>() < 0.5);
+    QVERIFY(j["ground_truth_error_px"].get<double>() < 0.5);
+    // The session folder: manifest, one PNG per capture, the per-capture report.
+    std::ifstream m(out / "manifest.json");
+    const auto manifest = nlohmann::json::parse(m);
+    QCOMPARE(manifest["captures"].size(), std::size_t{8});
+    for (const auto& c : manifest["captures"]) QVERIFY(fs::exists(out / c["image"].get<std::string>()));
+    std::ifstream c(out / "calibration.json");
+    const auto report = nlohmann::json::parse(c);
+    QCOMPARE(report["per_capture"].size(), std::size_t{8});
+    for (const auto& p : report["per_capture"]) QVERIFY(p["ground_truth_error_px"].get<double>() < 0.5);
+  }
+
+  void needsVirtual() {
+    const Run r = cli({"calibrate", "geometric", "--json"});
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.find("--virtual") != std::string::npos);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliCalibrate)
+#include "tst_cli_calibrate.moc"
