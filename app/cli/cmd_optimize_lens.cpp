@@ -5,6 +5,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
+#include "model/analysis/analysis_json.h"
 #include "model/analysis/beam_shaping.h"
 #include "model/scene/scene_io.h"
 
@@ -49,34 +50,7 @@ void install(CLI::App& app) {
       control.on_progress = [&progress](double f) { progress.update(f); };
       const auto outcome = optimizeBeamShapingLens(scene, lenses, opt, control);
       if (!outcome.ok()) inputError("lens optimisation did not complete");
-      const LensOptimization& r = *outcome.value;
-      nlohmann::json j;
-      j["part"] = r.best.lens.part;
-      j["vendor"] = r.best.lens.vendor;
-      j["shape"] = r.best.lens.shape;
-      j["focal_length_mm"] = r.best.lens.focal_length_mm;
-      j["diameter_mm"] = r.best.lens.diameter_mm;
-      j["center_thickness_mm"] = r.best.lens.center_thickness_mm;
-      j["index_d"] = glassIndex(r.best.lens.glass, 587.6);
-      j["position_mm"] = r.pose.position_mm;
-      j["rotation_deg"] = r.pose.rotation_deg;
-      j["tilt_deg"] = r.best.placement.tilt_deg;
-      j["distance_mm"] = r.best.placement.distance_mm;
-      j["decenter_mm"] = r.best.placement.decenter_mm;
-      j["rms_spot_um"] = {{"before", r.rms_before_um}, {"after", r.rms_after_um}};
-      j["improvement_percent"] = r.improvement_percent;
-      nlohmann::json cands = nlohmann::json::array();
-      for (const auto& c : r.candidates)
-        cands.push_back({{"part", c.lens.part},
-                         {"focal_length_mm", c.lens.focal_length_mm},
-                         {"diameter_mm", c.lens.diameter_mm},
-                         {"distance_mm", c.placement.distance_mm},
-                         {"decenter_mm", c.placement.decenter_mm},
-                         {"tilt_deg", c.placement.tilt_deg},
-                         {"rms_spot_um", c.rms_spot_um},
-                         {"evaluations", c.evaluations}});
-      j["candidates"] = cands;
-      return j;
+      return lensOptimizationJson(*outcome.value);
     });
     if (!apply->empty()) {
       Scene shaped = scene;

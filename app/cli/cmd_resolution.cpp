@@ -4,14 +4,11 @@
 #include <iostream>
 
 #include "app/cli/cli_common.h"
+#include "model/analysis/analysis_json.h"
 #include "model/analysis/angular_resolution.h"
 
 namespace fovea::cli {
 namespace {
-
-nlohmann::json optionalJson(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
 
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -37,30 +34,7 @@ void install(CLI::App& app) {
     const ResolutionResult r = analyzeResolution(scene, opt);
     if (r.samples.empty()) inputError("no line of sight reaches the HOE or the foveal image for this gaze");
     if (*json) {
-      nlohmann::json out;
-      out["pixels_horizontal"] = r.pixels_horizontal;
-      out["gaze_deg"] = {r.gaze_yaw_deg, r.gaze_pitch_deg};
-      out["units"] = "cycles per degree (1 cycle = 2 pixels); angles in degrees";
-      out["projector_pixels_per_deg"] = r.projector_pixels_per_deg;
-      out["peripheral_field_deg"] = r.peripheral_field_deg;
-      out["foveal_field_deg"] = r.foveal_field_deg;
-      out["peripheral_pixel_integral"] = r.peripheral_pixel_integral;
-      out["peripheral_pixels_on_hoe"] = r.peripheral_pixels_on_hoe;
-      out["foveal_pixel_integral"] = r.foveal_pixel_integral;
-      out["foveal_pixels_horizontal"] = scene.foveal_display.pixels[0];
-      out["eye_limit_cpd"] = kEyeLimitCpd;
-      nlohmann::json arr = nlohmann::json::array();
-      for (const auto& s : r.samples)
-        arr.push_back({{"eccentricity_deg", s.eccentricity_deg},
-                       {"foveal_cpd", optionalJson(s.foveal_cpd)},
-                       {"peripheral_cpd", optionalJson(s.peripheral_cpd)},
-                       {"optical_limit_cpd", optionalJson(s.optical_limit_cpd)},
-                       {"optical_limit_model_cpd", optionalJson(s.optical_limit_model_cpd)},
-                       {"optical_blur_arcmin", optionalJson(s.optical_blur_arcmin)},
-                       {"perceived_cpd", s.perceived_cpd},
-                       {"foveal_shown", s.foveal_shown}});
-      out["samples"] = arr;
-      printJson(out);
+      printJson(resolutionResultJson(r, scene));
       return;
     }
     std::cout << "gaze " << r.gaze_yaw_deg << "," << r.gaze_pitch_deg << " deg; peripheral field "

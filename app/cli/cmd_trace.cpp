@@ -9,15 +9,12 @@
 #include <vector>
 
 #include "app/cli/cli_common.h"
+#include "model/analysis/analysis_json.h"
 #include "model/physics/trace.h"
 #include "model/physics/trace_pipeline.h"
 
 namespace fovea::cli {
 namespace {
-
-nlohmann::json fovJson(const FovDeg& f) {
-  return {{"horizontal", f.horizontal}, {"vertical", f.vertical}, {"diagonal", f.diagonal}};
-}
 
 struct TraceArgs {
   std::string scene;
@@ -85,27 +82,7 @@ void install(CLI::App& app) {
       o.gaze_deg = gaze;
       TraceStats stats;
       const TraceResult r = pipeline.run(scene, o, &stats);
-      nlohmann::json out{{"fov_deg", fovJson(r.fov_deg)},
-                         {"rays", r.rays},
-                         {"rays_in_pupil", r.rays_in_pupil},
-                         {"rays_efficient", r.rays_efficient},
-                         {"mean_efficiency", r.mean_efficiency},
-                         {"rays_on_hoe", r.rays_on_hoe},
-                         {"mean_efficiency_on_hoe", r.mean_efficiency_on_hoe},
-                         {"gaze_deg", r.gaze_deg},
-                         {"hoe_shift_mm", o.hoe_shift_mm},
-                         {"source_shift_mm", o.source_shift_mm},
-                         {"efficiency_threshold", o.efficiency_threshold},
-                         {"polarization", polarizationName(o.polarization)}};
-      nlohmann::json per = nlohmann::json::array();
-      for (const auto& w : r.per_wavelength)
-        per.push_back({{"wavelength_nm", w.wavelength_nm},
-                       {"fov_deg", fovJson(w.fov_deg)},
-                       {"rays", w.rays},
-                       {"rays_in_pupil", w.rays_in_pupil},
-                       {"rays_efficient", w.rays_efficient},
-                       {"mean_efficiency", w.mean_efficiency}});
-      out["per_wavelength"] = per;
+      nlohmann::json out = traceResultJson(r, o);
       if (a->stats) out["stats"] = {{"stages_recomputed", stats.stages_recomputed}, {"evaluations", stats.evaluations}};
       if (!a->json) {
         std::cout << "gaze " << r.gaze_deg[0] << "," << r.gaze_deg[1] << ": FOV " << r.fov_deg.horizontal << " x "
