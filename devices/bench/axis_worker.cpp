@@ -62,13 +62,14 @@ AxisSnapshot AxisWorker::snapshot() const {
   return snapshot_;
 }
 
+// The listener is swapped and called under listener_mutex_, so once setListener returns
+// the old listener is never called again (the caller may then destroy what it captured).
 void AxisWorker::setListener(std::function<void(const AxisSnapshot&)> listener) {
-  std::lock_guard lock(mutex_);
+  std::lock_guard lock(listener_mutex_);
   listener_ = std::move(listener);
 }
 
 void AxisWorker::publish(Stage& s, const std::string& error) {
-  std::function<void(const AxisSnapshot&)> listener;
   AxisSnapshot snap;
   {
     std::lock_guard lock(mutex_);
@@ -78,9 +79,9 @@ void AxisWorker::publish(Stage& s, const std::string& error) {
     if (!error.empty()) snapshot_.last_error = error;
     snapshot_.busy = !queue_.empty();
     snap = snapshot_;
-    listener = listener_;
   }
-  if (listener) listener(snap);
+  std::lock_guard lock(listener_mutex_);
+  if (listener_) listener_(snap);
 }
 
 void AxisWorker::run() {

@@ -60,6 +60,7 @@ class AxisWorker {
   std::condition_variable cv_;
   std::deque<std::pair<Command, std::promise<void>>> queue_;
   AxisSnapshot snapshot_;
+  std::mutex listener_mutex_;  // guards listener_ and every call of it
   std::function<void(const AxisSnapshot&)> listener_;
   bool stop_ = false;
   std::thread thread_;

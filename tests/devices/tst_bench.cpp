@@ -29,6 +29,8 @@ class TestBench : public QObject {
   Q_OBJECT
  private slots:
   void virtualBenchFromScene() {
+    std::vector<AxisSnapshot> seen;  // declared before the bench: outlives its worker threads
+    std::mutex m;
     BenchOptions o;
     o.virtual_clock = std::make_shared<SimulatedClock>();
     Bench bench(prototype(), o, std::vector<DeviceInfo>{});  // no USB controllers present
@@ -43,8 +45,6 @@ class TestBench : public QObject {
     QVERIFY(std::abs(hx->snapshot().element_position) < 1e-6);
     QCOMPARE(hx->snapshot().state.position, 12.5);
 
-    std::vector<AxisSnapshot> seen;
-    std::mutex m;
     hx->setListener([&](const AxisSnapshot& s) {
       std::lock_guard lock(m);
       seen.push_back(s);
@@ -56,6 +56,11 @@ class TestBench : public QObject {
       std::lock_guard lock(m);
       QVERIFY(!seen.empty());
     }
+    hx->setListener(nullptr);
+    const std::size_t seen_after_detach = [&] {
+      std::lock_guard lock(m);
+      return seen.size();
+    }();
     // Rotation axis in degrees.
     bench.moveElement("camera", "yaw", -20.0).get();
     QVERIFY(std::abs(bench.virtualController("camera", "yaw")->position() + 20.0) < 1e-5);
@@ -67,6 +72,10 @@ class TestBench : public QObject {
     QVERIFY_THROWS_EXCEPTION(DeviceError, bench.moveElement("lens", "z", 1.0).get());
     QTRY_VERIFY_WITH_TIMEOUT(hx->snapshot().last_error.find("soft limits") != std::string::npos,
                              2000);  // reported on the axis
+    {
+      std::lock_guard lock(m);  // the refused move published on hx: the detached listener missed it
+      QCOMPARE(seen.size(), seen_after_detach);
+    }
   }
 
   void unpluggedAxisComesBackByItself() {
