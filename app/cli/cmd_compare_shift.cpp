@@ -4,11 +4,11 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
+#include "model/analysis/analysis_json.h"
 #include "model/analysis/gaze_studies.h"
 
 namespace fovea::cli {
 
-nlohmann::json eyeboxJson(const EyeBox& eb);
 GazeAxis parseAxis(const std::string& axis);
 
 namespace {
@@ -37,34 +37,18 @@ void install(CLI::App& app) {
     const nlohmann::json out = cachedStudy("compare-shift", params, scene, *opt, [&] {
       const FovEvaluator eval = studyEvaluator(*opt);
       Progress progress("compare-shift");
-      nlohmann::json j;
       GazeStudyOptions g;
       g.tolerance_deg = opt->tolerance_deg;
+      EyeBox boxes[3];  // hoe, source, static
       int done = 0;
       for (ShiftMethod m : {ShiftMethod::Hoe, ShiftMethod::Source, ShiftMethod::None}) {
         StudyControl control;
         control.on_progress = [&progress, done](double f) { progress.update((done + f) / 3.0); };
         const auto r = sweepGaze(scene, eval, *from, *to, *step, ax, m, g, control);
         if (!r.ok()) inputError("compare-shift did not complete");
-        const EyeBox& eb = r.value->eyebox;
-        nlohmann::json e{{"gaze_range_deg", eb.gaze_range_deg},
-                         {"travel_mm", eb.travel_mm},
-                         {"eyebox_mm", eb.width_mm},
-                         {"eyebox", eyeboxJson(eb)},
-                         {"shift_axis", m == ShiftMethod::Hoe ? (ax == GazeAxis::Yaw ? "HOE local x" : "HOE local y")
-                                        : m == ShiftMethod::Source ? "projector along bench z"
-                                                                   : "none"}};
-        j[m == ShiftMethod::Hoe ? "hoe_shift" : m == ShiftMethod::Source ? "source_shift" : "static"] = e;
-        ++done;
+        boxes[done++] = r.value->eyebox;
       }
-      const double src = j["source_shift"]["eyebox_mm"].get<double>();
-      j["eyebox_ratio"] =
-          src > 0 ? nlohmann::json(j["hoe_shift"]["eyebox_mm"].get<double>() / src) : nlohmann::json(nullptr);
-      // What each method adds to the static eye box (nothing moving).
-      const double fixed = j["static"]["eyebox_mm"].get<double>();
-      j["hoe_shift"]["gain_mm"] = j["hoe_shift"]["eyebox_mm"].get<double>() - fixed;
-      j["source_shift"]["gain_mm"] = src - fixed;
-      return j;
+      return compareShiftJson(boxes[0], boxes[1], &boxes[2], ax);  // the same document as the studio's
     });
     if (*json) {
       printJson(out);

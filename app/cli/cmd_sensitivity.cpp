@@ -6,11 +6,10 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
+#include "model/analysis/analysis_json.h"
 #include "model/analysis/gaze_studies.h"
 
 namespace fovea::cli {
-
-nlohmann::json fovJson(const FovSample& f);
 
 namespace {
 
@@ -53,18 +52,7 @@ void install(CLI::App& app) {
         inputError(std::string("--parameter: ") + e.what());
       }
       if (!r.ok()) inputError("sensitivity sweep did not complete");
-      nlohmann::json j;
-      j["parameter"] = *parameter;
-      j["nominal_value"] = nominal;
-      nlohmann::json arr = nlohmann::json::array();
-      for (const auto& s : *r.value)
-        arr.push_back({{"value", s.value},
-                       {"fov_deg", fovJson(s.fov)},
-                       {"mean_efficiency", s.fov.mean_efficiency},
-                       {"efficiency_uniformity", s.fov.efficiency_uniformity},
-                       {"rays_in_pupil", s.fov.rays_in_pupil}});
-      j["samples"] = arr;
-      return j;
+      return sensitivityResultJson(*r.value, *parameter, nominal);  // the same document as the studio's
     });
     if (*json) {
       printJson(out);

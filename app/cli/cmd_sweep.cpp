@@ -10,20 +10,6 @@
 
 namespace fovea::cli {
 
-nlohmann::json fovJson(const FovSample& f) {
-  return {{"horizontal", f.horizontal_deg}, {"vertical", f.vertical_deg}, {"diagonal", f.diagonal_deg}};
-}
-
-nlohmann::json eyeboxJson(const EyeBox& eb) {
-  return {{"width_mm", eb.width_mm},
-          {"pupil_range_mm", eb.pupil_range_mm},
-          {"gaze_range_deg", eb.gaze_range_deg},
-          {"travel_mm", eb.travel_mm},
-          {"lower_border_found", eb.lower_bounded},
-          {"upper_border_found", eb.upper_bounded},
-          {"reference_fov_deg", eb.reference_fov_deg}};
-}
-
 GazeAxis parseAxis(const std::string& axis) {
   if (axis == "yaw") return GazeAxis::Yaw;
   if (axis == "pitch") return GazeAxis::Pitch;

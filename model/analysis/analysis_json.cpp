@@ -96,6 +96,19 @@ nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod m, GazeAxis 
                                                     : "none"}};
 }
 
+nlohmann::json compareShiftJson(const EyeBox& hoe, const EyeBox& source, const EyeBox* fixed, GazeAxis ax) {
+  nlohmann::json j;
+  j["hoe_shift"] = compareShiftMethodJson(hoe, ShiftMethod::Hoe, ax);
+  j["source_shift"] = compareShiftMethodJson(source, ShiftMethod::Source, ax);
+  j["eyebox_ratio"] = source.width_mm > 0 ? nlohmann::json(hoe.width_mm / source.width_mm) : nlohmann::json(nullptr);
+  if (fixed) {
+    j["static"] = compareShiftMethodJson(*fixed, ShiftMethod::None, ax);
+    j["hoe_shift"]["gain_mm"] = hoe.width_mm - fixed->width_mm;
+    j["source_shift"]["gain_mm"] = source.width_mm - fixed->width_mm;
+  }
+  return j;
+}
+
 nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& samples, const std::string& parameter,
                                      double nominal_value) {
   nlohmann::json j;

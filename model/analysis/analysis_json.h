@@ -22,6 +22,9 @@ nlohmann::json traceResultJson(const TraceResult& r, const TraceOptions& o);
 nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis);
 // One method's part of compare-shift ("hoe_shift" / "source_shift" values).
 nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod method, GazeAxis axis);
+// The whole compare-shift document: both methods and "eyebox_ratio"; with the static eye box
+// (nothing moving) also "static" and each method's "gain_mm" over it.
+nlohmann::json compareShiftJson(const EyeBox& hoe, const EyeBox& source, const EyeBox* fixed, GazeAxis axis);
 nlohmann::json eyeBoxJson(const EyeBox& eb);
 nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& samples, const std::string& parameter,
                                      double nominal_value);

@@ -282,7 +282,7 @@ std::optional<nlohmann::json> runCompareShift(const Scene& scene, const Analysis
                                               const StudyControl& control) {
   checkGazeRange(p);
   const FovEvaluator eval = evaluatorOf(p);
-  nlohmann::json j;
+  EyeBox boxes[2];
   int done = 0;
   for (ShiftMethod m : {ShiftMethod::Hoe, ShiftMethod::Source}) {
     StudyControl half;
@@ -291,13 +291,9 @@ std::optional<nlohmann::json> runCompareShift(const Scene& scene, const Analysis
     const auto r = sweepGaze(scene, eval, number(p, "gaze-from"), number(p, "gaze-to"), number(p, "gaze-step"),
                              axisOf(p), m, gazeOptionsOf(p), half);
     if (!r.ok()) return std::nullopt;
-    j[m == ShiftMethod::Hoe ? "hoe_shift" : "source_shift"] = compareShiftMethodJson(r.value->eyebox, m, axisOf(p));
-    ++done;
+    boxes[done++] = r.value->eyebox;
   }
-  const double src = j["source_shift"]["eyebox_mm"].get<double>();
-  j["eyebox_ratio"] =
-      src > 0 ? nlohmann::json(j["hoe_shift"]["eyebox_mm"].get<double>() / src) : nlohmann::json(nullptr);
-  return j;
+  return compareShiftJson(boxes[0], boxes[1], nullptr, axisOf(p));
 }
 
 std::optional<nlohmann::json> runSensitivity(const Scene& scene, const AnalysisParams& p, const StudyControl& control) {
