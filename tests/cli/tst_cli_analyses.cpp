@@ -4,19 +4,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_process.h"
+
 namespace {
-struct Run {
-  int code;
-  QByteArray out, err;
-};
+using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
-  QProcess p;
-  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-  env.insert("FOVEA_CACHE_DIR", qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/cli_analyses_cache");
-  p.setProcessEnvironment(env);
-  p.start(FOVEA_CLI_PATH, args);
-  p.waitForFinished(120000);
-  return {p.exitCode(), p.readAllStandardOutput(), p.readAllStandardError()};
+  fovea::testing::CliCall call;
+  call.env.insert("FOVEA_CACHE_DIR", qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/cli_analyses_cache");
+  return fovea::testing::runFoveaCli(args, call);
 }
 }  // namespace
 

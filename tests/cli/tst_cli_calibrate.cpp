@@ -8,17 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_process.h"
+
 namespace {
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
+using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
-  QProcess p;
-  p.start(FOVEA_CLI_PATH, args);
-  p.waitForFinished(900000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput().toStdString(),
-          p.readAllStandardError().toStdString()};
+  return fovea::testing::runFoveaCli(args, 900000);
 }
 }  // namespace
 
@@ -31,8 +26,8 @@ class TestCliCalibrate : public QObject {
     fs::remove_all(out);
     const Run r =
         cli({"calibrate", "geometric", "--virtual", "--json", "--output", QString::fromStdString(out.string())});
-    QVERIFY2(r.code == 0, r.err.c_str());
-    const auto j = nlohmann::json::parse(r.out);
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
     QCOMPARE(j.size(), std::size_t{3});
     QVERIFY(j["captures"].is_number_integer());
     QVERIFY(j["residual_px_rms"].is_number());
@@ -56,7 +51,7 @@ class TestCliCalibrate : public QObject {
   void needsVirtual() {
     const Run r = cli({"calibrate", "geometric", "--json"});
     QCOMPARE(r.code, 2);
-    QVERIFY(r.err.find("--virtual") != std::string::npos);
+    QVERIFY(r.err.contains("--virtual"));
   }
 };
 

@@ -6,19 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_process.h"
+
 namespace {
-struct Run {
-  int code;
-  QByteArray out, err;
-};
+using Run = fovea::testing::CliOutput;
 Run runCli(const QStringList& args, const QByteArray& stdin_data = {}) {
-  QProcess p;
-  p.start(FOVEA_CLI_PATH, args);
-  if (!p.waitForStarted()) qFatal("cannot start fovea-cli");
-  if (!stdin_data.isEmpty()) p.write(stdin_data);
-  p.closeWriteChannel();
-  p.waitForFinished(60000);
-  return {p.exitCode(), p.readAllStandardOutput(), p.readAllStandardError()};
+  return fovea::testing::runFoveaCli(args, 60000, stdin_data);
 }
 QStringList reflectionArgs() {
   // Unslanted reflection grating at normal incidence, on Bragg: Lambda = lambda / (2 n0).

@@ -13,6 +13,8 @@
 #include "model/gaze/gaze_calibration.h"
 #include "model/image/image_io.h"
 
+#include "tests/cli/cli_process.h"
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -23,10 +25,8 @@ struct Run {
   json j() const { return json::parse(out.toStdString()); }
 };
 Run cli(const QStringList& args) {
-  QProcess p;
-  p.start(FOVEA_CLI_PATH, args);
-  p.waitForFinished(120000);
-  return {p.exitCode(), QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
+  const auto r = fovea::testing::runFoveaCli(args);
+  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
 }
 fs::path tmpDir() {
   auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_preview";

@@ -7,17 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_process.h"
+
 namespace {
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
+using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
-  QProcess p;
-  p.start(FOVEA_CLI_PATH, args);
-  p.waitForFinished(60000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput().toStdString(),
-          p.readAllStandardError().toStdString()};
+  return fovea::testing::runFoveaCli(args, 60000);
 }
 QString tmp(const char* name) {
   const QString dir = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp");
@@ -42,8 +37,8 @@ class TestCliStage : public QObject {
  private slots:
   void devicesJson() {
     const Run r = cli({"devices", "--json"});
-    QVERIFY2(r.code == 0, r.err.c_str());
-    const auto j = nlohmann::json::parse(r.out);
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
     QVERIFY(j["devices"].is_array());
     int virtual_stages = 0, virtual_cameras = 0;
     std::string last_stage_model;
@@ -88,8 +83,8 @@ class TestCliStage : public QObject {
   void moveWithTrace() {
     const QString trace = tmp("move.trace");
     const Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "move-abs", "15"});
-    QVERIFY2(r.code == 0, r.err.c_str());
-    const auto j = nlohmann::json::parse(r.out);
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
     QCOMPARE(j["position_mm"].get<double>(), 15.0);
     QCOMPARE(j["device"]["virtual"].get<bool>(), true);
     QCOMPARE(j["device"]["serial"].get<std::string>(), std::string("27000001"));
@@ -110,7 +105,7 @@ class TestCliStage : public QObject {
     const QString trace = tmp("limit.trace");
     Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "move-abs", "22"});
     QCOMPARE(r.code, 2);
-    QVERIFY2(r.err.find("soft limits") != std::string::npos, r.err.c_str());
+    QVERIFY2(r.err.contains("soft limits"), r.err.constData());
     QVERIFY(lines(trace).empty());
     // Relative: the position is read, but no move message leaves.
     r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "move-rel", "-9"});
@@ -126,16 +121,16 @@ class TestCliStage : public QObject {
   void silentOrMissingDeviceExit3() {
     Run r = cli({"stage", "--virtual", "MTS25-Z8", "--virtual-fault", "mute", "--timeout", "0.5", "position"});
     QCOMPARE(r.code, 3);
-    QVERIFY2(r.err.find("did not answer") != std::string::npos, r.err.c_str());
+    QVERIFY2(r.err.contains("did not answer"), r.err.constData());
     r = cli({"stage", "--serial", "27999999", "position"});
     QCOMPARE(r.code, 3);
-    QVERIFY2(r.err.find("27999999") != std::string::npos, r.err.c_str());
+    QVERIFY2(r.err.contains("27999999"), r.err.constData());
   }
 
   void rotationStageInDegrees() {
     Run r = cli({"stage", "--virtual", "K10CR1", "--json", "move-abs", "12.5"});
-    QVERIFY2(r.code == 0, r.err.c_str());
-    auto j = nlohmann::json::parse(r.out);
+    QVERIFY2(r.code == 0, r.err.constData());
+    auto j = nlohmann::json::parse(r.out.toStdString());
     QVERIFY(std::abs(j["position_deg"].get<double>() - 12.5) < 1e-5);
     QVERIFY(!j.contains("position_mm"));
     QCOMPARE(j["unit"].get<std::string>(), std::string("deg"));
@@ -146,9 +141,10 @@ class TestCliStage : public QObject {
   void jogStopHomeEnable() {
     const QString trace = tmp("ops.trace");
     Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "jog", "reverse"});
-    QVERIFY2(r.code == 0, r.err.c_str());
+    QVERIFY2(r.code == 0, r.err.constData());
     QVERIFY(hasLine(lines(trace), "TX 6A 04 01 02 50 01"));
-    QVERIFY(std::abs(nlohmann::json::parse(r.out)["position_mm"].get<double>() - 12.4) < 1e-4);  // 12.5 - 0.1 step
+    QVERIFY(std::abs(nlohmann::json::parse(r.out.toStdString())["position_mm"].get<double>() - 12.4) <
+            1e-4);  // 12.5 - 0.1 step
     r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "stop", "--immediate"});
     QCOMPARE(r.code, 0);
     QVERIFY(hasLine(lines(trace), "TX 65 04 01 01 50 01"));
@@ -157,14 +153,14 @@ class TestCliStage : public QObject {
     QCOMPARE(r.code, 0);
     QVERIFY(hasLine(lines(trace), "TX 43 04 01 00 50 01"));
     QVERIFY(hasLine(lines(trace), "RX 44 04 01 00 01 50"));  // MOVE_HOMED
-    QCOMPARE(nlohmann::json::parse(r.out)["position_mm"].get<double>(), 0.0);
+    QCOMPARE(nlohmann::json::parse(r.out.toStdString())["position_mm"].get<double>(), 0.0);
     r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--json", "disable"});
     QCOMPARE(r.code, 0);
     QVERIFY(hasLine(lines(trace), "TX 10 02 01 02 50 01"));
-    QCOMPARE(nlohmann::json::parse(r.out)["enabled"].get<bool>(), false);
+    QCOMPARE(nlohmann::json::parse(r.out.toStdString())["enabled"].get<bool>(), false);
     r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "info"});
     QCOMPARE(r.code, 0);
-    QCOMPARE(nlohmann::json::parse(r.out)["hardware"]["model"].get<std::string>(), std::string("KDC101"));
+    QCOMPARE(nlohmann::json::parse(r.out.toStdString())["hardware"]["model"].get<std::string>(), std::string("KDC101"));
   }
 
   void badArguments() {

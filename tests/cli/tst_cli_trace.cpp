@@ -7,18 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_process.h"
+
 namespace {
-struct Run {
-  int code;
-  QByteArray out, err;
-};
+using Run = fovea::testing::CliOutput;
 Run runCli(const QStringList& args) {
-  QProcess p;
-  p.start(FOVEA_CLI_PATH, args);
-  if (!p.waitForStarted()) qFatal("cannot start fovea-cli");
-  p.closeWriteChannel();
-  p.waitForFinished(120000);
-  return {p.exitCode(), p.readAllStandardOutput(), p.readAllStandardError()};
+  return fovea::testing::runFoveaCli(args);
 }
 QString prototypePath() {
   return QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";

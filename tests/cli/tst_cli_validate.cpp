@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/cli/cli_process.h"
+
 namespace {
 
 struct Run {
@@ -16,10 +18,8 @@ struct Run {
 };
 
 Run runCli(const QStringList& args) {
-  QProcess p;
-  p.start(FOVEA_CLI_PATH, args);
-  if (!p.waitForFinished(30000)) qFatal("fovea-cli did not finish");
-  return {p.exitCode(), QString::fromUtf8(p.readAllStandardOutput()), QString::fromUtf8(p.readAllStandardError())};
+  const auto r = fovea::testing::runFoveaCli(args, 30000);
+  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
 }
 
 std::string prototypeText() {

@@ -1,0 +1,42 @@
+#pragma once
+// Runs the fovea-cli binary for the cli tests: arguments, optional stdin and environment,
+// exit code (-1 when it crashed or timed out) and both output streams.
+#include <QByteArray>
+#include <QProcess>
+#include <QProcessEnvironment>
+#include <QStringList>
+
+namespace fovea::testing {
+
+struct CliCall {
+  int timeout_ms = 120000;
+  QByteArray stdin_data;  // written, then the channel is closed
+  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+};
+
+struct CliOutput {
+  int code = -1;
+  QByteArray out, err;
+};
+
+inline CliOutput runFoveaCli(const QStringList& args, const CliCall& call = {}) {
+  QProcess p;
+  p.setProcessEnvironment(call.env);
+  p.start(FOVEA_CLI_PATH, args);
+  if (!p.waitForStarted()) return {};
+  if (!call.stdin_data.isEmpty()) p.write(call.stdin_data);
+  p.closeWriteChannel();
+  const bool finished = p.waitForFinished(call.timeout_ms);
+  if (!finished) p.kill(), p.waitForFinished(5000);
+  const int code = finished && p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+  return {code, p.readAllStandardOutput(), p.readAllStandardError()};
+}
+
+inline CliOutput runFoveaCli(const QStringList& args, int timeout_ms, const QByteArray& stdin_data = {}) {
+  CliCall call;
+  call.timeout_ms = timeout_ms;
+  call.stdin_data = stdin_data;
+  return runFoveaCli(args, call);
+}
+
+}  // namespace fovea::testing
