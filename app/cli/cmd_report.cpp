@@ -108,7 +108,8 @@ void install(CLI::App& app) {
       ->check(CLI::Range(50, 1000000));
   cmd->add_flag("--follow-gaze", a->follow_gaze,
                 "HOE follows gaze: trace each gaze with the FOV-maximising HOE shift x_p (drawn shifted)");
-  cmd->add_flag("--json", a->json, "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\"}");
+  cmd->add_flag("--json", a->json,
+                "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\",\"gaze_figures\"}");
   cmd->callback([a] {
     const std::string ext = lower(std::filesystem::path(a->out).extension().string());
     if (ext != ".pdf" && ext != ".html" && ext != ".htm") usageError("--out: the file must end in .pdf or .html");
