@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include <vtkActor.h>
+#include <vtkCellArray.h>
 #include <vtkConeSource.h>
 #include <vtkLineSource.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 
@@ -17,7 +22,38 @@ namespace fovea::viz {
 
 namespace {
 constexpr std::array<std::array<double, 3>, 3> kAxisColor{{{0.95, 0.25, 0.25}, {0.30, 0.90, 0.30}, {0.30, 0.55, 1.00}}};
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr int kRingSegments = 96;
+// Ring colours: yaw turns about y (green), pitch about the yawed x (red), roll about z (blue).
+constexpr std::array<int, 3> kRingColorAxis{1, 0, 2};
+
+// In-plane unit vectors (u, v = axis x u) of a ring: angles are right-handed about the axis.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> ringBasis(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d u = axis.unitOrthogonal();
+  return {u, axis.cross(u)};
 }
+
+vtkSmartPointer<vtkActor> polyline(const std::vector<Eigen::Vector3d>& pts, const std::array<double, 3>& rgb,
+                                   double width) {
+  vtkNew<vtkPoints> points;
+  for (const auto& p : pts) points->InsertNextPoint(p.data());
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell(static_cast<vtkIdType>(pts.size()) + 1);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(pts.size()); ++i) lines->InsertCellPoint(i);
+  lines->InsertCellPoint(0);
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(points);
+  data->SetLines(lines);
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputData(data);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(rgb[0], rgb[1], rgb[2]);
+  actor->GetProperty()->SetLineWidth(static_cast<float>(width));
+  actor->GetProperty()->LightingOff();
+  return actor;
+}
+}  // namespace
 
 QString movableElement(const QString& id) {
   if (id == "projector" || id == "hoe" || id == "eye" || id == "beam_shaping_lens") return id;
@@ -47,6 +83,38 @@ void moveElement(Scene& s, const QString& e, const Eigen::Vector3d& d) {
   }
 }
 
+int rotationRingCount(const QString& e) {
+  if (e == "eye") return 2;
+  if (e == "projector" || e == "hoe" || e == "beam_shaping_lens") return 3;
+  return 0;
+}
+
+namespace {
+std::array<double, 3>* poseAngles(Scene& s, const QString& e) {
+  if (e == "projector") return &s.projector.pose.rotation_deg;
+  if (e == "hoe") return &s.hoe.pose.rotation_deg;
+  if (e == "beam_shaping_lens") return &s.lens.pose.rotation_deg;
+  return nullptr;
+}
+}  // namespace
+
+double elementAngle(const Scene& scene, const QString& e, int ring) {
+  if (ring < 0 || ring >= rotationRingCount(e)) return 0.0;
+  const auto k = static_cast<std::size_t>(ring);
+  if (e == "eye") return scene.eye.gaze_deg[k];
+  if (e == "projector") return scene.projector.pose.rotation_deg[k];
+  if (e == "hoe") return scene.hoe.pose.rotation_deg[k];
+  return scene.lens.pose.rotation_deg[k];
+}
+
+void rotateElement(Scene& s, const QString& e, int ring, double delta_deg) {
+  if (ring < 0 || ring >= rotationRingCount(e)) return;
+  if (e == "eye")
+    s.eye.gaze_deg[static_cast<std::size_t>(ring)] += delta_deg;
+  else
+    (*poseAngles(s, e))[static_cast<std::size_t>(ring)] += delta_deg;
+}
+
 ElementHandles::ElementHandles(SceneView* view) : view_(view) {}
 
 void ElementHandles::show(const Scene& scene, const QString& element) {
@@ -58,6 +126,28 @@ void ElementHandles::show(const Scene& scene, const QString& element) {
     return;
   }
   origin_ = elementOrigin(scene, element_);
+  // Ring axes from the current angles (see the header): yaw about y, pitch about -(yawed x),
+  // roll about the element's z.
+  const bool eye = element_ == "eye";
+  const double yaw = elementAngle(scene, element_, 0), pitch = elementAngle(scene, element_, 1);
+  const double roll = eye ? 0.0 : elementAngle(scene, element_, 2);
+  const Eigen::Matrix3d r = rotationFromDeg({yaw, pitch, roll});
+  ringAxes_ = {Eigen::Vector3d::UnitY(), -rotationFromDeg({yaw, 0.0, 0.0}).col(0), r.col(2)};
+  if (eye) {
+    const EyePlacement p = placeEye(scene);
+    ringCenter_ = p.rotation_center;
+    ringRadius_ = p.eyeball_radius_mm + 3.0;
+  } else {
+    ringCenter_ = origin_;
+    ringRadius_ = kRingRadius_mm;
+  }
+  for (int k = 0; k < ringCount(); ++k) {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i < kRingSegments; ++i) pts.push_back(ringPoint(k, 360.0 * i / kRingSegments));
+    const bool hot = highlightedRing_ && *highlightedRing_ == k;
+    const auto& c = kAxisColor[static_cast<std::size_t>(kRingColorAxis[static_cast<std::size_t>(k)])];
+    layer.add(hot ? polyline(pts, {1.0, 1.0, 0.4}, 5.0) : polyline(pts, c, 2.5), {}, false);
+  }
   for (int a = 0; a < 3; ++a) {
     Eigen::Vector3d dir = Eigen::Vector3d::Zero();
     dir[a] = 1.0;
@@ -95,6 +185,55 @@ void ElementHandles::show(const Scene& scene, const QString& element) {
 
 void ElementHandles::setHighlighted(std::optional<int> axis) {
   highlighted_ = axis;
+}
+
+void ElementHandles::setHighlightedRing(std::optional<int> ring) {
+  highlightedRing_ = ring;
+}
+
+Eigen::Vector3d ElementHandles::ringAxis(int ring) const {
+  return ringAxes_[static_cast<std::size_t>(std::clamp(ring, 0, 2))];
+}
+
+Eigen::Vector3d ElementHandles::ringPoint(int ring, double angle_deg) const {
+  const auto [u, v] = ringBasis(ringAxis(ring));
+  const double t = angle_deg * kDeg;
+  return ringCenter_ + ringRadius_ * (std::cos(t) * u + std::sin(t) * v);
+}
+
+std::optional<int> ElementHandles::ringAt(const QPointF& pos, double tol) const {
+  std::optional<int> best;
+  double bestDist = tol;
+  for (int k = 0; k < ringCount(); ++k) {
+    std::optional<QPointF> prev = view_->widgetPositionOf(ringPoint(k, 0.0));
+    for (int i = 1; i <= kRingSegments; ++i) {
+      const std::optional<QPointF> next = view_->widgetPositionOf(ringPoint(k, 360.0 * i / kRingSegments));
+      if (prev && next) {
+        const QPointF ab = *next - *prev;
+        const double len2 = QPointF::dotProduct(ab, ab);
+        const double s = len2 > 0.0 ? std::clamp(QPointF::dotProduct(pos - *prev, ab) / len2, 0.0, 1.0) : 0.0;
+        const QPointF d = pos - (*prev + s * ab);
+        const double dist = std::hypot(d.x(), d.y());
+        if (dist <= bestDist) {
+          bestDist = dist;
+          best = k;
+        }
+      }
+      prev = next;
+    }
+  }
+  return best;
+}
+
+std::optional<double> ElementHandles::ringAngle(int ring, const QPointF& pos) const {
+  if (ring < 0 || ring >= ringCount()) return std::nullopt;
+  const Eigen::Vector3d a = ringAxis(ring);
+  const auto [p, d] = view_->viewRay(pos);
+  const double along = d.dot(a);
+  if (std::abs(along) < 0.05) return std::nullopt;  // the ring is seen (nearly) edge-on
+  const Eigen::Vector3d q = p + ((ringCenter_ - p).dot(a) / along) * d - ringCenter_;
+  const auto [u, v] = ringBasis(a);
+  return std::atan2(q.dot(v), q.dot(u)) / kDeg;
 }
 
 std::optional<QPointF> ElementHandles::tipPosition(int axis) const {

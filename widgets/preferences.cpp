@@ -46,6 +46,22 @@ double DisplayUnits::angleFromDeg(double deg) const {
   return angleUnit == AngleUnit::Radian ? deg * std::numbers::pi / 180.0 : deg;
 }
 
+double DisplayUnits::lengthToMm(double v) const {
+  switch (lengthUnit) {
+    case LengthUnit::Micrometre:
+      return v / 1000.0;
+    case LengthUnit::Inch:
+      return v * 25.4;
+    case LengthUnit::Millimetre:
+      break;
+  }
+  return v;
+}
+
+double DisplayUnits::angleToDeg(double v) const {
+  return angleUnit == AngleUnit::Radian ? v * 180.0 / std::numbers::pi : v;
+}
+
 QString DisplayUnits::lengthSymbol() const {
   switch (lengthUnit) {
     case LengthUnit::Micrometre:

@@ -34,10 +34,13 @@ struct DisplayUnits {
   AngleUnit angleUnit = AngleUnit::Degree;
   double lengthFromMm(double mm) const;
   double angleFromDeg(double deg) const;
+  double lengthToMm(double shown) const;                 // inverse of lengthFromMm
+  double angleToDeg(double shown) const;                 // inverse of angleFromDeg
   QString lengthSymbol() const;                          // "mm", "µm", "in"
   QString angleSymbol() const;                           // "deg", "rad"
   QString length(double mm, int significant = 4) const;  // "12.5 mm"
   QString angle(double deg, int significant = 4) const;  // "20 deg"
+  bool operator==(const DisplayUnits&) const = default;
 };
 
 class Preferences : public QObject {

@@ -9,13 +9,16 @@
 #include <QVBoxLayout>
 
 #include "viz/scene_elements.h"
+#include "widgets/property_units.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
 
 using Kind = PropertySpec::Kind;
 
-PropertyEditor::PropertyEditor(SceneDocument* document, QWidget* parent) : QWidget(parent), document_(document) {
+PropertyEditor::PropertyEditor(SceneDocument* document, QWidget* parent)
+    : QWidget(parent), document_(document), units_(Preferences::instance().units()) {
+  connect(&Preferences::instance(), &Preferences::changed, this, [this] { setUnits(Preferences::instance().units()); });
   auto* outer = new QVBoxLayout(this);
   outer->setContentsMargins(4, 4, 4, 4);
   title_ = new QLabel(tr("Select an element in the scene tree or the 3D view."), this);
@@ -45,6 +48,18 @@ PropertyEditor::PropertyEditor(SceneDocument* document, QWidget* parent) : QWidg
   });
 }
 
+void PropertyEditor::setUnits(const DisplayUnits& units) {
+  if (units == units_) return;
+  units_ = units;
+  rebuild();
+}
+
+QString PropertyEditor::unitFor(const QString& key) const {
+  for (const auto& r : rows_)
+    if (r.spec.key == key) return r.unit ? r.unit->text() : QString();
+  return {};
+}
+
 void PropertyEditor::showElement(const QString& id) {
   if (id == element_ && !rows_.empty()) return;
   element_ = id;
@@ -55,6 +70,7 @@ void PropertyEditor::rebuild() {
   for (auto& r : rows_) {
     delete r.field;
     delete r.message;
+    delete r.unit;
   }
   rows_.clear();
   while (QLayoutItem* item = grid_->takeAt(0)) {
@@ -69,7 +85,7 @@ void PropertyEditor::rebuild() {
   QString group;
   rows_.reserve(specs.size());
   for (std::size_t i = 0; i < specs.size(); ++i) {
-    const PropertySpec& spec = specs[i];
+    const PropertySpec spec = displaySpec(specs[i], units_);  // unit and range as shown
     if (spec.group != group) {
       group = spec.group;
       auto* heading = new QLabel("<b>" + group.toHtmlEscaped() + "</b>", form_);
@@ -118,7 +134,7 @@ void PropertyEditor::rebuild() {
     grid_->addWidget(field, gridRow, 1);
     grid_->addWidget(unit, gridRow++, 2);
     grid_->addWidget(message, gridRow++, 0, 1, 3);
-    rows_.push_back({spec, field, message});
+    rows_.push_back({specs[i], field, message, unit});
   }
   refreshValues();
 }
@@ -135,7 +151,7 @@ void PropertyEditor::refreshValues() {
       QSignalBlocker block(combo);
       combo->setCurrentText(v.toString());
     } else if (auto* edit = qobject_cast<QLineEdit*>(r.field)) {
-      edit->setText(formatValue(r.spec, v));
+      edit->setText(formatValue(r.spec, toDisplay(r.spec, v, units_)));
       edit->setModified(false);
     }
     setMessage(r, {});
@@ -165,13 +181,13 @@ QString PropertyEditor::commitText(const QString& key, const QString& text) {
     if (rows_[i].spec.key != key) continue;
     if (auto* edit = qobject_cast<QLineEdit*>(rows_[i].field)) edit->setText(text);
     QString error;
-    const QVariant v = parseValue(rows_[i].spec, text, &error);
-    if (!v.isValid()) {
+    const QVariant shown = parseValue(rows_[i].spec, text, &error);
+    if (!shown.isValid()) {
       setMessage(rows_[i], error);
       emit editRefused(key, error);
       return error;
     }
-    commit(static_cast<int>(i), v);
+    commit(static_cast<int>(i), fromDisplay(rows_[i].spec, shown, units_));
     return rows_.size() > i ? messageFor(key) : QString();
   }
   return tr("no property %1").arg(key);
@@ -180,9 +196,10 @@ QString PropertyEditor::commitText(const QString& key, const QString& text) {
 void PropertyEditor::commit(int index, const QVariant& value) {
   Row& r = rows_[static_cast<std::size_t>(index)];
   const PropertySpec spec = r.spec;  // the rows may be rebuilt by the edit
-  const QString text =
-      tr("Set %1 to %2%3")
-          .arg(spec.label.toLower(), formatValue(spec, value), spec.unit.isEmpty() ? "" : " " + spec.unit);
+  const PropertySpec shown = displaySpec(spec, units_);
+  const QString text = tr("Set %1 to %2%3")
+                           .arg(spec.label.toLower(), formatValue(shown, toDisplay(spec, value, units_)),
+                                shown.unit.isEmpty() ? "" : " " + shown.unit);
   const QStringList problems = document_->applyEdit(text, [&spec, &value](Scene& s) { spec.set(s, value); });
   if (problems.isEmpty()) return;
   // Refused: the model is unchanged; show why next to the field.

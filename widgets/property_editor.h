@@ -3,6 +3,9 @@
 // unit and range. A value is applied when editing finishes, through SceneDocument::applyEdit
 // (an undoable command); a value the scene rules refuse stays in the field, marked red, with
 // the rule's message shown under it, and the model is left unchanged.
+// Lengths (mm) and angles (deg) are shown and typed in the preferred display units
+// (Preferences, property_units.h) and converted back to mm / deg on edit; changing the
+// preference updates the open editor.
 
 #include <QHash>
 #include <QPointer>
@@ -10,6 +13,7 @@
 
 #include <vector>
 
+#include "widgets/preferences.h"
 #include "widgets/scene_properties.h"
 
 class QGridLayout;
@@ -30,17 +34,24 @@ class PropertyEditor : public QWidget {
   // For tests and scripting: the field of a property key, and its current message.
   QWidget* fieldFor(const QString& key) const;
   QString messageFor(const QString& key) const;
-  // Commits `text` to the property as if typed and confirmed; returns the refusal (or empty).
+  // Commits `text` (in the display units) to the property as if typed and confirmed; returns
+  // the refusal (or empty).
   QString commitText(const QString& key, const QString& text);
+  // The units the fields show (default: the preferences'; follows Preferences::changed).
+  void setUnits(const DisplayUnits& units);
+  const DisplayUnits& units() const { return units_; }
+  // The unit label shown next to a property's field.
+  QString unitFor(const QString& key) const;
 
  signals:
   void editRefused(const QString& key, const QString& message);
 
  private:
   struct Row {
-    PropertySpec spec;
+    PropertySpec spec;  // in the model's units
     QPointer<QWidget> field;
     QPointer<QLabel> message;
+    QPointer<QLabel> unit;
   };
   void rebuild();
   void refreshValues();
@@ -53,6 +64,7 @@ class PropertyEditor : public QWidget {
   QWidget* form_ = nullptr;
   QGridLayout* grid_ = nullptr;
   std::vector<Row> rows_;
+  DisplayUnits units_;
 };
 
 }  // namespace fovea::widgets

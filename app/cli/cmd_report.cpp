@@ -1,4 +1,4 @@
-// fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--json]
+// fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--follow-gaze] [--json]
 // The design report of a scene: title page with the scene summary, 3-D views, the bench at
 // each gaze, retina maps, the analyses' plots and key numbers (app/studio/report_document.h).
 //
@@ -31,6 +31,7 @@ struct ReportArgs {
   std::string scene, out;
   std::vector<std::string> gazes;
   int rays = 1500;
+  bool follow_gaze = false;
   bool json = false;
 };
 
@@ -105,7 +106,10 @@ void install(CLI::App& app) {
                   "gazes YAW[,PITCH] (deg) for the ray and retina figures (default: the scene's)");
   cmd->add_option("--rays", a->rays, "rays per wavelength for the traces and the sweep (default 1500)")
       ->check(CLI::Range(50, 1000000));
-  cmd->add_flag("--json", a->json, "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\"}");
+  cmd->add_flag("--follow-gaze", a->follow_gaze,
+                "HOE follows gaze: trace each gaze with the FOV-maximising HOE shift x_p (drawn shifted)");
+  cmd->add_flag("--json", a->json,
+                "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\",\"gaze_figures\"}");
   cmd->callback([a] {
     const std::string ext = lower(std::filesystem::path(a->out).extension().string());
     if (ext != ".pdf" && ext != ".html" && ext != ".htm") usageError("--out: the file must end in .pdf or .html");
@@ -134,6 +138,7 @@ void install(CLI::App& app) {
     for (const auto& g : a->gazes) argv.push_back("--gaze-deg=" + g);
     argv.push_back("--rays");
     argv.push_back(std::to_string(a->rays));
+    if (a->follow_gaze) argv.push_back("--follow-gaze");
     std::string manifest;
     const int code = runCapturing(argv, manifest);
     if (code == 2) usageError("report: fovea-studio refused the arguments");

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/analysis/gaze_studies.h"
+#include "model/analysis/trace_evaluator.h"
+#include "model/physics/projector_rays.h"
 #include "widgets/analyses/analysis_catalog.h"
 
 namespace fovea::studio {
@@ -66,9 +69,26 @@ std::optional<ReportData> computeReportData(const Scene& scene, const QString& s
     if (control.cancelled()) return std::nullopt;
     GazeTrace t;
     t.gaze_deg = options.gazes_deg[i];
+    if (options.follow_gaze) {
+      // As the live trace: yaw -> HOE local x, pitch -> local y, each at the other component zero.
+      try {
+        TraceEvaluatorOptions eo;
+        eo.rays = options.rays;
+        const FovEvaluator eval = traceEvaluator(eo);
+        if (t.gaze_deg[0] != 0.0)
+          t.hoe_shift_mm[0] = optimiseShift(scene, eval, t.gaze_deg[0], GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm;
+        if (t.gaze_deg[1] != 0.0)
+          t.hoe_shift_mm[1] = optimiseShift(scene, eval, t.gaze_deg[1], GazeAxis::Pitch, ShiftMethod::Hoe).shift_mm;
+      } catch (const std::exception& e) {
+        d.problems << QString("HOE shift at gaze %1,%2: %3").arg(t.gaze_deg[0]).arg(t.gaze_deg[1]).arg(e.what());
+        t.hoe_shift_mm = {0, 0};
+      }
+    }
     AnalysisParams p = defaultParameters(*findAnalysis("trace"), options.rays);
     p["gaze-yaw"] = t.gaze_deg[0];
     p["gaze-pitch"] = t.gaze_deg[1];
+    p["hoe-shift-x"] = t.hoe_shift_mm[0];
+    p["hoe-shift-y"] = t.hoe_shift_mm[1];
     auto j = step("trace", scene, p, control, 0.2 * i / n, 0.2 * (i + 0.5) / n, d.problems, &cancelled);
     if (cancelled) return std::nullopt;
     if (!j) continue;
@@ -76,8 +96,10 @@ std::optional<ReportData> computeReportData(const Scene& scene, const QString& s
     TraceOptions o;
     o.gaze_deg = t.gaze_deg;
     o.rays = options.rays;
+    o.hoe_shift_mm = t.hoe_shift_mm;
     o.keep_rays = true;
     t.rays = traceScene(scene, o);
+    t.grid = projectorGrid(scene.projector, o.rays);
     d.traces << t;
     progress(0.2 * (i + 1) / n);
   }

@@ -26,13 +26,16 @@ struct ReportOptions {
   int rays = 1500;                         // per wavelength, traces and sweep
   double sweep_step_deg = 5.0;
   bool kogelnik_vs_rcwa = true;
-  QString title;  // empty: "Design report: <scene name>"
+  bool follow_gaze = false;  // "HOE follows gaze": trace each gaze with its FOV-maximising HOE shift x_p
+  QString title;             // empty: "Design report: <scene name>"
 };
 
 struct GazeTrace {
   std::array<double, 2> gaze_deg{0, 0};
-  nlohmann::json json;  // the trace analysis' result
-  TraceResult rays;     // the same trace with its ray list (retina map)
+  nlohmann::json json;                       // the trace analysis' result
+  TraceResult rays;                          // the same trace with its ray list (ray fans, retina maps)
+  std::array<int, 2> grid{0, 0};             // projector ray grid of `rays` (columns, rows) per wavelength
+  std::array<double, 2> hoe_shift_mm{0, 0};  // x_p applied (zero unless follow_gaze)
 };
 
 struct ReportData {

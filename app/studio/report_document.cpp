@@ -14,14 +14,21 @@
 #include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
 
 #include <cmath>
+#include <memory>
 
 #include "app/studio/main_window.h"
+#include "app/studio/trace_workbench.h"
 #include "fovea/version.h"
+#include "model/scene/scene_geometry.h"
 #include "viz/scene_view.h"
+#include "viz/trace_overlay.h"
+#include "widgets/live_trace.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plot_render.h"
+#include "widgets/retina_view.h"
 
 namespace fovea::studio {
 
@@ -147,6 +154,22 @@ QImage capture3d(viz::SceneView* view) {
   return img.isNull() ? img : img.convertToFormat(QImage::Format_RGB32);
 }
 
+// Pixels that differ clearly (summed RGB difference above 48 of 765) between two captures.
+int changedPixels(const QImage& a, const QImage& b) {
+  if (a.size() != b.size()) return 0;
+  int n = 0;
+  for (int y = 0; y < a.height(); ++y) {
+    const auto* pa = reinterpret_cast<const QRgb*>(a.constScanLine(y));
+    const auto* pb = reinterpret_cast<const QRgb*>(b.constScanLine(y));
+    for (int x = 0; x < a.width(); ++x)
+      if (std::abs(qRed(pa[x]) - qRed(pb[x])) + std::abs(qGreen(pa[x]) - qGreen(pb[x])) +
+              std::abs(qBlue(pa[x]) - qBlue(pb[x])) >
+          48)
+        ++n;
+  }
+  return n;
+}
+
 void addPlotFigure(QList<ReportFigure>& out, const PlotData& p) {
   if (p.isEmpty()) return;
   ReportFigure f;
@@ -230,6 +253,21 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   vtkNew<vtkCamera> saved;
   saved->DeepCopy(view->renderer()->GetActiveCamera());
   const Scene shown = view->scene();
+  const Eigen::Vector3d shownShift = view->hoeDisplayShift();
+  // The gaze figures borrow the live overlay (its layers are the view's "rays", "eye_marks"
+  // and "effmap"); without a live trace part a temporary one draws them.
+  TraceWorkbench* live = window.traceWorkbench();
+  std::unique_ptr<viz::TraceOverlay> own;
+  viz::TraceOverlay* overlay = live ? live->overlay() : nullptr;
+  if (!overlay) overlay = (own = std::make_unique<viz::TraceOverlay>(view)).get();
+  const char* overlayLayers[] = {"rays", "eye_marks", "effmap"};
+  bool layerWasVisible[3];
+  for (int k = 0; k < 3; ++k) {
+    viz::SceneLayer& l = view->layer(overlayLayers[k]);
+    layerWasVisible[k] = l.isVisible();
+    l.setVisible(true);
+  }
+  overlay->clear();  // the standard views: the bench alone
   view->setScene(d.scene);
 
   ReportSection views{"3-D views", "The bench at its real size and pose, from the standard angles.", {}};
@@ -254,39 +292,103 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   c.sections << views;
 
   ReportSection gazes{"The bench at the chosen gazes",
-                      "Top views with the eye turned to each chosen gaze (and the rays the view draws for it).",
+                      "Top views with the eye turned to each chosen gaze and the ray fans of that gaze's trace: "
+                      "projector → HOE → pupil, coloured by diffraction efficiency, solid into the pupil, dashed "
+                      "where they miss it, gray below 10 %; the pupil in green, the fovea in orange.",
                       {}};
+  const viz::TraceOverlayOptions fans;  // horizontal fan, every wavelength, no efficiency map
   for (int i = 0; i < d.options.gazes_deg.size(); ++i) {
     const auto gz = d.options.gazes_deg[i];
+    const GazeTrace* trace = nullptr;
+    for (const GazeTrace& t : d.traces)
+      if (t.gaze_deg == gz) trace = &t;
+    GazeFigureStats stats;
+    stats.figureId = QString("gaze-%1").arg(i + 1);
+    stats.gaze_deg = gz;
     QImage img;
     if (gazeCapture) {
       img = gazeCapture(gz);
     } else {
       Scene turned = d.scene;
       turned.eye.gaze_deg = gz;
+      overlay->clear();
       view->setScene(turned);
-      view->showStandardView(viz::StandardView::Top);
+      if (trace) {
+        stats.hoe_shift_mm = trace->hoe_shift_mm;
+        const Frame plate = frameOf(d.scene.hoe.pose);
+        view->setHoeDisplayShift(trace->hoe_shift_mm[0] * plate.x() + trace->hoe_shift_mm[1] * plate.y());
+      }
+      view->showStandardView(viz::StandardView::Top);  // framed on the bench alone
       img = capture3d(view);
+      if (trace && !img.isNull()) {
+        const QImage plain = img;
+        overlay->show(turned, trace->rays, trace->grid, trace->hoe_shift_mm, fans);
+        stats.overlay = overlay->stats();
+        overlay->colorBar()->VisibilityOff();  // count what the fans and marks change, not the bar
+        stats.overlay_pixels = changedPixels(plain, capture3d(view));
+        overlay->colorBar()->VisibilityOn();
+        img = capture3d(view);
+      }
     }
     QString caption = QString("Top view at gaze %1.").arg(gazeText(gz, u));
-    for (const GazeTrace& t : d.traces)
-      if (t.gaze_deg == gz)
-        caption += QString(" Retinal FOV there %1 × %2 %3, mean efficiency %4.")
-                       .arg(g(u.angleFromDeg(t.rays.fov_deg.horizontal)), g(u.angleFromDeg(t.rays.fov_deg.vertical)),
-                            u.angleSymbol(), pct(t.rays.mean_efficiency));
-    if (!img.isNull())
-      gazes.figures << ReportFigure{
-          QString("gaze-%1").arg(i + 1), caption, img.convertToFormat(QImage::Format_RGB32), {}};
+    if (trace) {
+      caption +=
+          QString(" Retinal FOV there %1 × %2 %3, mean efficiency %4.")
+              .arg(g(u.angleFromDeg(trace->rays.fov_deg.horizontal)), g(u.angleFromDeg(trace->rays.fov_deg.vertical)),
+                   u.angleSymbol(), pct(trace->rays.mean_efficiency));
+      if (trace->hoe_shift_mm != std::array<double, 2>{0, 0})
+        caption += QString(" HOE following the gaze, shifted by (%1, %2) %3.")
+                       .arg(g(u.lengthFromMm(trace->hoe_shift_mm[0])), g(u.lengthFromMm(trace->hoe_shift_mm[1])),
+                            u.lengthSymbol());
+      if (!gazeCapture)
+        caption += QString(" %1 rays drawn, %2 into the pupil.")
+                       .arg(stats.overlay.rays_drawn)
+                       .arg(stats.overlay.rays_in_pupil);
+    }
+    if (!img.isNull()) {
+      gazes.figures << ReportFigure{stats.figureId, caption, img.convertToFormat(QImage::Format_RGB32), {}};
+      c.gazeFigures << stats;
+    }
   }
+  overlay->clear();
+  own.reset();
+  for (int k = 0; k < 3; ++k) view->layer(overlayLayers[k]).setVisible(layerWasVisible[k]);
   view->setScene(shown);
+  if (live)
+    live->redraw();  // the live fans, effmap, retina and plate shift as they were
+  else
+    view->setHoeDisplayShift(shownShift);
   view->renderer()->GetActiveCamera()->DeepCopy(saved);
   view->renderer()->ResetCameraClippingRange();
   view->requestRender();
   if (!gazes.figures.isEmpty()) c.sections << gazes;
 
-  ReportSection retina{"Retina maps", "What the eye receives from the peripheral display at each chosen gaze.", {}};
+  ReportSection retina{"Retina maps",
+                       "What the eye receives from the peripheral display at each chosen gaze: the studio's retina "
+                       "view, then the retina map with its axes.",
+                       {}};
   for (int i = 0; i < d.traces.size(); ++i) {
-    const PlotData p = widgets::retinaMapPlot(d.traces[i].rays, 0.1, u);
+    const GazeTrace& t = d.traces[i];
+    auto r = std::make_shared<widgets::LiveTraceResult>();
+    r->scene = d.scene;
+    r->scene.eye.gaze_deg = t.gaze_deg;
+    r->settings.rays = d.options.rays;
+    r->settings.follow_gaze = d.options.follow_gaze;
+    r->hoe_shift_mm = t.hoe_shift_mm;
+    r->grid = t.grid;
+    r->trace = t.rays;
+    widgets::RetinaView retinaView;
+    retinaView.setResult(r, {});
+    const QImage seen = retinaView.render(QSize(760, 620));
+    for (GazeFigureStats& s : c.gazeFigures)
+      if (s.gaze_deg == t.gaze_deg) s.retina_cells = retinaView.cellsDrawn();
+    if (!seen.isNull())
+      retina.figures << ReportFigure{
+          QString("retina-view-%1").arg(i + 1),
+          QString("The retina view at gaze %1 (as the studio's Retina dock draws it).").arg(gazeText(t.gaze_deg, u)),
+          seen,
+          {}};
+    const PlotData p = widgets::retinaMapPlot(t.rays, 0.1, u);
     if (p.isEmpty()) continue;
     retina.figures << ReportFigure{
         QString("retina-%1").arg(i + 1), p.caption, widgets::renderPlotImage(p, QSize(760, 620), 1.6), {}};

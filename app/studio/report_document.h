@@ -16,6 +16,7 @@
 #include <functional>
 
 #include "app/studio/report_data.h"
+#include "viz/trace_overlay.h"
 #include "widgets/plots/plot_data.h"
 #include "widgets/preferences.h"
 
@@ -36,6 +37,16 @@ struct ReportSection {
   QList<ReportFigure> figures;
 };
 
+// What a "bench at the chosen gaze" figure shows (for the manifest and tests).
+struct GazeFigureStats {
+  QString figureId;  // "gaze-N"
+  std::array<double, 2> gaze_deg{0, 0};
+  std::array<double, 2> hoe_shift_mm{0, 0};  // x_p the plate is drawn shifted by
+  viz::TraceOverlayStats overlay;            // the ray fans drawn (viz::TraceOverlay)
+  int overlay_pixels = 0;                    // pixels the fans and eye marks change against the same view without them
+  int retina_cells = 0;                      // cells the retina view (widgets::RetinaView) drew for that gaze
+};
+
 struct ReportContent {
   QString title;
   QString sceneName, scenePath;
@@ -44,15 +55,19 @@ struct ReportContent {
   QString keyNumbersHtml;
   QList<ReportSection> sections;
   QStringList problems;  // analyses that could not be computed
+  QList<GazeFigureStats> gazeFigures;
   int figureCount() const;
 };
 
 // Renders the 3-D view for a gaze (the bench with the eye turned to it, and whatever layers
-// the view draws for that gaze). Default: SceneView::setScene with eye.gaze_deg set.
+// the view draws for that gaze). Default: the top view of the bench with the eye turned to
+// the gaze and the report trace's ray fans drawn by viz::TraceOverlay (projector -> HOE ->
+// pupil, efficiency-coloured, colour bar, pupil and fovea), the plate shifted by its x_p.
 using GazeViewCapture = std::function<QImage(const std::array<double, 2>& gaze_deg)>;
 
 // Composes the report. `extraPlots` (e.g. the plots area's other filled plots) are appended.
-// The window's view camera and scene are restored afterwards.
+// The standard views show the bench without the live trace overlay. The window's view
+// camera, scene, HOE display shift and live overlay are restored afterwards.
 ReportContent composeReport(MainWindow& window, const ReportData& data, const QList<widgets::PlotData>& extraPlots,
                             const widgets::DisplayUnits& units, const GazeViewCapture& gazeCapture = {});
 

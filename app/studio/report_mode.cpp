@@ -43,18 +43,31 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
 
   QString error;
   int pages = 0, figures = 0;
-  if (!window.workbench()->exportReport(out, options, &error, &pages, &figures)) {
+  QList<GazeFigureStats> gazeFigures;
+  if (!window.workbench()->exportReport(out, options, &error, &pages, &figures, &gazeFigures)) {
     err << "fovea-studio: the report was not written: " << error << "\n";
     return 1;
   }
   QJsonArray problems;
   for (const QString& e : window.messageLog()->entries())
     if (e.startsWith("warning: report: ")) problems << e.mid(17);
+  QJsonArray gazeJson;  // what each "bench at the gaze" figure drew
+  for (const GazeFigureStats& s : gazeFigures)
+    gazeJson << QJsonObject{{"figure", s.figureId},
+                            {"gaze_deg", QJsonArray{s.gaze_deg[0], s.gaze_deg[1]}},
+                            {"hoe_shift_mm", QJsonArray{s.hoe_shift_mm[0], s.hoe_shift_mm[1]}},
+                            {"rays_drawn", s.overlay.rays_drawn},
+                            {"rays_in_pupil", s.overlay.rays_in_pupil},
+                            {"rays_missing", s.overlay.rays_missing},
+                            {"rays_low", s.overlay.rays_low},
+                            {"overlay_pixels", s.overlay_pixels},
+                            {"retina_cells", s.retina_cells}};
   const QJsonObject manifest{{"out", QFileInfo(out).absoluteFilePath()},
                              {"format", ext == "htm" ? QString("html") : ext},
                              {"pages", ext == "pdf" ? QJsonValue(pages) : QJsonValue()},
                              {"figures", figures},
-                             {"problems", problems}};
+                             {"problems", problems},
+                             {"gaze_figures", gazeJson}};
   QTextStream(stdout) << QJsonDocument(manifest).toJson(QJsonDocument::Indented);
   return 0;
 }

@@ -52,6 +52,10 @@ TraceWorkbench::TraceWorkbench(MainWindow* window) : QObject(window), window_(wi
     window_->statusBar()->showMessage(
         tr("Moved %1 along %2 by %3 mm").arg(el, QString("xyz").mid(axis, 1)).arg(d, 0, 'g', 6), 4000);
   });
+  connect(handles_, &widgets::HandleController::rotateFinished, this, [this](const QString& el, int ring, double d) {
+    window_->statusBar()->showMessage(
+        tr("Turned %1: %2 by %3 deg").arg(el, QStringList{"yaw", "pitch", "roll"}.value(ring)).arg(d, 0, 'g', 6), 4000);
+  });
   display_->setWavelengths(doc->scene().projector.wavelengths_nm);
   requestTrace();
 }

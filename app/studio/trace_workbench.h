@@ -50,11 +50,13 @@ class TraceWorkbench : public QObject {
   void setStartGaze(double yaw_deg, double pitch_deg);
   // Waits (running the event loop) until the newest trace is drawn; false on timeout.
   bool waitForTrace(int timeout_ms = 120000);
+  // Redraws the overlay, retina and k-cloud from the newest live result (e.g. after the
+  // report borrowed the overlay for its gaze figures).
+  void redraw();
 
  private:
   void requestTrace();
   void showResult(const std::shared_ptr<const widgets::LiveTraceResult>& result);
-  void redraw();
 
   MainWindow* window_;
   widgets::LiveTrace* trace_ = nullptr;

@@ -22,9 +22,11 @@
 
 #include "app/studio/main_window.h"
 #include "app/studio/report_document.h"
+#include "app/studio/trace_workbench.h"
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/autosave.h"
+#include "widgets/gaze_panel.h"
 #include "widgets/message_log.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plots_panel.h"
@@ -222,8 +224,10 @@ void Workbench::showPreferences() {
   dialog.exec();
 }
 
-bool Workbench::exportReport(const QString& path, const ReportOptions& options, QString* error, int* pages,
-                             int* figures) {
+bool Workbench::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
+                             int* figures, QList<GazeFigureStats>* gazeFigures) {
+  ReportOptions options = requested;
+  if (window_->traceWorkbench() && window_->traceWorkbench()->gazePanel()->followGaze()) options.follow_gaze = true;
   const Scene scene = window_->document()->scene();
   const QString scenePath = window_->document()->filePath();
   auto cancel = std::make_shared<std::atomic<bool>>(false);
@@ -282,6 +286,7 @@ bool Workbench::exportReport(const QString& path, const ReportOptions& options, 
   QString writeError;
   if (!writeReport(content, path, &writeError, pages)) return fail(writeError);
   if (figures) *figures = content.figureCount();
+  if (gazeFigures) *gazeFigures = content.gazeFigures;
   window_->messageLog()->info(tr("Report written to %1 (%n figure(s))", "", content.figureCount()).arg(path));
   for (const QString& p : data->problems) window_->messageLog()->warning(tr("report: %1").arg(p));
   return true;

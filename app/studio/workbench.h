@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "app/studio/report_data.h"
+#include "app/studio/report_document.h"
 
 class QDockWidget;
 class QMenu;
@@ -47,8 +48,10 @@ class Workbench : public QObject {
 
   // Computes and writes a report of the open scene (blocking, with events processed; the
   // analyses run on a worker thread). False with `error` set on failure or cancel.
+  // "HOE follows gaze" of the gaze panel applies to the report's traces too. `gazeFigures`
+  // gets what each "bench at the gaze" figure drew.
   bool exportReport(const QString& path, const ReportOptions& options, QString* error = nullptr, int* pages = nullptr,
-                    int* figures = nullptr);
+                    int* figures = nullptr, QList<GazeFigureStats>* gazeFigures = nullptr);
 
   void showPreferences();
   void exportReportDialog();

@@ -27,6 +27,7 @@
 #include "viz/scene_view.h"
 #include "viz/vtk_gl_widget.h"
 #include "widgets/message_log.h"
+#include "widgets/preferences.h"
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
 #include "widgets/scene_tree.h"
@@ -194,6 +195,65 @@ class TestMainWindow : public QObject {
     QCOMPARE(field->text(), QString("25.5"));
     QCOMPARE(stackSpy.count(), 3);
     QCOMPARE(sceneSpy.count(), 3);
+  }
+
+  void propertyEditorFollowsTheDisplayUnits() {
+    widgets::Preferences& prefs = widgets::Preferences::instance();
+    const widgets::PreferenceValues saved = prefs.values();
+    w->selectElement("eye");
+    auto* editor = w->propertyEditor();
+    QUndoStack* stack = w->document()->undoStack();
+    auto* relief = qobject_cast<QLineEdit*>(editor->fieldFor("eye.relief_mm"));
+    QVERIFY(relief);
+    QCOMPARE(editor->unitFor("eye.relief_mm"), QString("mm"));
+
+    // Switching the preference updates the open editor: inches and radians.
+    widgets::PreferenceValues v = saved;
+    v.length = widgets::LengthUnit::Inch;
+    v.angle = widgets::AngleUnit::Radian;
+    prefs.setValues(v);
+    relief = qobject_cast<QLineEdit*>(editor->fieldFor("eye.relief_mm"));
+    QVERIFY(relief);
+    QCOMPARE(editor->unitFor("eye.relief_mm"), QString("in"));
+    QCOMPARE(editor->unitFor("eye.gaze_deg[0]"), QString("rad"));
+    QCOMPARE(editor->unitFor("eye.pupil_diameter_mm"), QString("in"));
+    QCOMPARE(relief->text().toDouble(), 22.0 / 25.4);
+    // The range shown is converted too: pupil diameter (0, 15) mm.
+    auto* pupil = qobject_cast<QLineEdit*>(editor->fieldFor("eye.pupil_diameter_mm"));
+    QCOMPARE(pupil->placeholderText(), QString("(0, %1)").arg(15.0 / 25.4, 0, 'g', 6));
+    // For a look: the editor in inches and radians.
+    QTest::qWait(50);  // lay the rebuilt form out
+    editor->grab().save(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/property-editor-in-rad.png");
+
+    // Typed in inches: the model gets millimetres, one undo step named in the shown unit.
+    relief->setFocus();
+    relief->selectAll();
+    QTest::keyClicks(relief, "1");
+    QTest::keyClick(relief, Qt::Key_Return);
+    QCOMPARE(w->document()->scene().eye.relief_mm, 25.4);
+    QCOMPARE(stack->count(), 1);
+    QCOMPARE(stack->undoText(), QString("Set eye relief to 1 in"));
+    // Radians: a gaze of 0.1 rad.
+    QCOMPARE(editor->commitText("eye.gaze_deg[0]", "0.1"), QString());
+    QCOMPARE(w->document()->scene().eye.gaze_deg[0], 0.1 * 180.0 / M_PI);
+    QCOMPARE(stack->count(), 2);
+    // A refused value (checked by the model in mm) leaves the model unchanged.
+    QVERIFY(!editor->commitText("eye.relief_mm", "-1").isEmpty());
+    QCOMPARE(w->document()->scene().eye.relief_mm, 25.4);
+    QCOMPARE(stack->count(), 2);
+
+    // Micrometres: the field shows the same relief in µm.
+    v.length = widgets::LengthUnit::Micrometre;
+    prefs.setValues(v);
+    QCOMPARE(editor->unitFor("eye.relief_mm"), QString("µm"));
+    QCOMPARE(qobject_cast<QLineEdit*>(editor->fieldFor("eye.relief_mm"))->text().toDouble(), 25400.0);
+    QCOMPARE(editor->commitText("eye.relief_mm", "23500"), QString());
+    QCOMPARE(w->document()->scene().eye.relief_mm, 23.5);
+    stack->undo();
+    QCOMPARE(w->document()->scene().eye.relief_mm, 25.4);
+    prefs.setValues(saved);
+    QCOMPARE(editor->unitFor("eye.relief_mm"), QString("mm"));
+    QCOMPARE(qobject_cast<QLineEdit*>(editor->fieldFor("eye.relief_mm"))->text(), QString("25.4"));
   }
 
   void badValueIsRefusedWithTheRule() {

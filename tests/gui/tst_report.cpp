@@ -1,6 +1,7 @@
 // `fovea-cli report` (driving `fovea-studio --report`): the PDF's page count and embedded
 // images checked with poppler-utils (pdfinfo, pdfimages -list) against the manifest, the
-// self-contained HTML's base64 images decoded, and the argument / scene errors' exit codes.
+// self-contained HTML's base64 images decoded, the gaze figures' ray fans counted (manifest
+// and pixels against the plain top view), and the argument / scene errors' exit codes.
 #include <QtTest>
 
 #include <QImage>
@@ -8,7 +9,11 @@
 #include <QRegularExpression>
 #include <QStandardPaths>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
+
+#include "viz/efficiency_colors.h"
 
 namespace {
 
@@ -45,6 +50,51 @@ QString tool(const char* name) {
   return path;
 }
 
+// Figures the report makes for `gazes` chosen gazes: 4 standard 3-D views, per gaze the bench
+// with its ray fans, the retina view and the retina map, and the 6 plots (FOV and travel vs
+// gaze, efficiency vs angle and vs wavelength, resolution, Kogelnik vs RCWA).
+int expectedFigures(int gazes) {
+  return 4 + gazes * 3 + 6;
+}
+
+// Pixels of `withRays` that differ from `plain` and carry an efficiency colour of the ramp
+// (viz::efficiencyColor over [0.1, 1], within a small anti-aliasing tolerance), left of the
+// colour bar (which starts at 90 % of the width).
+int efficiencyPixelsAdded(const QImage& plain, const QImage& withRays) {
+  std::vector<QRgb> ramp;
+  for (int i = 0; i <= 200; ++i) {
+    const auto c =
+        fovea::viz::efficiencyColor(fovea::viz::kLowEfficiency + (1.0 - fovea::viz::kLowEfficiency) * i / 200);
+    ramp.push_back(qRgb(int(std::lround(c[0] * 255)), int(std::lround(c[1] * 255)), int(std::lround(c[2] * 255))));
+  }
+  const QImage a = plain.convertToFormat(QImage::Format_RGB32), b = withRays.convertToFormat(QImage::Format_RGB32);
+  if (a.size() != b.size()) return -1;
+  int n = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width() * 88 / 100; ++x) {
+      const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+      if (std::abs(qRed(p) - qRed(q)) + std::abs(qGreen(p) - qGreen(q)) + std::abs(qBlue(p) - qBlue(q)) <= 48) continue;
+      for (QRgb r : ramp)
+        if (std::abs(qRed(r) - qRed(q)) + std::abs(qGreen(r) - qGreen(q)) + std::abs(qBlue(r) - qBlue(q)) <= 24) {
+          ++n;
+          break;
+        }
+    }
+  return n;
+}
+
+// The manifest's record of one gaze figure is consistent: rays drawn, some into the pupil,
+// in-pupil + missing never more than drawn, the fans changing many pixels.
+void checkGazeFigure(const nlohmann::json& g) {
+  const int drawn = g["rays_drawn"].get<int>(), in = g["rays_in_pupil"].get<int>();
+  const int missing = g["rays_missing"].get<int>(), low = g["rays_low"].get<int>();
+  QVERIFY2(drawn > 0, g.dump().c_str());
+  QVERIFY2(in > 0, g.dump().c_str());
+  QVERIFY2(in + missing <= drawn && low <= drawn, g.dump().c_str());
+  QVERIFY2(g["overlay_pixels"].get<int>() > 10 * drawn, g.dump().c_str());  // every ray is a line, not a dot
+  QVERIFY2(g["retina_cells"].get<int>() > 0, g.dump().c_str());
+}
+
 }  // namespace
 
 class TestReport : public QObject {
@@ -61,9 +111,12 @@ class TestReport : public QObject {
     QVERIFY(m["problems"].empty());
     const int figures = m["figures"].get<int>();
     const int pages = m["pages"].get<int>();
-    // 4 standard 3-D views + 2 gaze views + 2 retina maps + FOV, travel, efficiency vs angle and
-    // vs wavelength, resolution, Kogelnik vs RCWA.
-    QCOMPARE(figures, 14);
+    QCOMPARE(figures, expectedFigures(2));
+    QCOMPARE(m["gaze_figures"].size(), std::size_t(2));
+    for (const auto& g : m["gaze_figures"]) {
+      checkGazeFigure(g);
+      QCOMPARE(g["hoe_shift_mm"][0].get<double>(), 0.0);  // the plate stays put without --follow-gaze
+    }
 
     const Run info = run(tool("pdfinfo"), {pdf});
     QCOMPARE(info.code, 0);
@@ -94,23 +147,38 @@ class TestReport : public QObject {
 
   void htmlIsSelfContained() {
     const QString html = tmpDir() + "/prototype-report.html";
-    const Run r = run(FOVEA_CLI_PATH, {"report", "", "--out", html, "--gaze-deg", "5,2", "--rays", "300", "--json"});
+    const Run r = run(FOVEA_CLI_PATH, {"report", "", "--out", html, "--gaze-deg", "0", "5,2", "--rays", "300",
+                                       "--follow-gaze", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const nlohmann::json m = nlohmann::json::parse(r.out.toStdString());
     QVERIFY(m["pages"].is_null());
+    QCOMPARE(m["gaze_figures"].size(), std::size_t(2));
+    for (const auto& g : m["gaze_figures"]) checkGazeFigure(g);
+    // HOE follows gaze: no travel at gaze 0, some at 5 deg yaw and 2 deg pitch.
+    QCOMPARE(m["gaze_figures"][0]["hoe_shift_mm"][0].get<double>(), 0.0);
+    QVERIFY(std::abs(m["gaze_figures"][1]["hoe_shift_mm"][0].get<double>()) > 0.0);
     QFile f(html);
     QVERIFY(f.open(QIODevice::ReadOnly));
     const QString text = QString::fromUtf8(f.readAll());
     QVERIFY(text.startsWith("<!DOCTYPE html>"));
-    static const QRegularExpression img("<img src='data:image/png;base64,([A-Za-z0-9+/=]+)'");
+    static const QRegularExpression img("<figure id='([^']+)'><img src='data:image/png;base64,([A-Za-z0-9+/=]+)'");
     int n = 0;
+    QMap<QString, QImage> byId;
     for (auto it = img.globalMatch(text); it.hasNext();) {
-      const QImage decoded = QImage::fromData(QByteArray::fromBase64(it.next().captured(1).toLatin1()), "PNG");
+      const auto match = it.next();
+      const QImage decoded = QImage::fromData(QByteArray::fromBase64(match.captured(2).toLatin1()), "PNG");
       QVERIFY(!decoded.isNull() && decoded.width() >= 300);
+      byId[match.captured(1)] = decoded;
       ++n;
     }
     QCOMPARE(n, m["figures"].get<int>());
-    QCOMPARE(n, 12);                          // 4 views + 1 gaze view + 1 retina map + 6 plots
+    QCOMPARE(n, expectedFigures(2));
+    // Gaze 0 is the scene's own gaze: its figure is the plain top view plus the ray fans.
+    QVERIFY(byId.contains("view-top") && byId.contains("gaze-1") && byId.contains("retina-view-1"));
+    const int added = efficiencyPixelsAdded(byId["view-top"], byId["gaze-1"]);
+    const int drawn = m["gaze_figures"][0]["rays_drawn"].get<int>();
+    QVERIFY2(added > 10 * drawn, qPrintable(QString("%1 efficiency pixels for %2 rays").arg(added).arg(drawn)));
+    QCOMPARE(efficiencyPixelsAdded(byId["view-top"], byId["view-top"]), 0);
     QVERIFY(!text.contains("src='figure-"));  // nothing outside the file
     QVERIFY(text.contains("Figure 1.") && text.contains("Key numbers") && text.contains("Scene summary"));
     QVERIFY(text.contains("Eye box"));

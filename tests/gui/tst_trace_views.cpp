@@ -192,6 +192,93 @@ class TestTraceViews : public QObject {
     QCOMPARE(stack->count(), 1);
   }
 
+  // Drags ring `ring` from angle `from` by `by` degrees (eight mouse moves along the arc).
+  void dragRing(int ring, double from, double by, Qt::KeyboardModifiers mods) {
+    viz::SceneView* view = w->sceneView();
+    viz::ElementHandles* handles = bench()->handles()->handles();
+    auto send = [&](QEvent::Type type, double angle, Qt::MouseButton button, Qt::MouseButtons buttons) {
+      const auto p = view->widgetPositionOf(handles->ringPoint(ring, angle));
+      QVERIFY(p);
+      QMouseEvent e(type, *p, view->mapToGlobal(*p), button, buttons, mods);
+      QApplication::sendEvent(view, &e);
+    };
+    send(QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
+    QVERIFY(bench()->handles()->isRotating());
+    for (int i = 1; i <= 8; ++i) send(QEvent::MouseMove, from + by * i / 8.0, Qt::NoButton, Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, from + by, Qt::LeftButton, Qt::NoButton);
+    QVERIFY(!bench()->handles()->isDragging());
+  }
+
+  void ringDragIsOneUndoStep() {
+    viz::SceneView* view = w->sceneView();
+    w->selectElement("projector");
+    viz::ElementHandles* handles = bench()->handles()->handles();
+    QCOMPARE(handles->ringCount(), 3);
+    view->showStandardView(viz::StandardView::Top);  // the yaw ring (about +y) seen face-on
+    view->renderToImage();
+    // A grip on the yaw ring away from the arrows.
+    std::optional<double> from;
+    for (double a = 20.0; a < 360.0 && !from; a += 25.0) {
+      const auto p = view->widgetPositionOf(handles->ringPoint(0, a));
+      if (p && handles->ringAt(*p) == std::optional<int>(0) && !handles->axisAt(*p)) from = a;
+    }
+    QVERIFY(from);
+    const auto start = w->document()->scene().projector.pose.rotation_deg;
+    QUndoStack* stack = w->document()->undoStack();
+    QSignalSpy finished(bench()->handles(), &widgets::HandleController::rotateFinished);
+    auto* field = qobject_cast<QLineEdit*>(w->propertyEditor()->fieldFor("projector.rotation_deg[0]"));
+    QVERIFY(field);
+
+    // 7.3 deg about +y snaps to 7 deg of yaw; pitch and roll stay.
+    dragRing(0, *from, 7.3, Qt::NoModifier);
+    auto now = w->document()->scene().projector.pose.rotation_deg;
+    QCOMPARE(now[0] - start[0], 7.0);
+    QCOMPARE(now[1], start[1]);
+    QCOMPARE(now[2], start[2]);
+    QCOMPARE(stack->count(), 1);
+    QVERIFY2(stack->undoText().startsWith("Rotate projector: yaw by 7"), qPrintable(stack->undoText()));
+    QCOMPARE(finished.count(), 1);
+    QCOMPARE(finished.front().at(2).toDouble(), 7.0);
+    QCOMPARE(field->text().toDouble(), now[0]);  // the property editor follows
+    QCOMPARE(w->selectedElement(), QString("projector"));
+    stack->undo();
+    QCOMPARE(w->document()->scene().projector.pose.rotation_deg, start);
+    QCOMPARE(field->text().toDouble(), start[0]);
+
+    // Shift: fine 0.1 deg steps, backwards across the ring.
+    dragRing(0, *from, -2.34, Qt::ShiftModifier);
+    const double fine = w->document()->scene().projector.pose.rotation_deg[0] - start[0];
+    QVERIFY2(std::abs(fine + 2.34) <= 0.051 && std::abs(fine * 10 - std::round(fine * 10)) < 1e-9,
+             qPrintable(QString::number(fine, 'g', 10)));
+    QCOMPARE(stack->count(), 1);  // one step per drag (it replaced the undone one)
+
+    // Numeric entry: roll by exactly 15 deg, one more step; the eye turns its gaze.
+    QVERIFY(bench()->handles()->rotateBy(2, 15.0));
+    QCOMPARE(w->document()->scene().projector.pose.rotation_deg[2], start[2] + 15.0);
+    QCOMPARE(stack->count(), 2);
+    w->selectElement("eye");
+    QCOMPARE(bench()->handles()->handles()->ringCount(), 2);
+    QVERIFY(bench()->handles()->rotateBy(0, 5.0));
+    QCOMPARE(w->document()->scene().eye.gaze_deg[0], 5.0);
+    QVERIFY(!bench()->handles()->rotateBy(2, 5.0));  // the eye has no roll ring
+  }
+
+  void ringAxesTurnTheirOwnAngle() {
+    // Turning a pose by a small angle about each ring's axis changes exactly that angle.
+    Scene s = w->document()->scene();
+    s.hoe.pose.rotation_deg = {20.0, -10.0, 5.0};
+    w->document()->resetTo(s, {}, "rings");
+    w->selectElement("hoe");
+    viz::ElementHandles* handles = bench()->handles()->handles();
+    const Eigen::Matrix3d r0 = rotationFromDeg(s.hoe.pose.rotation_deg);
+    for (int k = 0; k < 3; ++k) {
+      std::array<double, 3> turned = s.hoe.pose.rotation_deg;
+      turned[static_cast<std::size_t>(k)] += 3.0;
+      const Eigen::Matrix3d expected = Eigen::AngleAxisd(3.0 * M_PI / 180.0, handles->ringAxis(k)) * r0;
+      QVERIFY2((rotationFromDeg(turned) - expected).norm() < 1e-12, qPrintable(QString::number(k)));
+    }
+  }
+
   void eyeDragMovesReliefAndLateralOffset() {
     w->selectElement("eye");
     QCOMPARE(bench()->handles()->handles()->element(), QString("eye"));
