@@ -313,69 +313,69 @@ void DevicesPanel::buildAxisRows() {
   }
   r = 1;
   for (devices::AxisWorker* w : live_->bench().axes()) {
-    AxisRow row;
-    row.worker = w;
-    row.key = axisKey(w->binding());
-    const auto stage = devices::apt::findStage(w->binding().stage_model);
-    row.unit = QString::fromStdString(stage ? stage->unit() : "mm");
+    AxisRow axis;
+    axis.worker = w;
+    axis.key = axisKey(w->binding());
+    const auto stage = apt::findStage(w->binding().stage_model);
+    axis.unit = QString::fromStdString(stage ? stage->unit() : "mm");
     const bool emulated = live_->bench().virtualController(w->binding().element, w->binding().axis) != nullptr;
-    row.select = new QRadioButton(axesBox_);
-    row.select->setObjectName("select_" + row.key);
-    selectGroup_->addButton(row.select);
-    auto* name = new QLabel(row.key + (emulated ? tr(" (virtual)") : QString()), axesBox_);
+    axis.select = new QRadioButton(axesBox_);
+    axis.select->setObjectName("select_" + axis.key);
+    selectGroup_->addButton(axis.select);
+    auto* name = new QLabel(axis.key + (emulated ? tr(" (virtual)") : QString()), axesBox_);
     name->setToolTip(
         QString::fromStdString(w->binding().controller + " " + w->binding().serial + ", " + w->binding().stage_model));
-    row.position = new QLabel("—", axesBox_);
-    row.position->setObjectName("position_" + row.key);
-    row.position->setMinimumWidth(80);
-    row.position->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-    row.position->setStyleSheet("font-family: monospace;");
-    row.state = new QLabel(axesBox_);
-    row.state->setObjectName("state_" + row.key);
-    row.state->setMinimumWidth(60);
-    row.reverse = new QPushButton("◀", axesBox_);
-    row.reverse->setObjectName("jogReverse_" + row.key);
-    row.forward = new QPushButton("▶", axesBox_);
-    row.forward->setObjectName("jogForward_" + row.key);
-    row.home = new QPushButton(tr("Home"), axesBox_);
-    row.home->setObjectName("home_" + row.key);
-    row.target = new QDoubleSpinBox(axesBox_);
-    row.target->setObjectName("target_" + row.key);
-    row.target->setDecimals(3);
+    axis.position = new QLabel("—", axesBox_);
+    axis.position->setObjectName("position_" + axis.key);
+    axis.position->setMinimumWidth(80);
+    axis.position->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    axis.position->setStyleSheet("font-family: monospace;");
+    axis.state = new QLabel(axesBox_);
+    axis.state->setObjectName("state_" + axis.key);
+    axis.state->setMinimumWidth(60);
+    axis.reverse = new QPushButton("◀", axesBox_);
+    axis.reverse->setObjectName("jogReverse_" + axis.key);
+    axis.forward = new QPushButton("▶", axesBox_);
+    axis.forward->setObjectName("jogForward_" + axis.key);
+    axis.home = new QPushButton(tr("Home"), axesBox_);
+    axis.home->setObjectName("home_" + axis.key);
+    axis.target = new QDoubleSpinBox(axesBox_);
+    axis.target->setObjectName("target_" + axis.key);
+    axis.target->setDecimals(3);
     // The whole stage travel, not the soft limits: a refused target is explained, not hidden.
     const auto& b = w->binding();
     double lo = -1000, hi = 1000;
-    if (stage && stage->max_travel > stage->min_travel) {
-      lo = devices::stageToElement(b, stage->min_travel);
-      hi = devices::stageToElement(b, stage->max_travel);
+    if (stage && !stage->continuous && stage->travel_max > stage->travel_min) {
+      lo = devices::stageToElement(b, stage->travel_min);
+      hi = devices::stageToElement(b, stage->travel_max);
     }
-    row.target->setRange(lo, hi);
-    row.target->setValue(0.0);
-    row.target->setToolTip(tr("Element coordinate; soft limits %1 … %2")
-                               .arg(fmt(b.soft_limits[0], row.unit), fmt(b.soft_limits[1], row.unit)));
-    row.go = new QPushButton(tr("Go"), axesBox_);
-    row.go->setObjectName("go_" + row.key);
-    for (QPushButton* pb : {row.reverse, row.forward}) pb->setFixedWidth(28);
+    axis.target->setRange(lo, hi);
+    axis.target->setValue(0.0);
+    axis.target->setToolTip(tr("Element coordinate; soft limits %1 … %2")
+                               .arg(fmt(b.soft_limits[0], axis.unit), fmt(b.soft_limits[1], axis.unit)));
+    axis.go = new QPushButton(tr("Go"), axesBox_);
+    axis.go->setObjectName("go_" + axis.key);
+    for (QPushButton* pb : {axis.reverse, axis.forward}) pb->setFixedWidth(28);
     int c = 0;
-    axesGrid_->addWidget(row.select, r, c++);
+    axesGrid_->addWidget(axis.select, r, c++);
     axesGrid_->addWidget(name, r, c++);
-    axesGrid_->addWidget(row.position, r, c++);
-    axesGrid_->addWidget(row.state, r, c++);
-    axesGrid_->addWidget(row.reverse, r, c++);
-    axesGrid_->addWidget(row.forward, r, c++);
-    axesGrid_->addWidget(row.home, r, c++);
-    axesGrid_->addWidget(row.target, r, c++);
-    axesGrid_->addWidget(row.go, r, c++);
-    const QString key = row.key;
-    connect(row.reverse, &QPushButton::clicked, this, [this, key] { jog(key, -1); });
-    connect(row.forward, &QPushButton::clicked, this, [this, key] { jog(key, +1); });
-    connect(row.home, &QPushButton::clicked, this, [this, key] {
+    axesGrid_->addWidget(axis.position, r, c++);
+    axesGrid_->addWidget(axis.state, r, c++);
+    axesGrid_->addWidget(axis.reverse, r, c++);
+    axesGrid_->addWidget(axis.forward, r, c++);
+    axesGrid_->addWidget(axis.home, r, c++);
+    axesGrid_->addWidget(axis.target, r, c++);
+    axesGrid_->addWidget(axis.go, r, c++);
+    const QString key = axis.key;
+    connect(axis.reverse, &QPushButton::clicked, this, [this, key] { jog(key, -1); });
+    connect(axis.forward, &QPushButton::clicked, this, [this, key] { jog(key, +1); });
+    connect(axis.home, &QPushButton::clicked, this, [this, key] {
       if (AxisRow* ar = row(key)) submit(*ar, tr("home"), [](devices::Stage& s) { s.home(); });
     });
-    connect(row.go, &QPushButton::clicked, this, [this, key] {
+    connect(axis.go, &QPushButton::clicked, this, [this, key] {
       if (AxisRow* ar = row(key)) goTo(key, ar->target->value());
     });
-    rows_.push_back(std::move(row));
+    rows_.push_back(std::move(axis));
     ++r;
   }
   if (!rows_.empty()) rows_.front().select->setChecked(true);
@@ -460,7 +460,7 @@ void DevicesPanel::jog(const QString& key, int direction) {
              if (!(j.acceleration > 0)) j.acceleration = 4.0 * speed;
              s.setJogSettings(j);
            }
-           s.jog(direction > 0 ? devices::apt::JogDirection::Forward : devices::apt::JogDirection::Reverse);
+           s.jog(direction > 0 ? apt::JogDirection::Forward : apt::JogDirection::Reverse);
          });
 }
 
