@@ -86,8 +86,10 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
   connect(disconnect_, &QPushButton::clicked, this, &DevicesPanel::disconnectBench);
   connect(homeAll_, &QPushButton::clicked, this, &DevicesPanel::homeAll);
   connect(estop_, &QPushButton::clicked, this, &DevicesPanel::emergencyStop);
+  // Esc while the panel (or one of its children) has the focus; the main window adds the same
+  // shortcut on the 3-D view. Dialogs keep their own Esc.
   auto* esc = new QShortcut(QKeySequence(Qt::Key_Escape), this);
-  esc->setContext(Qt::WindowShortcut);
+  esc->setContext(Qt::WidgetWithChildrenShortcut);
   connect(esc, &QShortcut::activated, this, &DevicesPanel::emergencyStop);
 
   axesBox_ = new QGroupBox(tr("Axes"), this);
@@ -244,6 +246,8 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
 }
 
 DevicesPanel::~DevicesPanel() {
+  ++connect_generation_;
+  if (connect_thread_.joinable()) connect_thread_.join();  // a pending result is dropped with this object
   stopCamera();
   stopFollowTable();
   follower_.reset();
@@ -254,27 +258,55 @@ DevicesPanel::~DevicesPanel() {
 // ---------------------------------------------------------------------------------------
 
 void DevicesPanel::connectBench() {
-  if (live_) return;
+  want_connected_ = true;
+  if (live_ || connect_thread_.joinable()) return;  // connected, or a start is under way
   const Scene scene = document_ ? document_->scene() : Scene{};
   devices::LiveBenchOptions o;
   o.allow_hardware = options_.allow_hardware;
   o.clock = options_.clock;
-  try {
-    live_ = std::make_unique<devices::LiveBench>(scene, o);
-  } catch (const std::exception& e) {
-    report(tr("Cannot start the bench: %1").arg(QString::fromStdString(e.what())), true);
+  const int generation = ++connect_generation_;
+  report(tr("Starting the bench…"), false);
+  // USB enumeration, the emulators and the virtual optics are built off the GUI thread; the
+  // result comes back as a queued call (dropped if the panel goes first: it joins this thread).
+  connect_thread_ = std::thread([this, scene, o, generation] {
+    auto made = std::make_shared<std::unique_ptr<devices::LiveBench>>();
+    QString error, camera_error;
+    try {
+      *made = std::make_unique<devices::LiveBench>(scene, o);
+      try {
+        (*made)->camera().open();
+      } catch (const std::exception& e) {
+        camera_error = QString::fromStdString(e.what());
+      }
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    }
+    QMetaObject::invokeMethod(
+        this, [this, made, error, camera_error, generation] { finishConnect(generation, made, error, camera_error); },
+        Qt::QueuedConnection);
+  });
+  refresh();
+}
+
+void DevicesPanel::finishConnect(int generation, const std::shared_ptr<std::unique_ptr<devices::LiveBench>>& made,
+                                 const QString& error, const QString& camera_error) {
+  if (connect_thread_.joinable()) connect_thread_.join();
+  if (generation != connect_generation_) {  // disconnected (or the scene replaced) meanwhile
+    made->reset();
+    if (want_connected_) connectBench();
     return;
   }
-  connecting_ = live_->bench().connectAll();
-  try {
-    live_->camera().open();
-  } catch (const std::exception& e) {
-    report(tr("Camera: %1").arg(QString::fromStdString(e.what())), true);
+  if (!error.isEmpty() || !*made) {
+    report(tr("Cannot start the bench: %1").arg(error), true);
+    refresh();
+    return;
   }
+  live_ = std::move(*made);
+  connecting_ = live_->bench().connectAll();
+  if (!camera_error.isEmpty()) report(tr("Camera: %1").arg(camera_error), true);
   buildAxisRows();
   setTestPattern(pattern_->currentIndex());
   applyExposure();
-  startFollowTable();
   if (follow_->isChecked()) setFollowGaze(true);
   if (options_.live_camera && live_check_->isChecked() && isVisible()) startCamera();
   report(live_->isVirtual()
@@ -287,10 +319,16 @@ void DevicesPanel::connectBench() {
 }
 
 void DevicesPanel::disconnectBench() {
-  if (!live_) return;
+  want_connected_ = false;
+  ++connect_generation_;  // a start under way is dropped when it arrives
+  if (!live_) {
+    refresh();
+    return;
+  }
   stopCamera();
   follower_.reset();
   stopFollowTable();
+  table_.reset();  // the next bench may hold another scene
   if (wizard_) wizard_->detachBench();
   clearAxisRows();
   connecting_.clear();
@@ -352,7 +390,7 @@ void DevicesPanel::buildAxisRows() {
     axis.target->setRange(lo, hi);
     axis.target->setValue(0.0);
     axis.target->setToolTip(tr("Element coordinate; soft limits %1 … %2")
-                               .arg(fmt(b.soft_limits[0], axis.unit), fmt(b.soft_limits[1], axis.unit)));
+                                .arg(fmt(b.soft_limits[0], axis.unit), fmt(b.soft_limits[1], axis.unit)));
     axis.go = new QPushButton(tr("Go"), axesBox_);
     axis.go->setObjectName("go_" + axis.key);
     for (QPushButton* pb : {axis.reverse, axis.forward}) pb->setFixedWidth(28);
@@ -468,6 +506,16 @@ void DevicesPanel::goTo(const QString& key, double value) {
   AxisRow* r = row(key);
   if (!r) return;
   const StageBinding b = r->worker->binding();
+  const bool inside = value >= b.soft_limits[0] && value <= b.soft_limits[1];  // the binding's soft limits
+  r->target->setStyleSheet(inside ? QString() : QStringLiteral("QDoubleSpinBox { background: #ffcdd2; }"));
+  if (!inside) {  // refused here: nothing is sent (the Stage would refuse it as well)
+    r->target->setToolTip(tr("Refused: outside the soft limits %1 … %2")
+                              .arg(fmt(b.soft_limits[0], r->unit), fmt(b.soft_limits[1], r->unit)));
+    report(tr("%1: go to %2 refused — outside the soft limits %3 … %4; nothing was sent")
+               .arg(r->key, fmt(value, r->unit), fmt(b.soft_limits[0], r->unit), fmt(b.soft_limits[1], r->unit)),
+           true);
+    return;
+  }
   const double target = devices::elementToStage(b, value);
   submit(*r, tr("go to %1").arg(fmt(value, r->unit)), [target](devices::Stage& s) { s.moveAbsolute(target); });
 }
@@ -548,13 +596,13 @@ void DevicesPanel::keyPressEvent(QKeyEvent* e) {
 
 void DevicesPanel::refresh() {
   const bool on = live_ != nullptr;
-  connect_->setEnabled(!on);
+  connect_->setEnabled(!on && !connect_thread_.joinable());
   disconnect_->setEnabled(on);
   homeAll_->setEnabled(on && !rows_.empty());
   estop_->setEnabled(on);
   wizardButton_->setEnabled(on);
   if (!on) {
-    banner_->setText(tr("Bench not connected"));
+    banner_->setText(connect_thread_.joinable() ? tr("Starting the bench…") : tr("Bench not connected"));
     banner_->setStyleSheet("QLabel { background: palette(mid); color: white; padding: 4px; }");
     return;
   }
@@ -609,6 +657,10 @@ void DevicesPanel::refresh() {
   }
   if (table_) {
     std::lock_guard lock(table_->mutex);
+    if (table_->ready && !table_applied_ && follower_) {  // retarget with the analysed x_p(alpha)
+      table_applied_ = true;
+      follower_->setGaze(gaze_[0], gaze_[1]);
+    }
     followInfo_->setText(table_->ready ? tr("x_p(α) from the analyses (traced HOE, %1 gazes)").arg(table_->gazes.size())
                                        : tr("x_p(α): geometric guess while the analyses run…"));
   } else {
@@ -740,7 +792,8 @@ void DevicesPanel::onSceneChanged() {
 void DevicesPanel::startFollowTable() {
   stopFollowTable();
   table_ = std::make_shared<FollowTable>();
-  if (!options_.analysed_follow || !document_ || !traceEvaluatorAvailable()) return;
+  table_applied_ = false;
+  if (!options_.analysed_follow || !document_) return;
   const Scene scene = document_->scene();
   bool any_hoe = false;
   for (const auto& b : scene.stages) any_hoe = any_hoe || b.element == "hoe";
@@ -796,6 +849,16 @@ std::map<devices::GazeFollower::Key, double> DevicesPanel::followTargets(double 
           {{"camera", "pitch"}, pitch}};
 }
 
+bool DevicesPanel::hasCameraFrame() const {
+  return !camera_view_->frame().isNull();
+}
+
+bool DevicesPanel::followTableReady() const {
+  if (!table_) return false;
+  std::lock_guard lock(table_->mutex);
+  return table_->ready;
+}
+
 bool DevicesPanel::followGaze() const {
   return follow_->isChecked();
 }
@@ -807,6 +870,7 @@ void DevicesPanel::setFollowGaze(bool on) {
   }
   follower_.reset();
   if (!on || !live_) return;
+  if (!table_) startFollowTable();  // the analyses' x_p(alpha) table, computed on first use
   follower_ = std::make_unique<devices::GazeFollower>(
       live_->bench().axes(), [this](double y, double p) { return followTargets(y, p); }, 0.005);
   follower_->setGaze(gaze_[0], gaze_[1]);
@@ -829,6 +893,7 @@ void DevicesPanel::setGaze(double yaw, double pitch) {
 
 void DevicesPanel::openCaptureWizard() {
   if (!live_) return;
+  if (wizard_ && !wizard_->hasBench()) delete wizard_;  // made for a bench that was disconnected
   if (!wizard_) {
     wizard_ = new CaptureWizard(document_ ? document_->scene() : Scene{}, live_.get(), this);
     wizard_->setHoeShift([this](std::array<double, 2> g) {
