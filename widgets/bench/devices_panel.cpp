@@ -655,12 +655,12 @@ void DevicesPanel::refresh() {
     }
     it = connecting_.erase(it);
   }
+  if (table_ && follower_ && !table_applied_ && followTableReady()) {  // retarget with the analysed x_p(alpha)
+    table_applied_ = true;
+    follower_->setGaze(gaze_[0], gaze_[1]);
+  }
   if (table_) {
     std::lock_guard lock(table_->mutex);
-    if (table_->ready && !table_applied_ && follower_) {  // retarget with the analysed x_p(alpha)
-      table_applied_ = true;
-      follower_->setGaze(gaze_[0], gaze_[1]);
-    }
     followInfo_->setText(table_->ready ? tr("x_p(α) from the analyses (traced HOE, %1 gazes)").arg(table_->gazes.size())
                                        : tr("x_p(α): geometric guess while the analyses run…"));
   } else {
