@@ -233,7 +233,10 @@ class TestDevicesPanel : public QObject {
   }
 
   void mainWindowHasAVirtualBenchDock() {
+    QElapsedTimer t;
+    t.start();
     studio::MainWindow window;
+    const qint64 constructed = t.elapsed();
     auto* dock = window.findChild<QDockWidget*>("DevicesDock");
     QVERIFY(dock);
     DevicesPanel* panel = window.devicesPanel();
@@ -241,6 +244,7 @@ class TestDevicesPanel : public QObject {
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     QTRY_VERIFY_WITH_TIMEOUT(panel->isConnected(), 10000);  // started by itself, off the GUI thread
+    qInfo("main window constructed in %lld ms; virtual bench connected after %lld ms", constructed, t.elapsed());
     QVERIFY(panel->isVirtual());
     auto* label = window.statusBar()->findChild<QLabel*>("benchStatusBarLabel");
     QVERIFY(label);

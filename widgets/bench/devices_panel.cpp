@@ -394,6 +394,11 @@ void DevicesPanel::buildAxisRows() {
     axis.go = new QPushButton(tr("Go"), axesBox_);
     axis.go->setObjectName("go_" + axis.key);
     for (QPushButton* pb : {axis.reverse, axis.forward}) pb->setFixedWidth(28);
+    // Clicking a row keeps the keyboard on the panel (arrow keys jog, Esc stops).
+    for (QAbstractButton* ab :
+         std::initializer_list<QAbstractButton*>{axis.select, axis.reverse, axis.forward, axis.home})
+      ab->setFocusPolicy(Qt::NoFocus);
+    connect(axis.select, &QRadioButton::clicked, this, [this] { setFocus(); });
     int c = 0;
     axesGrid_->addWidget(axis.select, r, c++);
     axesGrid_->addWidget(name, r, c++);
