@@ -11,7 +11,6 @@
 #include <QMessageBox>
 #include <QSaveFile>
 #include <QSettings>
-#include <QScrollArea>
 #include <QShortcut>
 #include <QStatusBar>
 #include <QUndoStack>
@@ -95,11 +94,7 @@ void MainWindow::createDocks() {
   widgets::DevicesPanelOptions bench;
   bench.auto_connect = benchAutoStart;
   devices_ = new widgets::DevicesPanel(document_, this, bench);
-  auto* scroll = new QScrollArea(this);  // the panel never forces the window taller
-  scroll->setWidget(devices_);
-  scroll->setWidgetResizable(true);
-  scroll->setFrameShape(QFrame::NoFrame);
-  devicesDock_ = addPanel(scroll, tr("Bench"), "DevicesDock", Qt::RightDockWidgetArea);
+  devicesDock_ = addPanel(devices_, tr("Bench"), "DevicesDock", Qt::RightDockWidgetArea);
   tabifyDockWidget(preview, devicesDock_);
   preview->raise();
   benchStatus_ = new QLabel(this);
