@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "app/studio/main_window.h"
 #include "devices/apt/apt_message.h"
@@ -208,6 +209,32 @@ class TestDevicesPanel : public QObject {
     }
     QCOMPARE(ids.size(), steps);
     for (const auto& s : wizard->session()->plan()) QVERIFY(ids.contains(QString::fromStdString(s.id)));
+  }
+
+  void geometricWizardCapturesBothBoardsOverTheGazeRange() {
+    Rig rig(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    rig.panel->openCaptureWizard();
+    widgets::CaptureWizard* wizard = rig.panel->wizard();
+    const auto folder = tmpDir("gui_capture_geometric") / "session";
+    wizard->setKind(devices::CaptureKind::Geometric);
+    wizard->setFolder(QString::fromStdString(folder.string()));
+    QSignalSpy stopped(wizard, &widgets::CaptureWizard::runStopped);
+    wizard->start();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, 25000);
+    QVERIFY2(wizard->session() && wizard->session()->complete(),
+             qPrintable(wizard->findChild<QLabel*>("captureStatus")->text()));
+    // Both displays' boards, the HOE at a different x at each yaw.
+    int peripheral = 0, foveal = 0;
+    std::set<long> hoe_x_um;
+    for (const auto& r : wizard->session()->records()) {
+      peripheral += r.step.find("peripheral") != std::string::npos;
+      foveal += r.step.find("foveal") != std::string::npos;
+      hoe_x_um.insert(std::lround(r.positions.at("hoe.x") * 1000));
+      QVERIFY(std::filesystem::exists(folder / r.image));
+    }
+    QVERIFY2(peripheral >= 2 && foveal >= 2, qPrintable(QString("%1 %2").arg(peripheral).arg(foveal)));
+    QVERIFY2(hoe_x_um.size() >= 3, qPrintable(QString::number(hoe_x_um.size())));
   }
 
   void followGazeTakesTheHoeToTheAnalysedShift() {
