@@ -27,6 +27,7 @@
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/vtk_gl_widget.h"
+#include "widgets/bench/devices_panel.h"
 #include "widgets/display_panel.h"
 #include "widgets/gaze_panel.h"
 #include "widgets/message_log.h"
@@ -65,7 +66,8 @@ int main(int argc, char** argv) {
   QCommandLineOption followOpt("follow-gaze", "HOE follows gaze: apply the travel x_p(alpha) that maximises the FOV.");
   QCommandLineOption showOpt("show",
                              "Views to show, comma-separated: rays (ray fans), effmap (efficiency map on the HOE), "
-                             "kcloud (grating-vector cloud dock), retina (retina dock), none. Default: rays,retina.",
+                             "kcloud (grating-vector cloud dock), retina (retina dock), bench (devices dock), none. "
+                             "Default: rays,retina.",
                              "LIST");
   QCommandLineOption zoomOpt("zoom", "Camera zoom factor applied after --view (0.2..20, e.g. 1.8).", "F");
   QCommandLineOption grabOpt("grab", "What --screenshot saves: window (default), view (3D view), retina, kcloud.",
@@ -149,6 +151,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (report) fovea::studio::MainWindow::setBenchAutoStart(false);  // the report needs no live bench
   fovea::studio::MainWindow window;
   window.setPersistentSettings(!screenshot);
   window.restoreSettings();
@@ -188,6 +191,13 @@ int main(int argc, char** argv) {
     return 1;
   }
   settle(200);
+  // The bench dock shown: wait (up to 10 s) for the bench and its first camera frame.
+  if (fovea::widgets::DevicesPanel* devices = window.devicesPanel(); devices && devices->isVisible()) {
+    QElapsedTimer t;
+    t.start();
+    while (t.elapsed() < 10000 && !(devices->isConnected() && devices->hasCameraFrame())) settle(50);
+    settle(300);
+  }
   QImage image;
   if (grab == "view")
     image = window.sceneView()->renderToImage();

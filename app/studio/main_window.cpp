@@ -6,10 +6,12 @@
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QSaveFile>
 #include <QSettings>
+#include <QShortcut>
 #include <QStatusBar>
 #include <QUndoStack>
 
@@ -20,6 +22,7 @@
 #include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
+#include "widgets/bench/devices_panel.h"
 #include "widgets/message_log.h"
 #include "widgets/preview_panel.h"
 #include "widgets/property_editor.h"
@@ -35,6 +38,7 @@ namespace fovea::studio {
 
 namespace {
 constexpr int kMaxRecent = 8;
+bool benchAutoStart = true;
 const char* kSceneFilter = "Scene files (*.json);;All files (*)";
 }  // namespace
 
@@ -73,6 +77,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
 MainWindow::~MainWindow() = default;
 
+void MainWindow::setBenchAutoStart(bool on) {
+  benchAutoStart = on;
+}
+
 void MainWindow::createDocks() {
   tree_ = new widgets::SceneTree(document_, this);
   addPanel(tree_, tr("Scene"), "SceneTreeDock", Qt::LeftDockWidgetArea);
@@ -80,7 +88,33 @@ void MainWindow::createDocks() {
   addPanel(properties_, tr("Properties"), "PropertiesDock", Qt::RightDockWidgetArea);
   log_ = new widgets::MessageLog(this);
   addPanel(log_, tr("Messages"), "MessagesDock", Qt::BottomDockWidgetArea);
-  addPanel(new widgets::PreviewPanel(document_, this), tr("Foveated preview"), "PreviewDock", Qt::RightDockWidgetArea);
+  QDockWidget* preview = addPanel(new widgets::PreviewPanel(document_, this), tr("Foveated preview"), "PreviewDock",
+                                  Qt::RightDockWidgetArea);
+  // The bench: a tab behind the preview (its camera runs only while the tab is shown).
+  widgets::DevicesPanelOptions bench;
+  bench.auto_connect = benchAutoStart;
+  devices_ = new widgets::DevicesPanel(document_, this, bench);
+  devicesDock_ = addPanel(devices_, tr("Bench"), "DevicesDock", Qt::RightDockWidgetArea);
+  tabifyDockWidget(preview, devicesDock_);
+  preview->raise();
+  benchStatus_ = new QLabel(this);
+  benchStatus_->setObjectName("benchStatusBarLabel");
+  statusBar()->addPermanentWidget(benchStatus_);
+  benchStatus_->hide();
+  connect(devices_, &widgets::DevicesPanel::benchConnected, this, [this](bool is_virtual) {
+    benchStatus_->setText(is_virtual ? tr(" VIRTUAL BENCH ") : tr(" Bench: hardware "));
+    benchStatus_->setToolTip(is_virtual ? tr("No stage controller of the scene is plugged in: the stages and the eye "
+                                             "camera are simulated (View ▸ Bench)")
+                                        : tr("Stage controllers on USB"));
+    benchStatus_->setStyleSheet(is_virtual ? "QLabel { background: #e68a00; color: black; font-weight: bold; }"
+                                           : "QLabel { background: #2e7d32; color: white; font-weight: bold; }");
+    benchStatus_->show();
+  });
+  connect(devices_, &widgets::DevicesPanel::benchDisconnected, this, [this] { benchStatus_->hide(); });
+  // Esc in the 3-D view is the e-stop too (the panel has its own; dialogs keep theirs).
+  auto* esc = new QShortcut(QKeySequence(Qt::Key_Escape), view_);
+  esc->setContext(Qt::WidgetWithChildrenShortcut);
+  connect(esc, &QShortcut::activated, devices_, &widgets::DevicesPanel::emergencyStop);
   resizeDocks({findChild<QDockWidget*>("SceneTreeDock"), findChild<QDockWidget*>("PropertiesDock")}, {300, 380},
               Qt::Horizontal);
   resizeDocks({findChild<QDockWidget*>("MessagesDock")}, {130}, Qt::Vertical);
@@ -132,9 +166,33 @@ void MainWindow::createMenus() {
   panelsMenu_ = viewMenu_->addMenu(tr("&Panels"));
   for (QDockWidget* dock : findChildren<QDockWidget*>()) panelsMenu_->addAction(dock->toggleViewAction());
 
+  createBenchMenu();
+
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About Foveated AR Studio"), this, &MainWindow::showAbout);
   help->addAction(tr("About &Qt"), qApp, &QApplication::aboutQt);
+}
+
+void MainWindow::createBenchMenu() {
+  QMenu* menu = menuBar()->addMenu(tr("&Bench"));
+  menu->addAction(tr("Show &Bench Panel"), QKeySequence(tr("Ctrl+B")), this, [this] {
+    devicesDock_->show();
+    devicesDock_->raise();
+    devices_->setFocus();
+  });
+  menu->addSeparator();
+  menu->addAction(tr("&Connect"), devices_, &widgets::DevicesPanel::connectBench);
+  menu->addAction(tr("&Disconnect"), devices_, &widgets::DevicesPanel::disconnectBench);
+  menu->addAction(tr("&Home All Axes"), devices_, &widgets::DevicesPanel::homeAll);
+  // Shown with its key; the key itself is the panel's and the 3-D view's shortcut.
+  QAction* stop = menu->addAction(tr("&Emergency Stop\tEsc"), devices_, &widgets::DevicesPanel::emergencyStop);
+  stop->setToolTip(tr("Immediate stop of every axis"));
+  menu->addSeparator();
+  menu->addAction(tr("Calibration &Capture…"), this, [this] {
+    devicesDock_->show();
+    devicesDock_->raise();
+    devices_->openCaptureWizard();
+  });
 }
 
 void MainWindow::openEmbeddedDefault() {

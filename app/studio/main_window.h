@@ -9,6 +9,7 @@
 class QAction;
 class QMenu;
 class QDockWidget;
+class QLabel;
 
 namespace fovea {
 struct Scene;
@@ -20,6 +21,7 @@ class SceneDocument;
 class SceneTree;
 class PropertyEditor;
 class MessageLog;
+class DevicesPanel;
 }  // namespace widgets
 }  // namespace fovea
 
@@ -61,6 +63,12 @@ class MainWindow : public QMainWindow {
   widgets::SceneTree* sceneTree() const { return tree_; }
   widgets::PropertyEditor* propertyEditor() const { return properties_; }
   widgets::MessageLog* messageLog() const { return log_; }
+  // The live bench (devices/bench): the virtual one when no stage controller is plugged in.
+  widgets::DevicesPanel* devicesPanel() const { return devices_; }
+  QDockWidget* devicesDock() const { return devicesDock_; }
+  // Whether new main windows start the bench by themselves (default true; GUI tests that do
+  // not exercise the bench and the report mode turn it off).
+  static void setBenchAutoStart(bool on);
   QStringList recentFiles() const { return recent_; }
   // Analyses, plots, preferences, report export, autosave and recovery (workbench.h).
   Workbench* workbench() const { return workbench_; }
@@ -73,6 +81,7 @@ class MainWindow : public QMainWindow {
  private:
   void createDocks();
   void createMenus();
+  void createBenchMenu();
   void newScene();
   void openDialog();
   bool save();
@@ -90,6 +99,9 @@ class MainWindow : public QMainWindow {
   widgets::SceneTree* tree_ = nullptr;
   widgets::PropertyEditor* properties_ = nullptr;
   widgets::MessageLog* log_ = nullptr;
+  widgets::DevicesPanel* devices_ = nullptr;
+  QDockWidget* devicesDock_ = nullptr;
+  QLabel* benchStatus_ = nullptr;  // permanent status-bar text: VIRTUAL BENCH / bench hardware
   QMenu* viewMenu_ = nullptr;
   QMenu* panelsMenu_ = nullptr;
   QMenu* recentMenu_ = nullptr;

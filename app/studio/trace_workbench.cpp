@@ -100,8 +100,13 @@ bool TraceWorkbench::applyShowList(const QStringList& names, QString* error) {
     } else if (n == "retina") {
       retinaDock_->show();
       retinaDock_->raise();
+    } else if (n == "bench") {
+      if (QDockWidget* d = window_->devicesDock()) {
+        d->show();
+        d->raise();
+      }
     } else if (n != "none" && !n.isEmpty()) {
-      if (error) *error = tr("unknown view \"%1\" (expected rays, effmap, kcloud, retina or none)").arg(raw);
+      if (error) *error = tr("unknown view \"%1\" (expected rays, effmap, kcloud, retina, bench or none)").arg(raw);
       return false;
     }
   }

@@ -86,8 +86,10 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
   connect(disconnect_, &QPushButton::clicked, this, &DevicesPanel::disconnectBench);
   connect(homeAll_, &QPushButton::clicked, this, &DevicesPanel::homeAll);
   connect(estop_, &QPushButton::clicked, this, &DevicesPanel::emergencyStop);
+  // Esc while the panel (or one of its children) has the focus; the main window adds the same
+  // shortcut on the 3-D view. Dialogs keep their own Esc.
   auto* esc = new QShortcut(QKeySequence(Qt::Key_Escape), this);
-  esc->setContext(Qt::WindowShortcut);
+  esc->setContext(Qt::WidgetWithChildrenShortcut);
   connect(esc, &QShortcut::activated, this, &DevicesPanel::emergencyStop);
 
   axesBox_ = new QGroupBox(tr("Axes"), this);
@@ -244,6 +246,8 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
 }
 
 DevicesPanel::~DevicesPanel() {
+  ++connect_generation_;
+  if (connect_thread_.joinable()) connect_thread_.join();  // a pending result is dropped with this object
   stopCamera();
   stopFollowTable();
   follower_.reset();
@@ -254,27 +258,55 @@ DevicesPanel::~DevicesPanel() {
 // ---------------------------------------------------------------------------------------
 
 void DevicesPanel::connectBench() {
-  if (live_) return;
+  want_connected_ = true;
+  if (live_ || connect_thread_.joinable()) return;  // connected, or a start is under way
   const Scene scene = document_ ? document_->scene() : Scene{};
   devices::LiveBenchOptions o;
   o.allow_hardware = options_.allow_hardware;
   o.clock = options_.clock;
-  try {
-    live_ = std::make_unique<devices::LiveBench>(scene, o);
-  } catch (const std::exception& e) {
-    report(tr("Cannot start the bench: %1").arg(QString::fromStdString(e.what())), true);
+  const int generation = ++connect_generation_;
+  report(tr("Starting the bench…"), false);
+  // USB enumeration, the emulators and the virtual optics are built off the GUI thread; the
+  // result comes back as a queued call (dropped if the panel goes first: it joins this thread).
+  connect_thread_ = std::thread([this, scene, o, generation] {
+    auto made = std::make_shared<std::unique_ptr<devices::LiveBench>>();
+    QString error, camera_error;
+    try {
+      *made = std::make_unique<devices::LiveBench>(scene, o);
+      try {
+        (*made)->camera().open();
+      } catch (const std::exception& e) {
+        camera_error = QString::fromStdString(e.what());
+      }
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    }
+    QMetaObject::invokeMethod(
+        this, [this, made, error, camera_error, generation] { finishConnect(generation, made, error, camera_error); },
+        Qt::QueuedConnection);
+  });
+  refresh();
+}
+
+void DevicesPanel::finishConnect(int generation, const std::shared_ptr<std::unique_ptr<devices::LiveBench>>& made,
+                                 const QString& error, const QString& camera_error) {
+  if (connect_thread_.joinable()) connect_thread_.join();
+  if (generation != connect_generation_) {  // disconnected (or the scene replaced) meanwhile
+    made->reset();
+    if (want_connected_) connectBench();
     return;
   }
-  connecting_ = live_->bench().connectAll();
-  try {
-    live_->camera().open();
-  } catch (const std::exception& e) {
-    report(tr("Camera: %1").arg(QString::fromStdString(e.what())), true);
+  if (!error.isEmpty() || !*made) {
+    report(tr("Cannot start the bench: %1").arg(error), true);
+    refresh();
+    return;
   }
+  live_ = std::move(*made);
+  connecting_ = live_->bench().connectAll();
+  if (!camera_error.isEmpty()) report(tr("Camera: %1").arg(camera_error), true);
   buildAxisRows();
   setTestPattern(pattern_->currentIndex());
   applyExposure();
-  startFollowTable();
   if (follow_->isChecked()) setFollowGaze(true);
   if (options_.live_camera && live_check_->isChecked() && isVisible()) startCamera();
   report(live_->isVirtual()
@@ -287,10 +319,16 @@ void DevicesPanel::connectBench() {
 }
 
 void DevicesPanel::disconnectBench() {
-  if (!live_) return;
+  want_connected_ = false;
+  ++connect_generation_;  // a start under way is dropped when it arrives
+  if (!live_) {
+    refresh();
+    return;
+  }
   stopCamera();
   follower_.reset();
   stopFollowTable();
+  table_.reset();  // the next bench may hold another scene
   if (wizard_) wizard_->detachBench();
   clearAxisRows();
   connecting_.clear();
@@ -313,69 +351,74 @@ void DevicesPanel::buildAxisRows() {
   }
   r = 1;
   for (devices::AxisWorker* w : live_->bench().axes()) {
-    AxisRow row;
-    row.worker = w;
-    row.key = axisKey(w->binding());
-    const auto stage = devices::apt::findStage(w->binding().stage_model);
-    row.unit = QString::fromStdString(stage ? stage->unit() : "mm");
+    AxisRow axis;
+    axis.worker = w;
+    axis.key = axisKey(w->binding());
+    const auto stage = apt::findStage(w->binding().stage_model);
+    axis.unit = QString::fromStdString(stage ? stage->unit() : "mm");
     const bool emulated = live_->bench().virtualController(w->binding().element, w->binding().axis) != nullptr;
-    row.select = new QRadioButton(axesBox_);
-    row.select->setObjectName("select_" + row.key);
-    selectGroup_->addButton(row.select);
-    auto* name = new QLabel(row.key + (emulated ? tr(" (virtual)") : QString()), axesBox_);
+    axis.select = new QRadioButton(axesBox_);
+    axis.select->setObjectName("select_" + axis.key);
+    selectGroup_->addButton(axis.select);
+    auto* name = new QLabel(axis.key + (emulated ? tr(" (virtual)") : QString()), axesBox_);
     name->setToolTip(
         QString::fromStdString(w->binding().controller + " " + w->binding().serial + ", " + w->binding().stage_model));
-    row.position = new QLabel("—", axesBox_);
-    row.position->setObjectName("position_" + row.key);
-    row.position->setMinimumWidth(80);
-    row.position->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-    row.position->setStyleSheet("font-family: monospace;");
-    row.state = new QLabel(axesBox_);
-    row.state->setObjectName("state_" + row.key);
-    row.state->setMinimumWidth(60);
-    row.reverse = new QPushButton("◀", axesBox_);
-    row.reverse->setObjectName("jogReverse_" + row.key);
-    row.forward = new QPushButton("▶", axesBox_);
-    row.forward->setObjectName("jogForward_" + row.key);
-    row.home = new QPushButton(tr("Home"), axesBox_);
-    row.home->setObjectName("home_" + row.key);
-    row.target = new QDoubleSpinBox(axesBox_);
-    row.target->setObjectName("target_" + row.key);
-    row.target->setDecimals(3);
+    axis.position = new QLabel("—", axesBox_);
+    axis.position->setObjectName("position_" + axis.key);
+    axis.position->setMinimumWidth(80);
+    axis.position->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    axis.position->setStyleSheet("font-family: monospace;");
+    axis.state = new QLabel(axesBox_);
+    axis.state->setObjectName("state_" + axis.key);
+    axis.state->setMinimumWidth(60);
+    axis.reverse = new QPushButton("◀", axesBox_);
+    axis.reverse->setObjectName("jogReverse_" + axis.key);
+    axis.forward = new QPushButton("▶", axesBox_);
+    axis.forward->setObjectName("jogForward_" + axis.key);
+    axis.home = new QPushButton(tr("Home"), axesBox_);
+    axis.home->setObjectName("home_" + axis.key);
+    axis.target = new QDoubleSpinBox(axesBox_);
+    axis.target->setObjectName("target_" + axis.key);
+    axis.target->setDecimals(3);
     // The whole stage travel, not the soft limits: a refused target is explained, not hidden.
     const auto& b = w->binding();
     double lo = -1000, hi = 1000;
-    if (stage && stage->max_travel > stage->min_travel) {
-      lo = devices::stageToElement(b, stage->min_travel);
-      hi = devices::stageToElement(b, stage->max_travel);
+    if (stage && !stage->continuous && stage->travel_max > stage->travel_min) {
+      lo = devices::stageToElement(b, stage->travel_min);
+      hi = devices::stageToElement(b, stage->travel_max);
     }
-    row.target->setRange(lo, hi);
-    row.target->setValue(0.0);
-    row.target->setToolTip(tr("Element coordinate; soft limits %1 … %2")
-                               .arg(fmt(b.soft_limits[0], row.unit), fmt(b.soft_limits[1], row.unit)));
-    row.go = new QPushButton(tr("Go"), axesBox_);
-    row.go->setObjectName("go_" + row.key);
-    for (QPushButton* pb : {row.reverse, row.forward}) pb->setFixedWidth(28);
+    axis.target->setRange(lo, hi);
+    axis.target->setValue(0.0);
+    axis.target->setToolTip(tr("Element coordinate; soft limits %1 … %2")
+                                .arg(fmt(b.soft_limits[0], axis.unit), fmt(b.soft_limits[1], axis.unit)));
+    axis.go = new QPushButton(tr("Go"), axesBox_);
+    axis.go->setObjectName("go_" + axis.key);
+    for (QPushButton* pb : {axis.reverse, axis.forward}) pb->setFixedWidth(28);
+    // Clicking a row keeps the keyboard on the panel (arrow keys jog, Esc stops).
+    for (QAbstractButton* ab :
+         std::initializer_list<QAbstractButton*>{axis.select, axis.reverse, axis.forward, axis.home})
+      ab->setFocusPolicy(Qt::NoFocus);
+    connect(axis.select, &QRadioButton::clicked, this, [this] { setFocus(); });
     int c = 0;
-    axesGrid_->addWidget(row.select, r, c++);
+    axesGrid_->addWidget(axis.select, r, c++);
     axesGrid_->addWidget(name, r, c++);
-    axesGrid_->addWidget(row.position, r, c++);
-    axesGrid_->addWidget(row.state, r, c++);
-    axesGrid_->addWidget(row.reverse, r, c++);
-    axesGrid_->addWidget(row.forward, r, c++);
-    axesGrid_->addWidget(row.home, r, c++);
-    axesGrid_->addWidget(row.target, r, c++);
-    axesGrid_->addWidget(row.go, r, c++);
-    const QString key = row.key;
-    connect(row.reverse, &QPushButton::clicked, this, [this, key] { jog(key, -1); });
-    connect(row.forward, &QPushButton::clicked, this, [this, key] { jog(key, +1); });
-    connect(row.home, &QPushButton::clicked, this, [this, key] {
+    axesGrid_->addWidget(axis.position, r, c++);
+    axesGrid_->addWidget(axis.state, r, c++);
+    axesGrid_->addWidget(axis.reverse, r, c++);
+    axesGrid_->addWidget(axis.forward, r, c++);
+    axesGrid_->addWidget(axis.home, r, c++);
+    axesGrid_->addWidget(axis.target, r, c++);
+    axesGrid_->addWidget(axis.go, r, c++);
+    const QString key = axis.key;
+    connect(axis.reverse, &QPushButton::clicked, this, [this, key] { jog(key, -1); });
+    connect(axis.forward, &QPushButton::clicked, this, [this, key] { jog(key, +1); });
+    connect(axis.home, &QPushButton::clicked, this, [this, key] {
       if (AxisRow* ar = row(key)) submit(*ar, tr("home"), [](devices::Stage& s) { s.home(); });
     });
-    connect(row.go, &QPushButton::clicked, this, [this, key] {
+    connect(axis.go, &QPushButton::clicked, this, [this, key] {
       if (AxisRow* ar = row(key)) goTo(key, ar->target->value());
     });
-    rows_.push_back(std::move(row));
+    rows_.push_back(std::move(axis));
     ++r;
   }
   if (!rows_.empty()) rows_.front().select->setChecked(true);
@@ -460,7 +503,7 @@ void DevicesPanel::jog(const QString& key, int direction) {
              if (!(j.acceleration > 0)) j.acceleration = 4.0 * speed;
              s.setJogSettings(j);
            }
-           s.jog(direction > 0 ? devices::apt::JogDirection::Forward : devices::apt::JogDirection::Reverse);
+           s.jog(direction > 0 ? apt::JogDirection::Forward : apt::JogDirection::Reverse);
          });
 }
 
@@ -468,6 +511,16 @@ void DevicesPanel::goTo(const QString& key, double value) {
   AxisRow* r = row(key);
   if (!r) return;
   const StageBinding b = r->worker->binding();
+  const bool inside = value >= b.soft_limits[0] && value <= b.soft_limits[1];  // the binding's soft limits
+  r->target->setStyleSheet(inside ? QString() : QStringLiteral("QDoubleSpinBox { background: #ffcdd2; }"));
+  if (!inside) {  // refused here: nothing is sent (the Stage would refuse it as well)
+    r->target->setToolTip(tr("Refused: outside the soft limits %1 … %2")
+                              .arg(fmt(b.soft_limits[0], r->unit), fmt(b.soft_limits[1], r->unit)));
+    report(tr("%1: go to %2 refused — outside the soft limits %3 … %4; nothing was sent")
+               .arg(r->key, fmt(value, r->unit), fmt(b.soft_limits[0], r->unit), fmt(b.soft_limits[1], r->unit)),
+           true);
+    return;
+  }
   const double target = devices::elementToStage(b, value);
   submit(*r, tr("go to %1").arg(fmt(value, r->unit)), [target](devices::Stage& s) { s.moveAbsolute(target); });
 }
@@ -548,13 +601,13 @@ void DevicesPanel::keyPressEvent(QKeyEvent* e) {
 
 void DevicesPanel::refresh() {
   const bool on = live_ != nullptr;
-  connect_->setEnabled(!on);
+  connect_->setEnabled(!on && !connect_thread_.joinable());
   disconnect_->setEnabled(on);
   homeAll_->setEnabled(on && !rows_.empty());
   estop_->setEnabled(on);
   wizardButton_->setEnabled(on);
   if (!on) {
-    banner_->setText(tr("Bench not connected"));
+    banner_->setText(connect_thread_.joinable() ? tr("Starting the bench…") : tr("Bench not connected"));
     banner_->setStyleSheet("QLabel { background: palette(mid); color: white; padding: 4px; }");
     return;
   }
@@ -606,6 +659,10 @@ void DevicesPanel::refresh() {
       report(tr("Connect: %1").arg(QString::fromStdString(e.what())), true);
     }
     it = connecting_.erase(it);
+  }
+  if (table_ && follower_ && !table_applied_ && followTableReady()) {  // retarget with the analysed x_p(alpha)
+    table_applied_ = true;
+    follower_->setGaze(gaze_[0], gaze_[1]);
   }
   if (table_) {
     std::lock_guard lock(table_->mutex);
@@ -740,7 +797,8 @@ void DevicesPanel::onSceneChanged() {
 void DevicesPanel::startFollowTable() {
   stopFollowTable();
   table_ = std::make_shared<FollowTable>();
-  if (!options_.analysed_follow || !document_ || !traceEvaluatorAvailable()) return;
+  table_applied_ = false;
+  if (!options_.analysed_follow || !document_) return;
   const Scene scene = document_->scene();
   bool any_hoe = false;
   for (const auto& b : scene.stages) any_hoe = any_hoe || b.element == "hoe";
@@ -796,6 +854,16 @@ std::map<devices::GazeFollower::Key, double> DevicesPanel::followTargets(double 
           {{"camera", "pitch"}, pitch}};
 }
 
+bool DevicesPanel::hasCameraFrame() const {
+  return !camera_view_->frame().isNull();
+}
+
+bool DevicesPanel::followTableReady() const {
+  if (!table_) return false;
+  std::lock_guard lock(table_->mutex);
+  return table_->ready;
+}
+
 bool DevicesPanel::followGaze() const {
   return follow_->isChecked();
 }
@@ -807,6 +875,7 @@ void DevicesPanel::setFollowGaze(bool on) {
   }
   follower_.reset();
   if (!on || !live_) return;
+  if (!table_) startFollowTable();  // the analyses' x_p(alpha) table, computed on first use
   follower_ = std::make_unique<devices::GazeFollower>(
       live_->bench().axes(), [this](double y, double p) { return followTargets(y, p); }, 0.005);
   follower_->setGaze(gaze_[0], gaze_[1]);
@@ -829,6 +898,7 @@ void DevicesPanel::setGaze(double yaw, double pitch) {
 
 void DevicesPanel::openCaptureWizard() {
   if (!live_) return;
+  if (wizard_ && !wizard_->hasBench()) delete wizard_;  // made for a bench that was disconnected
   if (!wizard_) {
     wizard_ = new CaptureWizard(document_ ? document_->scene() : Scene{}, live_.get(), this);
     wizard_->setHoeShift([this](std::array<double, 2> g) {

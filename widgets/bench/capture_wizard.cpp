@@ -330,6 +330,11 @@ void CaptureWizard::updateButtons() {
   import_->setEnabled(!running_ && kind() == devices::CaptureKind::Color);
 }
 
+void CaptureWizard::reject() {
+  pause();
+  QDialog::reject();
+}
+
 void CaptureWizard::closeEvent(QCloseEvent* event) {
   pause();  // a running step finishes and is saved; the dialog just hides
   QDialog::closeEvent(event);

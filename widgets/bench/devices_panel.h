@@ -35,6 +35,7 @@
 
 #include "devices/bench/live_bench.h"
 #include "devices/bench/target_follower.h"
+#include "widgets/bench/capture_wizard.h"
 
 class QCheckBox;
 class QComboBox;
@@ -52,7 +53,6 @@ namespace fovea::widgets {
 
 class SceneDocument;
 class CameraView;
-class CaptureWizard;
 
 struct DevicesPanelOptions {
   bool auto_connect = true;               // connect when a scene is opened
@@ -82,6 +82,10 @@ class DevicesPanel : public QWidget {
   // Element position of an axis from its last snapshot (nullopt: unknown / no such axis).
   std::optional<double> axisPosition(const QString& key) const;
   bool followGaze() const;
+  bool hasCameraFrame() const;
+  bool isStarting() const { return connect_thread_.joinable(); }
+  // The analyses' x_p(alpha) table (follow gaze) is complete.
+  bool followTableReady() const;
 
  public slots:
   void connectBench();
@@ -115,6 +119,8 @@ class DevicesPanel : public QWidget {
     QDoubleSpinBox* target = nullptr;
     std::shared_ptr<std::atomic<int>> pending = std::make_shared<std::atomic<int>>(0);
   };
+  void finishConnect(int generation, const std::shared_ptr<std::unique_ptr<devices::LiveBench>>& made,
+                     const QString& error, const QString& camera_error);
   void buildAxisRows();
   void clearAxisRows();
   void refresh();
@@ -135,6 +141,9 @@ class DevicesPanel : public QWidget {
   std::unique_ptr<devices::LiveBench> live_;
   std::vector<AxisRow> rows_;
   std::vector<std::future<void>> connecting_;
+  std::thread connect_thread_;  // builds the LiveBench off the GUI thread
+  int connect_generation_ = 0;  // a start whose generation is stale is dropped
+  bool want_connected_ = false;
 
   QLabel* banner_ = nullptr;
   QLabel* status_ = nullptr;
@@ -170,6 +179,7 @@ class DevicesPanel : public QWidget {
     bool ready = false;
   };
   std::shared_ptr<FollowTable> table_;
+  bool table_applied_ = false;
   std::thread table_thread_;
   std::shared_ptr<std::atomic<bool>> table_cancel_;
 };

@@ -45,6 +45,7 @@ class CaptureWizard : public QDialog {
   void setHoeShift(std::function<std::array<double, 2>(std::array<double, 2>)> f) { hoe_shift_ = std::move(f); }
   // The bench is going away: the running step finishes, nothing more runs.
   void detachBench();
+  bool hasBench() const { return live_ != nullptr; }
 
   void setKind(devices::CaptureKind kind);
   devices::CaptureKind kind() const;
@@ -73,6 +74,7 @@ class CaptureWizard : public QDialog {
 
  protected:
   void closeEvent(QCloseEvent* event) override;
+  void reject() override;  // Esc / close: pause after the running step, then hide
 
  private:
   void runNext();

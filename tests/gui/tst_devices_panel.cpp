@@ -1,0 +1,288 @@
+// The studio's bench panel under Xvfb on the virtual bench (no hardware): jogging by the
+// step read back from the emulated controller, Esc stopping every axis mid-move, a go-to
+// outside the soft limits refused in the status line with nothing sent, the capture wizard
+// paused and resumed into a session folder whose manifest lists every capture, follow gaze
+// taking the HOE to the analyses' x_p(alpha), and the main window's Bench dock marked VIRTUAL.
+#include <QtTest>
+
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QLabel>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QStatusBar>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "app/studio/main_window.h"
+#include "devices/apt/apt_message.h"
+#include "devices/virtual/sim_clock.h"
+#include "devices/virtual/virtual_controller.h"
+#include "model/analysis/gaze_studies.h"
+#include "model/analysis/trace_evaluator.h"
+#include "model/scene/scene_io.h"
+#include "widgets/bench/capture_wizard.h"
+#include "widgets/bench/devices_panel.h"
+#include "widgets/scene_document.h"
+
+using namespace fovea;
+using widgets::DevicesPanel;
+
+namespace {
+std::filesystem::path tmpDir(const std::string& name) {
+  auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+Scene prototype() {
+  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
+  if (!r.ok()) qFatal("prototype scene does not load");
+  return *r.scene;
+}
+
+int moveAbsoluteCount(const devices::VirtualAptController& c) {
+  int n = 0;
+  for (const auto& m : c.received())
+    if (apt::parseMoveAbsolute(m)) ++n;
+  return n;
+}
+
+// A document with the prototype scene and a panel on the virtual bench, connected, axes known.
+struct Rig {
+  widgets::SceneDocument document;
+  std::unique_ptr<DevicesPanel> panel;
+
+  explicit Rig(bool simulated_clock, bool analysed_follow = false) {
+    document.resetTo(prototype(),
+                     QString::fromStdString(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json"));
+    widgets::DevicesPanelOptions o;
+    o.allow_hardware = false;
+    o.live_camera = false;
+    o.analysed_follow = analysed_follow;
+    if (simulated_clock) o.clock = std::make_shared<devices::SimulatedClock>();
+    panel = std::make_unique<DevicesPanel>(&document, nullptr, o);
+    panel->resize(720, 900);
+    panel->show();
+  }
+  bool ready() {
+    if (!panel->isConnected()) return false;
+    for (const char* k : {"hoe.x", "hoe.y", "foveal_display.x", "foveal_display.y", "camera.yaw"})
+      if (!panel->axisPosition(k)) return false;
+    return true;
+  }
+  devices::VirtualAptController& emulator(const std::string& element, const std::string& axis) {
+    return *panel->liveBench()->bench().virtualController(element, axis);
+  }
+};
+}  // namespace
+
+class TestDevicesPanel : public QObject {
+  Q_OBJECT
+ private slots:
+  void jogMovesTheVirtualAxisByTheStep() {
+    Rig rig(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    QVERIFY(rig.panel->isVirtual());
+    QVERIFY(rig.panel->bannerText().contains("VIRTUAL"));
+    const double start = rig.emulator("hoe", "x").position();  // stage mm (home offset -12.5)
+    rig.panel->setStepSize(0.25);
+    rig.panel->setSelectedAxis("hoe.x");
+    rig.panel->setFocus();
+    QTest::keyClick(rig.panel.get(), Qt::Key_Right);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(rig.emulator("hoe", "x").position() - (start + 0.25)) < 1e-4, 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(*rig.panel->axisPosition("hoe.x") - 0.25) < 1e-4, 5000);
+    QTRY_COMPARE_WITH_TIMEOUT(rig.panel->findChild<QLabel*>("position_hoe.x")->text(), QString("0.250 mm"), 3000);
+    // The reverse jog button twice, and the + key doubles the step (0.5 mm) for the y axis.
+    auto* reverse = rig.panel->findChild<QPushButton*>("jogReverse_hoe.x");
+    QVERIFY(reverse);
+    QTest::mouseClick(reverse, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(rig.emulator("hoe", "x").position() - start) < 1e-4, 5000);
+    QTest::mouseClick(reverse, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(rig.emulator("hoe", "x").position() - (start - 0.25)) < 1e-4, 5000);
+    const double y0 = rig.emulator("hoe", "y").position();
+    QTest::keyClick(rig.panel.get(), Qt::Key_Down);  // select hoe.y
+    QCOMPARE(rig.panel->selectedAxis(), QString("hoe.y"));
+    QTest::keyClick(rig.panel.get(), Qt::Key_Plus);
+    QCOMPARE(rig.panel->stepSize(), 0.5);
+    QTest::keyClick(rig.panel.get(), Qt::Key_Left);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(rig.emulator("hoe", "y").position() - (y0 - 0.5)) < 1e-4, 5000);
+    QVERIFY(std::abs(rig.emulator("hoe", "x").position() - (start - 0.25)) < 1e-4);  // x untouched
+  }
+
+  void escapeStopsEveryAxisMidMove() {
+    Rig rig(false);  // real time: a 7 mm move at 0.5 mm/s takes ~14 s unless stopped
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    auto& bench = rig.panel->liveBench()->bench();
+    for (const char* axis : {"x", "y"})
+      bench.find("hoe", axis)->submit([](devices::Stage& s) { s.setVelocity({0.5, 1.0}); }).get();
+    rig.panel->goTo("hoe.x", 7.0);
+    rig.panel->goTo("hoe.y", -7.0);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.emulator("hoe", "x").moving() && rig.emulator("hoe", "y").moving(), 5000);
+    QTest::qWait(200);
+    rig.panel->setFocus();
+    QTest::keyClick(rig.panel.get(), Qt::Key_Escape);
+    QTRY_VERIFY_WITH_TIMEOUT(!rig.emulator("hoe", "x").moving() && !rig.emulator("hoe", "y").moving(), 3000);
+    const double x = rig.emulator("hoe", "x").position(), y = rig.emulator("hoe", "y").position();
+    QVERIFY2(x < 12.5 + 6.0, qPrintable(QString::number(x)));  // target was 19.5 (element 7)
+    QVERIFY2(y > 12.5 - 6.0, qPrintable(QString::number(y)));  // target was 5.5 (element -7)
+    QTest::qWait(300);                                         // still stopped: nothing restarted the moves
+    QVERIFY(!rig.emulator("hoe", "x").moving());
+    QCOMPARE(rig.emulator("hoe", "x").position(), x);
+  }
+
+  void goToOutsideTheSoftLimitsIsRefusedAndSendsNothing() {
+    Rig rig(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    const int moves_before = moveAbsoluteCount(rig.emulator("hoe", "x"));
+    const double pos_before = rig.emulator("hoe", "x").position();
+    auto* target = rig.panel->findChild<QDoubleSpinBox*>("target_hoe.x");
+    auto* go = rig.panel->findChild<QPushButton*>("go_hoe.x");
+    QVERIFY(target && go);
+    target->setValue(9.0);  // the binding's soft limits are -8 .. 8 mm
+    QCOMPARE(target->value(), 9.0);
+    QTest::mouseClick(go, Qt::LeftButton);
+    QVERIFY2(rig.panel->statusText().contains("soft limits"), qPrintable(rig.panel->statusText()));
+    QVERIFY(rig.panel->statusText().contains("hoe.x"));
+    QVERIFY(rig.panel->findChild<QLabel*>("benchStatus")->property("isError").toBool());
+    QTest::qWait(300);
+    QCOMPARE(moveAbsoluteCount(rig.emulator("hoe", "x")), moves_before);  // no move message
+    QCOMPARE(rig.emulator("hoe", "x").position(), pos_before);
+    // Inside the limits the same button moves the axis.
+    target->setValue(2.0);
+    QTest::mouseClick(go, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(rig.emulator("hoe", "x").position() - (pos_before + 2.0)) < 1e-4, 5000);
+    QCOMPARE(moveAbsoluteCount(rig.emulator("hoe", "x")), moves_before + 1);
+  }
+
+  void wizardPauseAndResumeKeepEveryCapture() {
+    Rig rig(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    rig.panel->openCaptureWizard();
+    widgets::CaptureWizard* wizard = rig.panel->wizard();
+    QVERIFY(wizard);
+    const auto folder = tmpDir("gui_capture_wizard") / "session";
+    wizard->setKind(devices::CaptureKind::Gaze);
+    wizard->setFolder(QString::fromStdString(folder.string()));
+    QSignalSpy stopped(wizard, &widgets::CaptureWizard::runStopped);
+    // Pause as soon as the first step is captured.
+    auto once = connect(wizard, &widgets::CaptureWizard::stepCaptured, wizard, &widgets::CaptureWizard::pause);
+    wizard->start();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, 20000);
+    disconnect(once);
+    QVERIFY(wizard->isPaused());
+    const int steps = wizard->stepCount();
+    QVERIFY2(steps >= 3, qPrintable(QString::number(steps)));
+    QCOMPARE(wizard->capturedCount(), 1);
+    QCOMPARE(wizard->session()->capturedCount(), std::size_t{1});
+    QVERIFY(std::filesystem::exists(folder / "manifest.json"));
+    const QImage paused = wizard->grab().toImage();
+    QVERIFY(paused.save(QString::fromStdString((folder.parent_path() / "wizard-paused.png").string())));
+
+    wizard->resume();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 2, 25000);
+    QVERIFY(wizard->session()->complete());
+    QCOMPARE(wizard->capturedCount(), steps);
+    QVERIFY(wizard->grab().toImage().save(QString::fromStdString((folder.parent_path() / "wizard.png").string())));
+
+    // The manifest on disk lists every step once, each with an image that exists and loads.
+    QFile f(QString::fromStdString((folder / "manifest.json").string()));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QJsonObject manifest = QJsonDocument::fromJson(f.readAll()).object();
+    const QJsonArray captures = manifest.value("captures").toArray();
+    QCOMPARE(captures.size(), steps);
+    QSet<QString> ids;
+    for (const auto& c : captures) {
+      const QJsonObject o = c.toObject();
+      ids.insert(o.value("step").toString());
+      const auto image = folder / o.value("image").toString().toStdString();
+      QVERIFY2(std::filesystem::exists(image), image.c_str());
+      const QImage img(QString::fromStdString(image.string()));
+      QVERIFY2(!img.isNull() && img.width() > 100 && img.height() > 100, image.c_str());
+    }
+    QCOMPARE(ids.size(), steps);
+    for (const auto& s : wizard->session()->plan()) QVERIFY(ids.contains(QString::fromStdString(s.id)));
+  }
+
+  void geometricWizardCapturesBothBoardsOverTheGazeRange() {
+    Rig rig(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    rig.panel->openCaptureWizard();
+    widgets::CaptureWizard* wizard = rig.panel->wizard();
+    const auto folder = tmpDir("gui_capture_geometric") / "session";
+    wizard->setKind(devices::CaptureKind::Geometric);
+    wizard->setFolder(QString::fromStdString(folder.string()));
+    QSignalSpy stopped(wizard, &widgets::CaptureWizard::runStopped);
+    wizard->start();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, 25000);
+    QVERIFY2(wizard->session() && wizard->session()->complete(),
+             qPrintable(wizard->findChild<QLabel*>("captureStatus")->text()));
+    // Both displays' boards, the HOE at a different x at each yaw.
+    int peripheral = 0, foveal = 0;
+    std::set<long> hoe_x_um;
+    for (const auto& r : wizard->session()->records()) {
+      peripheral += r.step.find("peripheral") != std::string::npos;
+      foveal += r.step.find("foveal") != std::string::npos;
+      hoe_x_um.insert(std::lround(r.positions.at("hoe.x") * 1000));
+      QVERIFY(std::filesystem::exists(folder / r.image));
+    }
+    QVERIFY2(peripheral >= 2 && foveal >= 2, qPrintable(QString("%1 %2").arg(peripheral).arg(foveal)));
+    QVERIFY2(hoe_x_um.size() >= 3, qPrintable(QString::number(hoe_x_um.size())));
+  }
+
+  void followGazeTakesTheHoeToTheAnalysedShift() {
+    Rig rig(true, true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    rig.panel->setFollowGaze(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.panel->followTableReady(), 25000);
+    // The studio's gaze slider edits the scene's eye.gaze_deg: 10 deg yaw (a table sample).
+    const double yaw = 10.0;
+    rig.document.applyEdit("gaze", [yaw](Scene& s) { s.eye.gaze_deg = {yaw, 0.0}; });
+    // x_p(alpha) from gaze_studies, relative to the optimum at zero gaze, as the panel uses it.
+    TraceEvaluatorOptions to;
+    to.rays = 800;
+    const FovEvaluator eval = traceEvaluator(to);
+    const Scene scene = prototype();
+    const double xp = optimiseShift(scene, eval, yaw, GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm -
+                      optimiseShift(scene, eval, 0.0, GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm;
+    qInfo("x_p(%.1f deg) = %.4f mm from gaze_studies", yaw, xp);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(*rig.panel->axisPosition("hoe.x") - xp) < 2e-3, 10000);
+    QVERIFY(std::abs(rig.emulator("hoe", "x").position() - (12.5 + xp)) < 2e-3);
+    QVERIFY(std::abs(*rig.panel->axisPosition("camera.yaw") - yaw) < 1e-3);  // the camera turns to the gaze
+    QVERIFY(std::abs(*rig.panel->axisPosition("hoe.y")) < 2e-3);             // no pitch: y stays at 0
+  }
+
+  void mainWindowHasAVirtualBenchDock() {
+    QElapsedTimer t;
+    t.start();
+    studio::MainWindow window;
+    const qint64 constructed = t.elapsed();
+    auto* dock = window.findChild<QDockWidget*>("DevicesDock");
+    QVERIFY(dock);
+    DevicesPanel* panel = window.devicesPanel();
+    QVERIFY(panel);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTRY_VERIFY_WITH_TIMEOUT(panel->isConnected(), 10000);  // started by itself, off the GUI thread
+    qInfo("main window constructed in %lld ms; virtual bench connected after %lld ms", constructed, t.elapsed());
+    QVERIFY(panel->isVirtual());
+    auto* label = window.statusBar()->findChild<QLabel*>("benchStatusBarLabel");
+    QVERIFY(label);
+    QTRY_VERIFY_WITH_TIMEOUT(label->isVisible(), 3000);
+    QVERIFY(label->text().contains("VIRTUAL"));
+    dock->show();
+    dock->raise();
+    QTRY_VERIFY_WITH_TIMEOUT(panel->hasCameraFrame(), 10000);  // the live virtual camera
+    window.close();
+  }
+};
+
+QTEST_MAIN(TestDevicesPanel)
+#include "tst_devices_panel.moc"
