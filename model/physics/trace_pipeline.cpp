@@ -648,6 +648,20 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
     wt.rays_efficient = fov.per_efficient[w];
     wt.mean_efficiency = an.per_mean[w];
   }
+  if (o.keep_field_rays) {
+    res.field_rays.resize(nh * nw);
+    for (std::size_t w = 0; w < nw; ++w) {
+      const StackData& s = *stk[w];
+      for (std::size_t h = 0; h < nh; ++h) {
+        FieldRay& r = res.field_rays[w * nh + h];
+        r.wavelength_nm = wavelengths[w];
+        r.efficiency = s.eff[h];
+        r.pixel = g.grid[g.hit_index[h]].pixel;
+        r.in_pupil = pupil.in_pupil[w][h] != 0;
+        if (r.in_pupil) r.field_deg = pupil.field[w][h];
+      }
+    }
+  }
   if (o.keep_rays) {
     res.ray_list.resize(g.grid.size() * nw);
     for (std::size_t w = 0; w < nw; ++w) {
