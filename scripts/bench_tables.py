@@ -64,6 +64,21 @@ def tables(b):
     out.append(f"| {t['sweep_gazes']}-gaze x_p sweep, two cores ({t['sweep_rays_per_wavelength']} rays/λ, 3 λ) | {sw:.2f} s | "
                f"{'≤ 1 s' if t['sweep_gazes'] == 41 else '(41 gazes: ≤ 1 s)'} | "
                f"{('met' if sw <= 1 else f'missed by {sw:.1f}×') if t['sweep_gazes'] == 41 else 'quick run'} |")
+    if "sweep_traces" in t:
+        out.append(f"| … traces in that sweep (x_p bracket + edge bisections + eye-box borders) | "
+                   f"{fmt(t['sweep_traces'])} ({t['sweep_traces'] / (t['sweep_gazes'] + 1):.1f} per optimised gaze) | | |")
+    key15 = key + "_1500_rays"
+    if key15 in t:
+        s15 = t[key15]
+        out.append(f"| … the same sweep at 1500 rays/λ | {s15:.2f} s | "
+                   f"{'≤ 1 s' if t['sweep_gazes'] == 41 else '(41 gazes: ≤ 1 s)'} | "
+                   f"{('met' if s15 <= 1 else f'missed by {s15:.1f}×') if t['sweep_gazes'] == 41 else 'quick run'} |")
+    for k, what in (("gaze_update_ms_64k_per_wavelength_1core", "gaze update, 64 000 rays/λ (192 000 rays), one core"),
+                    ("gaze_update_keep_rays_ms_64k_per_wavelength_1core",
+                     "… with the per-ray list the studio draws (keep_rays)")):
+        if k in t:
+            v = t[k]
+            out.append(f"| {what} | {v:.2f} ms | ≤ 16 ms | {'met' if v <= 16 else f'missed by {v / 16:.1f}×'} |")
     out.append("")
     out.append(f"Error paid by the SIMD kernels against the scalar double closed forms over the "
                f"{fmt(t['kogelnik_inputs'])} ray-layer inputs of the default scene: double "

@@ -60,6 +60,9 @@ struct GazeStudyOptions {
   int bracket_points = 17;
   int edge_bisections = 6;
   int border_bisections = 6;
+  // Evaluate every bracket point (the reference) instead of walking out from the guess until
+  // two consecutive points fall below the plateau level (same result, fewer traces).
+  bool full_bracket = false;
 };
 
 struct GazeSample {

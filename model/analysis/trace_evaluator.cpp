@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <utility>
@@ -23,6 +22,11 @@ Eigen::Vector3d fieldDirection(double yaw_deg, double pitch_deg) {
   return {std::cos(p) * std::sin(y), std::sin(p), std::cos(p) * std::cos(y)};
 }
 
+template <class Ray>
+bool isLit(const Ray& r, double threshold) {
+  return r.in_pupil && r.efficiency >= threshold;
+}
+
 struct Span {
   double lo = 0, hi = 0;
   double width() const { return hi - lo; }
@@ -31,13 +35,13 @@ struct Span {
 // Longest run of consecutive lit rays along one grid line (rays ordered by grid index; a
 // ray that reaches the HOE but is dark or misses the pupil breaks the run). Returns the
 // field-angle span (component k: 0 yaw, 1 pitch) of the widest run.
-Span widestRun(const std::vector<const TracedRay*>& line, bool (*lit)(const TracedRay&, double), double threshold,
-               int k) {
+template <class Ray>
+Span widestRun(const std::vector<const Ray*>& line, double threshold, int k) {
   Span best;
   bool open = false;
   Span run;
-  for (const TracedRay* r : line) {
-    if (r != nullptr && lit(*r, threshold)) {
+  for (const Ray* r : line) {
+    if (r != nullptr && isLit(*r, threshold)) {
       const double a = r->field_deg[k];
       if (!open) run = {a, a};
       run.lo = std::min(run.lo, a);
@@ -51,49 +55,45 @@ Span widestRun(const std::vector<const TracedRay*>& line, bool (*lit)(const Trac
   return best;
 }
 
-bool isLit(const TracedRay& r, double threshold) {
-  return r.in_pupil && r.efficiency >= threshold;
-}
-
-}  // namespace
-
-ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficiency_threshold) {
-  // One projector grid per wavelength: index the rays by (wavelength, column, row).
-  std::map<double, std::map<std::pair<int, int>, const TracedRay*>> grids;
-  for (const TracedRay& r : rays)
-    if (r.hits_hoe) grids[r.wavelength_nm][{r.pixel[0], r.pixel[1]}] = &r;
+// Rays (TracedRay or FieldRay) that hit the plate, one projector grid per wavelength.
+template <class Ray>
+ContinuousFov continuousFovOf(const std::vector<const Ray*>& rays, double efficiency_threshold) {
+  // Index the rays by wavelength, then by (column, row) in a dense grid.
+  std::vector<double> wavelengths;
+  for (const Ray* r : rays)
+    if (std::find(wavelengths.begin(), wavelengths.end(), r->wavelength_nm) == wavelengths.end())
+      wavelengths.push_back(r->wavelength_nm);
   ContinuousFov out;
   bool first = true;
-  for (const auto& [lambda, grid] : grids) {
-    (void)lambda;
+  for (const double lambda : wavelengths) {
     int nx = 0, ny = 0;
-    for (const auto& [ij, r] : grid) {
-      (void)r;
-      nx = std::max(nx, ij.first + 1);
-      ny = std::max(ny, ij.second + 1);
-    }
-    auto at = [&](int i, int j) -> const TracedRay* {
-      const auto it = grid.find({i, j});
-      return it == grid.end() ? nullptr : it->second;
-    };
+    for (const Ray* r : rays)
+      if (r->wavelength_nm == lambda) {
+        nx = std::max(nx, r->pixel[0] + 1);
+        ny = std::max(ny, r->pixel[1] + 1);
+      }
+    std::vector<const Ray*> grid(static_cast<std::size_t>(nx) * ny, nullptr);  // column-major: (i, j) -> i ny + j
+    for (const Ray* r : rays)
+      if (r->wavelength_nm == lambda) grid[static_cast<std::size_t>(r->pixel[0]) * ny + r->pixel[1]] = r;
+    auto at = [&](int i, int j) { return grid[static_cast<std::size_t>(i) * ny + j]; };
     // The row and the column through the line of sight: those of the lit ray nearest to
-    // the field centre (the yaw/pitch chart stretches the yaw of rows far from pitch 0).
-    const TracedRay* centre = nullptr;
-    for (const auto& [ij, r] : grid) {
-      (void)ij;
-      if (isLit(*r, efficiency_threshold) &&
+    // the field centre (the yaw/pitch chart stretches the yaw of rows far from pitch 0); ties
+    // go to the first in (column, row) order.
+    const Ray* centre = nullptr;
+    for (const Ray* r : grid) {
+      if (r != nullptr && isLit(*r, efficiency_threshold) &&
           (centre == nullptr ||
            std::hypot(r->field_deg[0], r->field_deg[1]) < std::hypot(centre->field_deg[0], centre->field_deg[1])))
         centre = r;
     }
     Span h, v;
     if (centre != nullptr) {
-      std::vector<const TracedRay*> line;
+      std::vector<const Ray*> line;
       for (int i = 0; i < nx; ++i) line.push_back(at(i, centre->pixel[1]));
-      h = widestRun(line, &isLit, efficiency_threshold, 0);
+      h = widestRun(line, efficiency_threshold, 0);
       line.clear();
       for (int j = 0; j < ny; ++j) line.push_back(at(centre->pixel[0], j));
-      v = widestRun(line, &isLit, efficiency_threshold, 1);
+      v = widestRun(line, efficiency_threshold, 1);
     }
     const double diagonal =
         h.width() > 0 && v.width() > 0
@@ -106,6 +106,22 @@ ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficienc
     first = false;
   }
   return out;
+}
+
+}  // namespace
+
+ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficiency_threshold) {
+  std::vector<const TracedRay*> on_plate;
+  for (const TracedRay& r : rays)
+    if (r.hits_hoe) on_plate.push_back(&r);
+  return continuousFovOf(on_plate, efficiency_threshold);
+}
+
+ContinuousFov continuousFov(const std::vector<FieldRay>& rays, double efficiency_threshold) {
+  std::vector<const FieldRay*> on_plate;
+  on_plate.reserve(rays.size());
+  for (const FieldRay& r : rays) on_plate.push_back(&r);
+  return continuousFovOf(on_plate, efficiency_threshold);
 }
 
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
@@ -121,12 +137,12 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
     t.wavelength_nm = options.wavelength_nm;
     t.rays = options.rays;
     t.efficiency_threshold = options.efficiency_threshold;
-    t.keep_rays = true;
+    t.keep_field_rays = true;
     t.cull_to_pupil = true;
     auto pipeline = pool->acquire();
     const TraceResult r = pipeline->run(scene, t);
     FovSample f;
-    const ContinuousFov c = continuousFov(r.ray_list, options.efficiency_threshold);
+    const ContinuousFov c = continuousFov(r.field_rays, options.efficiency_threshold);
     f.horizontal_deg = c.horizontal_deg;
     f.vertical_deg = c.vertical_deg;
     f.diagonal_deg = c.diagonal_deg;

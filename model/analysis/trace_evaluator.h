@@ -29,6 +29,7 @@ struct ContinuousFov {
   double horizontal_deg = 0, vertical_deg = 0, diagonal_deg = 0;
 };
 ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficiency_threshold);
+ContinuousFov continuousFov(const std::vector<FieldRay>& rays, double efficiency_threshold);  // the same, leaner
 
 // Always true since the tracer landed (kept for callers written before it).
 inline bool traceEvaluatorAvailable() {

@@ -1,4 +1,5 @@
 // Vectorisable Kogelnik closed forms (see kogelnik_batch.h). Built with -O3 -fno-math-errno
+// -fno-trapping-math (lets GCC if-convert the selects: the loop vectorises for AVX2/AVX-512)
 // -ffp-contract=off (model/CMakeLists.txt): IEEE arithmetic, no reassociation, so every clone
 // (AVX-512, AVX2, baseline) returns the same bits.
 #include "model/physics/kogelnik_batch.h"
@@ -132,11 +133,19 @@ inline T element(T c_r, T c_s, T vartheta, T kappa, T d) {
   const T z = r * r;
   const T s = r + r * z * Kt::S(z);
   const T c = T(1) - T(0.5) * z + z * z * Kt::C(z);
+  // Quadrant q = k mod 4: sin for even q, cos for odd; negated for q = 2, 3 (selects on
+  // doubles only, so the vectoriser can if-convert them).
   const T q = k - T(4) * std::floor(k * T(0.25));
-  const T sin_u = q == T(0) ? s : (q == T(1) ? c : (q == T(2) ? -s : -c));
+  const T odd = q - T(2) * std::floor(q * T(0.5));
+  const T sc = odd == T(0) ? s : c;
+  const T sin_u = q >= T(2) ? -sc : sc;
   // sinh(u)/u for 1 <= u <= 20 (beyond, reflection eta is 1 to rounding: g > 2e8).
-  const T uc = std::fmin(u, T(20));
-  const T n = std::fmin(std::fmax(std::rint(uc * Kt::log2e), T(0)), T(29));  // NaN -> 0: the cast stays defined
+  // Clamps by selects, not fmin/fmax (which GCC 12 does not vectorise); a NaN maps to 20 and 0
+  // as fmin/fmax would map it, so the cast below stays defined.
+  const T uc = u < T(20) ? u : T(20);
+  const T n0 = std::rint(uc * Kt::log2e);
+  const T n1 = n0 > T(0) ? n0 : T(0);
+  const T n = n1 < T(29) ? n1 : T(29);
   const T rr = (uc - n * Kt::ln2_hi) - n * Kt::ln2_lo;
   const T e = Kt::expPoly(rr) * static_cast<T>(std::int32_t{1} << static_cast<std::int32_t>(n));
   const T sinh_u = T(0.5) * (e - T(1) / e);

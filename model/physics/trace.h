@@ -52,11 +52,15 @@ struct TraceOptions {
   // cannot count for the FOV, rays_in_pupil or mean_efficiency; TracedRay::culled is set). The
   // whole-plate statistics (mean_efficiency_on_hoe) are then not computed (NaN).
   bool cull_to_pupil = false;
+  bool keep_field_rays = false;  // fill TraceResult::field_rays (TracePipeline only; cheaper than keep_rays)
 };
 
-// Rays per wavelength for interactive work (the studio's default): the least that hold the
-// prototype's retinal FOV to 0.1 deg of its converged value (docs/benchmarks.md, "Ray count vs
-// FOV error"; measured by `fovea-cli bench`).
+// Rays per wavelength for interactive work. The least that hold the prototype's retinal FOV
+// to 0.1 deg of its converged value is 64 000 (docs/benchmarks.md, "Ray count vs FOV error"),
+// but at 64 000 a gaze update that also builds the per-ray list the studio draws takes far
+// more than the 16 ms target (`fovea-cli bench`: gaze_update_keep_rays_ms_64k_per_wavelength_1core),
+// so this stays at 20 000 until that list gets cheaper. Nothing reads it yet: the studio's
+// Display panel starts at 4 000 rays/λ (widgets/display_panel.cpp).
 inline constexpr int kInteractiveRays = 20000;
 
 struct FovDeg {
@@ -80,6 +84,15 @@ struct TracedRay {
   bool culled = false;  // cull_to_pupil skipped its coupled-wave step (efficiency not computed)
 };
 
+// A ray on the plate reduced to what the gaze studies' continuous FOV reads
+// (trace_evaluator.h): the same values as its TracedRay.
+struct FieldRay {
+  double wavelength_nm = 0, efficiency = 0;
+  std::array<int, 2> pixel{0, 0};
+  std::array<double, 2> field_deg{0, 0};  // set when in_pupil
+  bool in_pupil = false;
+};
+
 struct WavelengthTrace {
   double wavelength_nm = 0;
   FovDeg fov_deg;
@@ -98,6 +111,7 @@ struct TraceResult {
   double efficiency_uniformity = 0;   // 1 - std/mean of the efficiencies of the rays entering the pupil
   std::array<double, 2> gaze_deg{0, 0};
   std::vector<WavelengthTrace> per_wavelength;
+  std::vector<FieldRay> field_rays;  // only with keep_field_rays: the rays that hit the plate
 };
 
 TraceResult traceScene(const Scene& scene, const TraceOptions& options);

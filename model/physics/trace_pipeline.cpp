@@ -77,10 +77,11 @@ struct GeometryData {
   std::vector<double> hit_u, hit_v;        // plate coordinates of the hit (mm)
 };
 
+// The recorded fringes of one layer in plate-local coordinates: K_rec(u, v) in closed form
+// (hoe_recording.h). A rigid lateral shift of the plate carries them with it, so nothing here
+// depends on the shift or on the rays; the diffraction stage samples it at the hits.
 struct RecordingData {
   LayerModel model;
-  std::vector<Eigen::Vector3d> k;  // K_rec per hit
-  std::vector<std::uint8_t> valid;
 };
 
 enum : std::uint8_t { kEntered = 1, kEvanescent = 2, kExits = 4, kTir = 8, kValid = 16 };
@@ -302,7 +303,6 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
     for (std::size_t i = 0; i < nl; ++i) {
       const HoeLayer& l = scene.hoe_layers[i];
       recording_key[i] = Hasher("recording")
-                             .add(geometry_key)
                              .add(l.recording.wavelength_nm)
                              .add(l.recording.reference_point_mm)
                              .add(l.recording.signal_point_mm)
@@ -319,15 +319,6 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
       ts.stages_recomputed.push_back("recording:" + label[i]);
       auto r = std::make_shared<RecordingData>();
       r->model = makeLayerModel(scene.hoe, l);
-      r->k.resize(nh);
-      r->valid.assign(nh, 0);
-      forRange(nh, [&](std::size_t b, std::size_t e) {
-        for (std::size_t h = b; h < e; ++h) {
-          const RecordedGrating rg = recordAt(r->model, g.hit_u[h], g.hit_v[h]);
-          r->valid[h] = rg.valid;
-          r->k[h] = rg.k_recorded;
-        }
-      });
       st.recording.put(recording_key[i], r, st.run);
       rec[i] = r;
     }
@@ -339,8 +330,14 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
   for (std::size_t w = 0; w < nw; ++w) {
     for (std::size_t i = 0; i < nl; ++i) {
       const HoeLayer& l = scene.hoe_layers[i];
-      diffraction_key[w][i] =
-          Hasher("diffraction").add(recording_key[i]).add(l.n0).add(wavelengths[w]).add(n_cover).add(n_sub).value();
+      diffraction_key[w][i] = Hasher("diffraction")
+                                  .add(recording_key[i])
+                                  .add(geometry_key)
+                                  .add(l.n0)
+                                  .add(wavelengths[w])
+                                  .add(n_cover)
+                                  .add(n_sub)
+                                  .value();
       dif[w][i] = st.diffraction.find(diffraction_key[w][i], st.run);
       if (dif[w][i]) continue;
       ts.stages_recomputed.push_back("diffraction:" + label[i] + "@" + wavelengthLabel(wavelengths[w]));
@@ -353,9 +350,11 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
       const RecordingData& r = *rec[i];
       forRange(nh, [&](std::size_t b, std::size_t e) {
         for (std::size_t h = b; h < e; ++h) {
-          if (!r.valid[h]) continue;
+          // The recording sampled where this ray meets the plate (plate-local u, v).
+          const RecordedGrating rg = recordAt(r.model, g.hit_u[h], g.hit_v[h]);
+          if (!rg.valid) continue;
           const LayerGeometryT<double> lg =
-              layerGeometryT<double>(film_i, r.k[h], g.hit_dir[h], n_in, n_cover, n_sub, d->lambda_um);
+              layerGeometryT<double>(film_i, rg.k_recorded, g.hit_dir[h], n_in, n_cover, n_sub, d->lambda_um);
           std::uint8_t f = kValid;
           if (lg.entered) f |= kEntered;
           if (lg.evanescent) f |= kEvanescent;
@@ -647,6 +646,20 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
     wt.rays_in_pupil = an.per_in_pupil[w];
     wt.rays_efficient = fov.per_efficient[w];
     wt.mean_efficiency = an.per_mean[w];
+  }
+  if (o.keep_field_rays) {
+    res.field_rays.resize(nh * nw);
+    for (std::size_t w = 0; w < nw; ++w) {
+      const StackData& s = *stk[w];
+      for (std::size_t h = 0; h < nh; ++h) {
+        FieldRay& r = res.field_rays[w * nh + h];
+        r.wavelength_nm = wavelengths[w];
+        r.efficiency = s.eff[h];
+        r.pixel = g.grid[g.hit_index[h]].pixel;
+        r.in_pupil = pupil.in_pupil[w][h] != 0;
+        if (r.in_pupil) r.field_deg = pupil.field[w][h];
+      }
+    }
   }
   if (o.keep_rays) {
     res.ray_list.resize(g.grid.size() * nw);

@@ -8,10 +8,13 @@
 //                            the projector ray grid and where each ray meets the plate
 //                            (rays that miss the aperture stop here)
 //   recording:<layer>        that layer's recording (points, wavelength, conjugation, n0,
-//                            index change, shrinkage) + HOE pose/indices + geometry:
-//                            K_rec at every plate hit
-//   diffraction:<layer>@<λ>  recording + that layer's n0 + λ + cover/substrate indices:
-//                            obliquities, dephasing and the diffracted direction (no Kogelnik)
+//                            index change, shrinkage) + HOE nominal pose/indices: the fringe
+//                            field K_rec(u, v) in plate-local coordinates. Not the rays nor the
+//                            HOE shift: a rigid lateral shift carries the recorded grating with
+//                            the plate, so moving the plate never re-records
+//   diffraction:<layer>@<λ>  recording + geometry + that layer's n0 + λ + cover/substrate
+//                            indices: K_rec sampled at every plate hit, obliquities, dephasing
+//                            and the diffracted direction (no Kogelnik)
 //   coupled_wave:<layer>@<λ> diffraction + n1, thickness, absorption, polarisation: Kogelnik
 //                            per ray; with cull_to_pupil only for the rays that some layer
 //                            sends into the pupil (the eye is then an input, evaluated rays are

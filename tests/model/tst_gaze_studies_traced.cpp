@@ -5,6 +5,9 @@
 // modest ray count keep it fast (the CLI default is 12000 rays x 3 wavelengths).
 #include <QtTest>
 
+#include <atomic>
+#include <cmath>
+
 #include "app/embedded_scene.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/trace_evaluator.h"
@@ -101,6 +104,41 @@ class TestGazeStudiesTraced : public QObject {
     QVERIFY2(w_hoe > 1.7 * w_src, qPrintable(widths));
     QVERIFY2(w_src > w_static, qPrintable(widths));
     QVERIFY2(w_hoe - w_static > 3.0 * (w_src - w_static), qPrintable(widths));
+  }
+
+  void walkedBracketGivesTheFullBracketsShift() {
+    // x_p over the 41 gazes of the benchmark sweep (-20..20 deg by 1 deg) by the walked
+    // bracket and by the full 17-point bracket (the reference). Both bisect each plateau edge
+    // from a 0.5 mm grid interval edge_bisections times, so the optimiser's resolution is
+    // 2 half / (n - 1) / 2^edge_bisections (7.8 µm): x_p may differ by at most that.
+    const Scene s = prototype();
+    const FovEvaluator traced = evaluator();
+    std::atomic<long long> traces{0};
+    const FovEvaluator eval = [&](const Scene& sc, const FovQuery& q) {
+      ++traces;
+      return traced(sc, q);
+    };
+    GazeStudyOptions walked, full;
+    full.full_bracket = true;
+    const double resolution =
+        2.0 * full.shift_half_range_mm / (full.bracket_points - 1) / std::pow(2.0, full.edge_bisections);
+    double worst = 0;
+    long long traces_walked = 0, traces_full = 0;
+    for (int i = 0; i <= 40; ++i) {
+      const double gaze = -20.0 + i;
+      traces = 0;
+      const GazeSample a = optimiseShift(s, eval, gaze, GazeAxis::Yaw, ShiftMethod::Hoe, walked);
+      traces_walked += traces.exchange(0);
+      const GazeSample b = optimiseShift(s, eval, gaze, GazeAxis::Yaw, ShiftMethod::Hoe, full);
+      traces_full += traces.exchange(0);
+      worst = std::max(worst, std::abs(a.shift_mm - b.shift_mm));
+      QVERIFY2(std::abs(a.shift_mm - b.shift_mm) <= resolution,
+               qPrintable(QString("gaze %1: x_p %2 walked, %3 full").arg(gaze).arg(a.shift_mm).arg(b.shift_mm)));
+      QCOMPARE(a.best_fov_deg, b.best_fov_deg);
+    }
+    qInfo("41 gazes: max |x_p walked - full| %.3g mm (resolution %.3g mm); traces per gaze %.1f walked, %.1f full",
+          worst, resolution, traces_walked / 41.0, traces_full / 41.0);
+    QVERIFY(traces_walked < traces_full);
   }
 
   void identicalWithOneOrTwoThreads() {
