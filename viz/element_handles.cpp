@@ -15,6 +15,7 @@
 #include <vtkProperty.h>
 
 #include "model/scene/scene_geometry.h"
+#include "viz/polyline.h"
 #include "viz/scene_elements.h"
 #include "viz/scene_view.h"
 
@@ -33,26 +34,6 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> ringBasis(const Eigen::Vector3d& axi
   return {u, axis.cross(u)};
 }
 
-vtkSmartPointer<vtkActor> polyline(const std::vector<Eigen::Vector3d>& pts, const std::array<double, 3>& rgb,
-                                   double width) {
-  vtkNew<vtkPoints> points;
-  for (const auto& p : pts) points->InsertNextPoint(p.data());
-  vtkNew<vtkCellArray> lines;
-  lines->InsertNextCell(static_cast<vtkIdType>(pts.size()) + 1);
-  for (vtkIdType i = 0; i < static_cast<vtkIdType>(pts.size()); ++i) lines->InsertCellPoint(i);
-  lines->InsertCellPoint(0);
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
-  data->SetLines(lines);
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputData(data);
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(rgb[0], rgb[1], rgb[2]);
-  actor->GetProperty()->SetLineWidth(static_cast<float>(width));
-  actor->GetProperty()->LightingOff();
-  return actor;
-}
 }  // namespace
 
 QString movableElement(const QString& id) {
@@ -146,7 +127,7 @@ void ElementHandles::show(const Scene& scene, const QString& element) {
     for (int i = 0; i < kRingSegments; ++i) pts.push_back(ringPoint(k, 360.0 * i / kRingSegments));
     const bool hot = highlightedRing_ && *highlightedRing_ == k;
     const auto& c = kAxisColor[static_cast<std::size_t>(kRingColorAxis[static_cast<std::size_t>(k)])];
-    layer.add(hot ? polyline(pts, {1.0, 1.0, 0.4}, 5.0) : polyline(pts, c, 2.5), {}, false);
+    layer.add(hot ? flatLineActor(pts, {1.0, 1.0, 0.4}, 5.0, true) : flatLineActor(pts, c, 2.5, true), {}, false);
   }
   for (int a = 0; a < 3; ++a) {
     Eigen::Vector3d dir = Eigen::Vector3d::Zero();

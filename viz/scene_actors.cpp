@@ -18,6 +18,7 @@
 #include <vtkSphereSource.h>
 
 #include "model/scene/scene_geometry.h"
+#include "viz/polyline.h"
 #include "viz/scene_elements.h"
 
 namespace fovea::viz {
@@ -86,20 +87,6 @@ vtkSmartPointer<vtkPolyData> sphereCap(double radius, double max_deg) {
   return output(s.GetPointer());
 }
 
-vtkSmartPointer<vtkPolyData> polyline(const std::vector<Eigen::Vector3d>& pts, bool closed) {
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  for (const auto& p : pts) points->InsertNextPoint(p.x(), p.y(), p.z());
-  vtkNew<vtkCellArray> lines;
-  const auto n = static_cast<vtkIdType>(pts.size());
-  lines->InsertNextCell(closed ? n + 1 : n);
-  for (vtkIdType i = 0; i < n; ++i) lines->InsertCellPoint(i);
-  if (closed) lines->InsertCellPoint(0);
-  data->SetPoints(points);
-  data->SetLines(lines);
-  return data;
-}
-
 void addHoe(const Scene& scene, SceneLayer& layer) {
   const Frame hf = frameOf(scene.hoe.pose);
   const double w = scene.hoe.size_mm[0], h = scene.hoe.size_mm[1];
@@ -119,11 +106,11 @@ void addHoe(const Scene& scene, SceneLayer& layer) {
   // The carrier's outline around the stack, and the substrate on the world side: local +z,
   // which is bench +z (towards the world) at zero rotation (scene.h).
   const double margin = 0.5;
-  auto outline = makeActor(polyline({{-w / 2 - margin, -h / 2 - margin, z_max},
-                                     {w / 2 + margin, -h / 2 - margin, z_max},
-                                     {w / 2 + margin, h / 2 + margin, z_max},
-                                     {-w / 2 - margin, h / 2 + margin, z_max}},
-                                    true),
+  auto outline = makeActor(polylineData({{-w / 2 - margin, -h / 2 - margin, z_max},
+                                         {w / 2 + margin, -h / 2 - margin, z_max},
+                                         {w / 2 + margin, h / 2 + margin, z_max},
+                                         {-w / 2 - margin, h / 2 + margin, z_max}},
+                                        true),
                            colors::kSubstrate, 1.0, hf);
   outline->GetProperty()->SetLineWidth(2.0);
   outline->GetProperty()->LightingOff();
@@ -172,11 +159,11 @@ void addProjector(const Scene& scene, SceneLayer& layer) {
   layer.add(cone, "projector", /*pickable=*/false);  // clicks go through the light to what it hits
   std::vector<Eigen::Vector3d> edge_pts{corners[0], {0, 0, 0},  corners[1], corners[2],
                                         {0, 0, 0},  corners[3], corners[0], corners[1]};
-  auto edges = makeActor(polyline(edge_pts, false), colors::kProjectorFrustum, 0.9, pf);
+  auto edges = makeActor(polylineData(edge_pts, false), colors::kProjectorFrustum, 0.9, pf);
   edges->GetProperty()->LightingOff();
   edges->GetProperty()->SetLineWidth(1.5);
   layer.add(edges, "projector");
-  auto rim = makeActor(polyline({corners[2], corners[3]}, false), colors::kProjectorFrustum, 0.9, pf);
+  auto rim = makeActor(polylineData({corners[2], corners[3]}, false), colors::kProjectorFrustum, 0.9, pf);
   rim->GetProperty()->LightingOff();
   layer.add(rim, "projector");
 }
@@ -193,7 +180,7 @@ void addEye(const Scene& scene, SceneLayer& layer) {
   layer.add(makeActor(sphereCap(r + 0.1, pupil_deg), colors::kPupil, 1.0, ef), "eye");
   // Optical axis from the rotation centre along the gaze, 30 mm past the HOE plane.
   const double len = scene.eye.relief_mm + r + 30.0;
-  auto axis = makeActor(polyline({{0, 0, 0}, {0, 0, len}}, false), colors::kOpticalAxis, 1.0, ef);
+  auto axis = makeActor(polylineData({{0, 0, 0}, {0, 0, len}}, false), colors::kOpticalAxis, 1.0, ef);
   axis->GetProperty()->LightingOff();
   axis->GetProperty()->SetLineWidth(2.0);
   layer.add(axis, "eye");
@@ -241,7 +228,7 @@ void addLens(const Scene& scene, SceneLayer& layer) {
     profile.emplace_back(rr, 0.0, -(half_ct - sag(rr)));
   }
   vtkNew<vtkRotationalExtrusionFilter> revolve;  // about local z, the lens axis
-  revolve->SetInputData(polyline(profile, false));
+  revolve->SetInputData(polylineData(profile, false));
   revolve->SetResolution(64);
   revolve->SetAngle(360.0);
   revolve->CappingOff();
@@ -271,7 +258,7 @@ void addStages(const Scene& scene, SceneLayer& layer) {
     a[axis] = st.soft_limits[0];
     b[axis] = st.soft_limits[1];
     const QString id = stageId(static_cast<int>(i));
-    auto bar = makeActor(polyline({a, b}, false), colors::kStage, 1.0, f);
+    auto bar = makeActor(polylineData({a, b}, false), colors::kStage, 1.0, f);
     bar->GetProperty()->SetLineWidth(3.0);
     bar->GetProperty()->LightingOff();
     layer.add(bar, id);

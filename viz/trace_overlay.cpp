@@ -21,6 +21,7 @@
 #include "model/physics/eye_model.h"
 #include "model/scene/scene_geometry.h"
 #include "viz/efficiency_colors.h"
+#include "viz/polyline.h"
 #include "viz/scene_view.h"
 
 namespace fovea::viz {
@@ -153,28 +154,6 @@ class FanSelection {
   std::vector<char> cols_, rows_;
 };
 
-vtkSmartPointer<vtkActor> lineActor(const std::vector<Eigen::Vector3d>& pts, const std::array<double, 3>& rgb,
-                                    double width, bool closed) {
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  for (const auto& p : pts) points->InsertNextPoint(p.data());
-  vtkNew<vtkCellArray> lines;
-  const auto n = static_cast<vtkIdType>(pts.size());
-  lines->InsertNextCell(closed ? n + 1 : n);
-  for (vtkIdType i = 0; i < n; ++i) lines->InsertCellPoint(i);
-  if (closed) lines->InsertCellPoint(0);
-  data->SetPoints(points);
-  data->SetLines(lines);
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputData(data);
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(rgb[0], rgb[1], rgb[2]);
-  actor->GetProperty()->LightingOff();
-  actor->GetProperty()->SetLineWidth(static_cast<float>(width));
-  return actor;
-}
-
 // A filled disc (triangle fan) and its rim on a sphere around `centre`, the cap of angular
 // radius cap_deg around the unit direction `axis`.
 void addSphereCap(SceneLayer& layer, const Eigen::Vector3d& centre, double radius, const Eigen::Vector3d& axis,
@@ -186,7 +165,7 @@ void addSphereCap(SceneLayer& layer, const Eigen::Vector3d& centre, double radiu
     const double phi = 2.0 * std::numbers::pi * i / n, th = cap_deg * kDeg;
     rim.push_back(centre + radius * (std::cos(th) * axis + std::sin(th) * (std::cos(phi) * u + std::sin(phi) * v)));
   }
-  layer.add(lineActor(rim, rgb, 3.0, true), id, false);
+  layer.add(flatLineActor(rim, rgb, 3.0, true), id, false);
   auto data = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   const Eigen::Vector3d apex = centre + radius * axis;
@@ -260,7 +239,7 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
       ring.push_back(eye.pupil_center + 0.15 * eye.gaze +
                      eye.pupil_radius_mm * (std::cos(phi) * u + std::sin(phi) * v));
     }
-    marks.add(lineActor(ring, kPupilGreen, 3.0, true), "eye", false);
+    marks.add(flatLineActor(ring, kPupilGreen, 3.0, true), "eye", false);
     addSphereCap(marks, eye.rotation_center, eye.eyeball_radius_mm + 0.12, -eye.gaze,
                  std::max(0.5, scene.eye.fovea_radius_deg), kFoveaOrange, "eye");
   }
