@@ -85,16 +85,17 @@ class TestSceneIo : public QObject {
   }
 
   void everyOptionalPartRoundTrips() {
-    // Lens enabled, no stages, phase-conjugate recording, unknown keys in nested objects and
+    // Lens enabled (diverging), a phase-conjugate recording, unknown keys in nested objects and
     // in array elements, the view state set: save -> load -> save is a fixed point.
     Scene s = *parseScene(prototypeText(), "p").scene;
     s.lens.enabled = true;
     s.lens.focal_length_mm = -35.5;
     s.hoe_layers[2].recording.phase_conjugate = true;
     s.view.hoe_follows_gaze = true;
+    // (in file order: the loader records unknown keys as it meets them)
+    s.unknown["/projector/pixel_beam"]["m2"] = 1.1;
     s.unknown["/hoe_layers/1/recording"]["future"] = 3;
     s.unknown["/stages/2"]["note"] = "spare";
-    s.unknown["/projector/pixel_beam"]["m2"] = 1.1;
     const std::string saved = serializeScene(s);
     SceneLoadResult r = parseScene(saved, "s.json");
     QVERIFY(r.ok());
