@@ -8,6 +8,7 @@
 // confidence and its error, the others are still tracked; the exit code is then 1.
 #include <chrono>
 #include <iostream>
+#include <map>
 
 #include <opencv2/imgproc.hpp>
 
@@ -80,6 +81,7 @@ void install(CLI::App& app) {
     int found = 0, unreadable = 0;
     gaze::SubsetScore score;
     score.subset = "all";
+    std::map<std::string, gaze::SubsetScore> per_subset;
     std::string first_error;
     const auto timed = [&](const cv::Mat& img, gaze::PupilDetection& d) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -102,6 +104,7 @@ void install(CLI::App& app) {
         f = detectionJson(d, ms);
         const gaze::FrameScore s = gaze::scoreDetection(frame.truth, d);
         score.add(s);
+        per_subset[gaze::subsetName(subset)].add(s);
         f["subset"] = gaze::subsetName(subset);
         f["truth"] = {{"pupil_visible", frame.truth.pupil_visible},
                       {"visible_fraction", frame.truth.visible_fraction},
@@ -145,6 +148,19 @@ void install(CLI::App& app) {
       summary["mean_centre_error_px"] = score.mean_centre_error_px;
       summary["mean_axis_error_px"] = score.mean_axis_error_px;
       summary["false_positives"] = score.false_positives;
+      nlohmann::json subsets = nlohmann::json::array();
+      for (auto& [name, sc] : per_subset) {
+        sc.finish();
+        subsets.push_back({{"subset", name},
+                           {"frames", sc.frames},
+                           {"with_pupil", sc.with_pupil},
+                           {"found", sc.found},
+                           {"detection_rate", sc.detection_rate},
+                           {"mean_centre_error_px", sc.mean_centre_error_px},
+                           {"mean_axis_error_px", sc.mean_axis_error_px},
+                           {"false_positives", sc.false_positives}});
+      }
+      summary["subsets"] = subsets;
     } else {
       summary["unreadable"] = unreadable;
     }

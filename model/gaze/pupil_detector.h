@@ -32,7 +32,7 @@ namespace fovea::gaze {
 
 struct PupilDetectorOptions {
   double min_diameter_px = 12, max_diameter_px = 150;
-  double min_confidence = 0.3;
+  double min_confidence = 0.4;
   double min_contrast_dn = 20;  // proposal: surround minus centre, 8-bit levels
   int ransac_iterations = 60;
   std::uint32_t seed = 1;

@@ -75,6 +75,8 @@ class TestCliTrack : public QObject {
     QCOMPARE(s["with_pupil"].get<int>(), 10);
     QCOMPARE(s["false_positives"].get<int>(), 0);
     QVERIFY(s["detection_rate"].get<double>() >= 0.8);
+    QCOMPARE(s["subsets"].size(), std::size_t{6});
+    for (const auto& sub : s["subsets"]) QCOMPARE(sub["frames"].get<int>(), 2);
     // Same seed, same frames.
     const auto again =
         nlohmann::json::parse(cli({"track", "--virtual", "12", "--seed", "3", "--json"}).out.toStdString());

@@ -6,6 +6,9 @@
 #include <cmath>
 
 #include "devices/bench/closed_gaze_loop.h"
+#include "devices/camera/virtual_eye_renderer.h"
+#include "devices/virtual/sim_clock.h"
+#include "model/gaze/pupil_detector.h"
 #include "model/scene/scene_io.h"
 
 using namespace fovea;
@@ -92,6 +95,27 @@ class TestClosedGazeLoop : public QObject {
     const ClosedLoopResult late = simulateStages(scene_, run_, o);
     QVERIFY(late.inset_error_deg.mean > fast.inset_error_deg.mean);
     QVERIFY(late.settle_s.mean > fast.settle_s.mean + 0.03);
+  }
+
+  void virtualEyeCameraFramesAreTracked() {
+    // The bench's virtual eye camera shows the renderer's eye at the gaze of the bench time;
+    // the detector finds the pupil where the renderer's ground truth puts it.
+    auto clock = std::make_shared<SimulatedClock>();
+    const auto gazeAt = [](double t) { return std::array<double, 2>{-12 + 100 * t, 4}; };
+    VirtualCamera cam(clock, virtualEyeRenderer(scene_, gazeAt), {400, 400}, 60.0, 3);
+    cam.open();
+    for (int i = 0; i < 3; ++i) {
+      const Frame f = cam.grab();
+      QCOMPARE(f.image.size(), cv::Size(400, 400));
+      const gaze::PupilDetection d = gaze::detectPupil(f.image);
+      QVERIFY2(d.found, d.reason.c_str());
+      gaze::EyeAppearance eye;
+      eye.pupil_diameter_mm = scene_.eye.pupil_diameter_mm;
+      gaze::EyeFrameSpec spec;
+      spec.gaze_deg = gazeAt(f.exposure_start_s);
+      const auto truth = gaze::renderEyeFrame({}, eye, spec).truth;
+      QVERIFY(std::hypot(d.ellipse.centre.x - truth.pupil.centre.x, d.ellipse.centre.y - truth.pupil.centre.y) < 1.0);
+    }
   }
 
   void unknownStageModelRefused() {
