@@ -47,6 +47,7 @@ nlohmann::json resultJson(const devices::ClosedLoopResult& r) {
       {"off_fovea", {{"time_s", r.time_off_fovea_s}, {"fraction", r.time_off_fovea_s / d}}},
       {"beyond_tolerance", {{"time_s", r.time_beyond_tolerance_s}, {"fraction", r.time_beyond_tolerance_s / d}}},
       {"settle_ms", statsJson(r.settle_s, ms)},
+      {"unsettled_saccades", r.unsettled},
       {"hoe_error_mm", statsJson(r.hoe_error_mm)},
       {"fov_loss",
        {{"partly_lost_s", r.fov_partly_lost_s},
@@ -118,6 +119,7 @@ void install(CLI::App& app) {
                       {"inset_error_deg_max", s.inset_error_deg.max},
                       {"off_fovea_fraction", s.time_off_fovea_s / d},
                       {"settle_ms_mean", s.settle_s.mean * 1000},
+                      {"unsettled_saccades", s.unsettled},
                       {"fov_partly_lost_fraction", s.fov_partly_lost_s / d},
                       {"fov_lost_fraction", s.fov_lost_s / d}});
     }

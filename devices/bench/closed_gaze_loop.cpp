@@ -256,7 +256,10 @@ ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const
     const bool end = t + step >= run.trajectory.end_s;
     if (saccade_i < r.saccades.size() && (next_onset || end) && t >= r.saccades[saccade_i].onset_s) {
       const auto& s = r.saccades[saccade_i];
-      settle.push_back(std::max(0.0, last_beyond + step - s.onset_s));
+      if (last_beyond >= t - 0.5 * step)
+        ++r.unsettled;  // still off when the next saccade starts (or the run ends)
+      else
+        settle.push_back(std::max(0.0, last_beyond + step - s.onset_s));
       const double cmd = s.onset_s + r.latency_to_command_s;
       hoe_moves.push_back(std::max(0.0, std::max(hoe_x.busyUntil(), hoe_y.busyUntil()) - cmd));
       oled_moves.push_back(std::max(0.0, std::max(oled_x.busyUntil(), oled_y.busyUntil()) - cmd));

@@ -91,7 +91,8 @@ struct ClosedLoopResult {
   std::string hoe_stage, oled_stage;  // stage models used
   Stats inset_error_deg;              // over time
   double time_off_fovea_s = 0, time_beyond_tolerance_s = 0, duration_s = 0;
-  Stats settle_s;      // per saccade: onset to the inset staying within tolerance
+  Stats settle_s;      // per saccade that settles: onset to the inset staying within tolerance
+  int unsettled = 0;   // saccades after which the inset had not settled when the next one began
   Stats hoe_error_mm;  // focus displacement across the pupil
   double fov_partly_lost_s = 0, fov_lost_s = 0, mean_light_lost = 0;
   int frames = 0, frames_found = 0;

@@ -295,7 +295,12 @@ PupilDetection detectPupil(const cv::Mat& image, const PupilDetectorOptions& o) 
   for (int refit = 0; refit < 2; ++refit) {
     const std::vector<cv::Point2f> in = inliersOf(best, pts, tol);
     if (in.size() < 6) break;
-    const cv::RotatedRect r = cv::fitEllipse(in);
+    cv::RotatedRect r;
+    try {
+      r = cv::fitEllipse(in);
+    } catch (const cv::Exception&) {
+      break;
+    }
     if (!plausible(r, o, frame)) break;
     best = r;
   }

@@ -144,8 +144,8 @@ class TestCliTrack : public QObject {
                      (b["capture"].get<double>() + b["detect"].get<double>() + b["map"].get<double>() +
                       b["extra"].get<double>() + b["command"].get<double>())) < 1e-9);
     QCOMPARE(j["stages"]["hoe"].get<std::string>(), std::string("DDSM50"));
-    for (const char* k :
-         {"inset_error_deg", "off_fovea", "settle_ms", "hoe_error_mm", "fov_loss", "saccade_stats", "calibration"})
+    for (const char* k : {"inset_error_deg", "off_fovea", "settle_ms", "unsettled_saccades", "hoe_error_mm", "fov_loss",
+                          "saccade_stats", "calibration"})
       QVERIFY2(j.contains(k), k);
     QCOMPARE(j["saccade_stats"]["count"].get<int>(), 2);
     QVERIFY(j["inset_error_deg"]["mean"].get<double>() < 2.0);

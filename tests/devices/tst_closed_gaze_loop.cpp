@@ -85,6 +85,8 @@ class TestClosedGazeLoop : public QObject {
     QCOMPARE(fast.hoe_stage, std::string("DDSM50"));
     QVERIFY(fast.inset_error_deg.mean < 1.5);
     QVERIFY(fast.settle_s.mean < 0.15);
+    QCOMPARE(fast.unsettled, 0);
+    QVERIFY(slow.unsettled > 0);  // the screw stages are still travelling at the next saccade
     QVERIFY(slow.inset_error_deg.mean > 2 * fast.inset_error_deg.mean);
     QVERIFY(slow.time_off_fovea_s > fast.time_off_fovea_s);
     QVERIFY(slow.fov_partly_lost_s >= fast.fov_partly_lost_s);
@@ -95,6 +97,7 @@ class TestClosedGazeLoop : public QObject {
     const ClosedLoopResult late = simulateStages(scene_, run_, o);
     QVERIFY(late.inset_error_deg.mean > fast.inset_error_deg.mean);
     QVERIFY(late.settle_s.mean > fast.settle_s.mean + 0.03);
+    QCOMPARE(late.unsettled, 0);
   }
 
   void virtualEyeCameraFramesAreTracked() {
