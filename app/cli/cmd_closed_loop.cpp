@@ -14,7 +14,9 @@
 namespace fovea::cli {
 namespace {
 
+// Mean, 95th percentile and maximum; null when there were no values (e.g. no saccade settled).
 nlohmann::json statsJson(const devices::Stats& s, double scale = 1) {
+  if (s.count == 0) return {{"mean", nullptr}, {"p95", nullptr}, {"max", nullptr}};
   return {{"mean", s.mean * scale}, {"p95", s.p95 * scale}, {"max", s.max * scale}};
 }
 
@@ -113,15 +115,16 @@ void install(CLI::App& app) {
       os.extra_latency_s = ms / 1000;
       const devices::ClosedLoopResult s = devices::simulateStages(scene, run, os);
       const double d = std::max(s.duration_s, 1e-12);
-      rows.push_back({{"extra_latency_ms", ms},
-                      {"to_command_ms", s.latency_to_command_s * 1000},
-                      {"inset_error_deg_mean", s.inset_error_deg.mean},
-                      {"inset_error_deg_max", s.inset_error_deg.max},
-                      {"off_fovea_fraction", s.time_off_fovea_s / d},
-                      {"settle_ms_mean", s.settle_s.mean * 1000},
-                      {"unsettled_saccades", s.unsettled},
-                      {"fov_partly_lost_fraction", s.fov_partly_lost_s / d},
-                      {"fov_lost_fraction", s.fov_lost_s / d}});
+      rows.push_back(
+          {{"extra_latency_ms", ms},
+           {"to_command_ms", s.latency_to_command_s * 1000},
+           {"inset_error_deg_mean", s.inset_error_deg.mean},
+           {"inset_error_deg_max", s.inset_error_deg.max},
+           {"off_fovea_fraction", s.time_off_fovea_s / d},
+           {"settle_ms_mean", s.settle_s.count ? nlohmann::json(s.settle_s.mean * 1000) : nlohmann::json(nullptr)},
+           {"unsettled_saccades", s.unsettled},
+           {"fov_partly_lost_fraction", s.fov_partly_lost_s / d},
+           {"fov_lost_fraction", s.fov_lost_s / d}});
     }
     out["latency_sweep"] = rows;
     if (a->json) {

@@ -140,6 +140,7 @@ EyeTrajectory makeSaccadeTrajectory(const Scene& scene, const ClosedLoopOptions&
 
 Stats statsOf(std::vector<double> v) {
   Stats s;
+  s.count = v.size();
   if (v.empty()) return s;
   std::sort(v.begin(), v.end());
   for (double x : v) s.mean += x;

@@ -80,6 +80,7 @@ EyeTrajectory makeSaccadeTrajectory(const Scene& scene, const ClosedLoopOptions&
 
 struct Stats {
   double mean = 0, p95 = 0, max = 0;
+  std::size_t count = 0;  // 0: no values (the statistics are meaningless)
 };
 Stats statsOf(std::vector<double> v);
 
