@@ -417,6 +417,16 @@ void readStage(Reader& r, const ojson& j, std::size_t i, StageBinding& s) {
   if (s.soft_limits[0] >= s.soft_limits[1])
     r.error(o.at("soft_limits" + unit), "lower limit must be below the upper limit");
   o.number("home_offset" + unit, s.home_offset, kCoord, false);
+  o.number("counts_per" + unit, s.counts_per_unit, Range::open(0.0, 1e9), false);
+  if (const ojson* c = o.object("controller_setup", false)) {
+    Reader::Obj oc(r, *c, o.at("controller_setup"), "/stages/" + std::to_string(i) + "/controller_setup");
+    const std::string u = unit.substr(1);
+    oc.number("max_velocity_" + u + "_per_s", s.setup.max_velocity, Range::open(0.0, 1e4), false);
+    oc.number("acceleration_" + u + "_per_s2", s.setup.acceleration, Range::open(0.0, 1e5), false);
+    oc.number("jog_step_" + u, s.setup.jog_step, Range::open(0.0, 1e3), false);
+    oc.number("home_velocity_" + u + "_per_s", s.setup.home_velocity, Range::open(0.0, 1e4), false);
+    oc.string("limit_switches", s.setup.limit_switches, false, {"ignore", "makes", "breaks"});
+  }
 }
 
 std::pair<int, int> lineColumn(std::string_view text, std::size_t byte) {
@@ -716,6 +726,18 @@ std::string serializeScene(const Scene& s) {
     o["channel"] = st.channel;
     o["soft_limits" + unit] = nums(st.soft_limits);
     o["home_offset" + unit] = num(st.home_offset);
+    if (st.counts_per_unit > 0) o["counts_per" + unit] = num(st.counts_per_unit);
+    if (st.setup != StageControllerSetup{}) {
+      ojson c = ojson::object();
+      const std::string v = unit.substr(1);
+      if (st.setup.max_velocity > 0) c["max_velocity_" + v + "_per_s"] = num(st.setup.max_velocity);
+      if (st.setup.acceleration > 0) c["acceleration_" + v + "_per_s2"] = num(st.setup.acceleration);
+      if (st.setup.jog_step > 0) c["jog_step_" + v] = num(st.setup.jog_step);
+      if (st.setup.home_velocity > 0) c["home_velocity_" + v + "_per_s"] = num(st.setup.home_velocity);
+      if (!st.setup.limit_switches.empty()) c["limit_switches"] = st.setup.limit_switches;
+      appendUnknown(c, u, "/stages/" + std::to_string(i) + "/controller_setup");
+      o["controller_setup"] = c;
+    }
     appendUnknown(o, u, "/stages/" + std::to_string(i));
     stages.push_back(o);
   }

@@ -242,6 +242,103 @@ class TestAptCodec : public QObject {
     QVERIFY(fakes <= 3);
     QVERIFY(noise.buffered() < 6 + StreamDecoder::kMaxDataLength);
   }
+
+  void headerOnlyMovesAndParameterMessages() {
+    // Header-only MOVE_ABSOLUTE / MOVE_RELATIVE (channel in param1): valid protocol, decoded whole.
+    QCOMPARE(hex(moveAbsoluteStored(0x50, 1)), std::string("53 04 01 00 50 01"));
+    QCOMPARE(hex(moveRelativeStored(0x50, 1)), std::string("48 04 01 00 50 01"));
+    QVERIFY(acceptsLength(id::kMotMoveAbsolute, 0) && acceptsLength(id::kMotMoveAbsolute, 6));
+    QVERIFY(!acceptsLength(id::kMotMoveAbsolute, 4));
+    StreamDecoder d;
+    d.feed(encode(moveAbsoluteStored(0x50, 1)));
+    d.feed(encode(moveRelativeStored(0x50, 1)));
+    auto a = d.next(), b = d.next();
+    QVERIFY(a && b);
+    QVERIFY(isStoredMove(*a) && isStoredMove(*b));
+    QCOMPARE(a->param1, std::uint8_t{1});
+    QVERIFY(!parseMoveAbsolute(*a));  // no counts in the header-only form
+    // SET_MOVEABSPARAMS: 50 04 06 00 D0 01 | chan 01 00 | position 00 9E 02 00 (5 mm on a Z8).
+    QCOMPARE(hex(setMoveAbsParams(0x50, 1, 171520)), std::string("50 04 06 00 D0 01 01 00 00 9E 02 00"));
+    QCOMPARE(parseMoveParams(setMoveRelParams(0x50, 1, -34304))->value, -34304);
+    // SET_HOMEPARAMS (14 bytes: chan, direction, limit switch, velocity, offset).
+    QCOMPARE(hex(setHomeParams(0x50, HomeParams{1, 2, 1, 767367, 34304})),
+             std::string("40 04 0E 00 D0 01 01 00 02 00 01 00 87 B5 0B 00 00 86 00 00"));
+    // SET_LIMSWITCHPARAMS (16 bytes: chan, CW hard, CCW hard, CW soft, CCW soft, soft mode).
+    QCOMPARE(hex(setLimSwitchParams(0x50, LimitSwitchParams{1, 3, 3, 0, 0, 1})),
+             std::string("23 04 10 00 D0 01 01 00 03 00 03 00 00 00 00 00 00 00 00 00 01 00"));
+    const auto l = parseLimSwitchParams(getLimSwitchParams(0x50, LimitSwitchParams{1, 2, 3, 5, 6, 1}));
+    QVERIFY(l && l->cw_hard == 2 && l->ccw_hard == 3 && l->cw_soft == 5 && l->ccw_soft == 6);
+    QCOMPARE(parseHomeParams(getHomeParams(0x50, HomeParams{1, 1, 4, 99, -7}))->offset, -7);
+  }
+
+  void controllerErrorResponses() {
+    // HW_RICHRESPONSE: 81 00 44 00 81 50 | msg ident 53 04 | code 11 00 | 64 chars of text.
+    const Message rich = hwRichResponse(0x50, ControllerResponse{0x0453, 0x0011, "Motor drive fault", true});
+    const std::string h = hex(rich);
+    QVERIFY2(h.rfind("81 00 44 00 81 50 53 04 11 00 4D 6F 74 6F 72", 0) == 0, h.c_str());
+    QCOMPARE(encode(rich).size(), std::size_t{74});
+    const auto r = parseControllerResponse(rich);
+    QVERIFY(r && r->rich && r->code == 0x11 && r->message_id == id::kMotMoveAbsolute);
+    QCOMPARE(describe(*r), std::string("code 0x0011 (17) after MOT_MOVE_ABSOLUTE: Motor drive fault"));
+    // HW_RESPONSE: header only, the code in param1/param2.
+    const auto plain = parseControllerResponse(hwResponse(0x50, 0x0203));
+    QVERIFY(plain && !plain->rich && plain->code == 0x0203);
+    QCOMPARE(describe(*plain), std::string("code 0x0203 (515): HW_RESPONSE, no text"));
+    // Non-printable bytes in the controller's text never reach the user raw.
+    Message noisy = rich;
+    noisy.data[4] = 0x07;
+    QCOMPARE(describe(*parseControllerResponse(noisy)), std::string("code 0x0011 (17) after MOT_MOVE_ABSOLUTE: otor drive fault"));
+    QVERIFY(!parseControllerResponse(moveHome(0x50, 1)));
+  }
+
+  void channelIdentsAsBitMasks() {
+    QCOMPARE(channelIdent(1, false), std::uint8_t{1});
+    QCOMPARE(channelIdent(3, false), std::uint8_t{3});
+    QCOMPARE(channelIdent(2, true), std::uint8_t{0x02});
+    QCOMPARE(channelIdent(3, true), std::uint8_t{0x04});
+    QCOMPARE(channelIdent(4, true), std::uint8_t{0x08});
+  }
+
+  void decoderRecoversEveryMessageAfterGarbage() {
+    // Random byte runs interleaved with every valid header form (long, header-only,
+    // header-only moves, both completion forms, error reports): every valid message that
+    // follows a run of garbage comes out, in order, whatever the chunking.
+    std::mt19937 rng(424242);
+    std::uniform_int_distribution<int> byte(0, 255), len(1, 64), pick(0, 8);
+    std::vector<Message> sent;
+    Bytes stream;
+    for (int i = 0; i < 4000; ++i) {
+      for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
+      Message m;
+      switch (pick(rng)) {
+        case 0: m = moveAbsoluteStored(0x50, 1); break;
+        case 1: m = moveRelativeStored(0x50, 1); break;
+        case 2: m = moveCompleted(0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 0, 0x80000030}); break;
+        case 3: { m = moveCompleted(0x50, ChannelStatus{}); m.data.clear(); break; }  // header-only completion
+        case 4: m = hwRichResponse(0x50, ControllerResponse{0x0453, 7, "error text", true}); break;
+        case 5: m = hwResponse(0x50, 3); break;
+        case 6: m = getStatusUpdate(0x50, ChannelStatus{1, 5, 5, 0x80000400}); break;
+        case 7: m = setMoveAbsParams(0x50, 1, static_cast<std::int32_t>(rng())); break;
+        default: m = getLimSwitchParams(0x50, LimitSwitchParams{}); break;
+      }
+      sent.push_back(m);
+      auto b = encode(m);
+      stream.insert(stream.end(), b.begin(), b.end());
+    }
+    StreamDecoder d;
+    std::vector<Message> got;
+    for (std::size_t at = 0; at < stream.size();) {
+      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 61);
+      d.feed(std::span(stream).subspan(at, n));
+      at += n;
+      while (auto m = d.next()) got.push_back(*m);
+    }
+    std::size_t found = 0;
+    for (const auto& m : got)
+      if (found < sent.size() && m == sent[found]) ++found;
+    QCOMPARE(found, sent.size());
+    QVERIFY2(got.size() - sent.size() <= 2, "noise produced too many fake messages");
+  }
 };
 
 QTEST_GUILESS_MAIN(TestAptCodec)
