@@ -31,8 +31,8 @@
 #include <optional>
 
 #include "app/cli/cli_common.h"
-#include "devices/stage/stage.h"
 #include "devices/replay/transcript.h"
+#include "devices/stage/stage.h"
 #include "devices/stage/stage_binding.h"
 #include "devices/transport/libusb_transport.h"
 #include "devices/virtual/virtual_transport.h"

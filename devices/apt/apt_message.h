@@ -239,10 +239,10 @@ std::optional<HwInfo> parseHwInfo(const Message& m);
 // MOVE_COMPLETED, MOVE_STOPPED; stepper layout (position long, encoder long, bits) for
 // GET_STATUSUPDATE.
 std::optional<ChannelStatus> parseChannelStatus(const Message& m);
-std::optional<VelParams> parseVelParams(const Message& m);  // GET_ or SET_VELPARAMS
-std::optional<JogParams> parseJogParams(const Message& m);  // GET_ or SET_JOGPARAMS
-std::optional<HomeParams> parseHomeParams(const Message& m);                // GET_ or SET_HOMEPARAMS
-std::optional<LimitSwitchParams> parseLimSwitchParams(const Message& m);  // GET_ or SET_LIMSWITCHPARAMS
+std::optional<VelParams> parseVelParams(const Message& m);                    // GET_ or SET_VELPARAMS
+std::optional<JogParams> parseJogParams(const Message& m);                    // GET_ or SET_JOGPARAMS
+std::optional<HomeParams> parseHomeParams(const Message& m);                  // GET_ or SET_HOMEPARAMS
+std::optional<LimitSwitchParams> parseLimSwitchParams(const Message& m);      // GET_ or SET_LIMSWITCHPARAMS
 std::optional<ControllerResponse> parseControllerResponse(const Message& m);  // HW_RESPONSE / HW_RICHRESPONSE
 // "code 0x0042 (after MOT_MOVE_ABSOLUTE): Move beyond travel" (the controller's words).
 std::string describe(const ControllerResponse& r);

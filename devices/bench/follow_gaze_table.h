@@ -20,10 +20,10 @@
 namespace fovea::devices {
 
 struct FollowGazeTable {
-  std::vector<double> gazes_deg;         // sample gazes (yaw for x, pitch for y), ascending
-  std::vector<double> shift_x_mm;        // optimal HOE x for each yaw
-  std::vector<double> shift_y_mm;        // optimal HOE y for each pitch
-  std::string source;                    // "gaze study: sweepGaze over [-20, 20] deg, 9 gazes, 800 rays"
+  std::vector<double> gazes_deg;   // sample gazes (yaw for x, pitch for y), ascending
+  std::vector<double> shift_x_mm;  // optimal HOE x for each yaw
+  std::vector<double> shift_y_mm;  // optimal HOE y for each pitch
+  std::string source;              // "gaze study: sweepGaze over [-20, 20] deg, 9 gazes, 800 rays"
   // x_p(alpha) for a (yaw, pitch) gaze, relative to the optimum at zero gaze.
   std::array<double, 2> hoeShift(std::array<double, 2> gaze_deg) const;
 };

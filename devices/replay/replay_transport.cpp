@@ -50,7 +50,8 @@ void ReplayTransport::write(std::span<const std::uint8_t> bytes) {
                                                          " after the end of the transcript");
     const TranscriptEntry& e = entries_[next_];
     const std::size_t n = std::min(bytes.size() - at, e.bytes.size() - tx_matched_);
-    if (!std::equal(bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.begin() + static_cast<std::ptrdiff_t>(at + n),
+    if (!std::equal(bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                    bytes.begin() + static_cast<std::ptrdiff_t>(at + n),
                     e.bytes.begin() + static_cast<std::ptrdiff_t>(tx_matched_)))
       throw DeviceError(DeviceError::Kind::Protocol, name_ + ":" + std::to_string(e.line) + ": the host sent " +
                                                          apt::toHex(bytes) + ", the transcript expects TX " +

@@ -13,9 +13,9 @@
 // UNPLUG: the link vanished. Times never decrease. Blank lines and lines starting with '#'
 // are comments.
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <memory>
-#include <fstream>
 #include <mutex>
 #include <span>
 #include <string>

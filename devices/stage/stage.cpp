@@ -22,19 +22,26 @@ std::string describeSetup(const ControllerParameters& p, const std::string& unit
   };
   auto mode = [](std::uint16_t m) -> std::string {
     switch (m & 0x7F) {
-      case 1: return "ignored";
-      case 2: return "makes";
-      case 3: return "breaks";
-      case 4: return "makes (home only)";
-      case 5: return "breaks (home only)";
-      default: return "mode " + std::to_string(m);
+      case 1:
+        return "ignored";
+      case 2:
+        return "makes";
+      case 3:
+        return "breaks";
+      case 4:
+        return "makes (home only)";
+      case 5:
+        return "breaks (home only)";
+      default:
+        return "mode " + std::to_string(m);
     }
   };
   std::string s = "velocity " + num(p.velocity.max_velocity) + " " + unit + "/s, " + num(p.velocity.acceleration) +
                   " " + unit + "/s^2";
   if (p.jog)
     s += "; jog " + std::string(p.jog->continuous ? "continuous" : "single-step ") +
-         (p.jog->continuous ? "" : num(p.jog->step) + " " + unit) + " at " + num(p.jog->max_velocity) + " " + unit + "/s";
+         (p.jog->continuous ? "" : num(p.jog->step) + " " + unit) + " at " + num(p.jog->max_velocity) + " " + unit +
+         "/s";
   s += p.home ? "; home " + std::string(p.home->direction == 1 ? "forward" : "reverse") + " at " +
                     num(p.home_velocity) + " " + unit + "/s"
               : "; home parameters not reported";
@@ -306,9 +313,11 @@ void checkEncodable(const StageConfig& config, double value, const std::string& 
   constexpr double lo = std::numeric_limits<std::int32_t>::min(), hi = std::numeric_limits<std::int32_t>::max();
   if (!(counts >= lo && counts <= hi)) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, " refused: %.6g %s is %.6g counts at %.6g counts/%s, beyond the protocol's signed "
-                  "32-bit range; nothing was sent", value, config.stage.unit().c_str(), counts,
-                  config.stage.counts_per_unit, config.stage.unit().c_str());
+    std::snprintf(buf, sizeof buf,
+                  " refused: %.6g %s is %.6g counts at %.6g counts/%s, beyond the protocol's signed "
+                  "32-bit range; nothing was sent",
+                  value, config.stage.unit().c_str(), counts, config.stage.counts_per_unit,
+                  config.stage.unit().c_str());
     throw DeviceError(DeviceError::Kind::SoftLimit, what + buf);
   }
 }
@@ -323,10 +332,9 @@ void checkMoveTarget(const StageConfig& config, double target, const std::string
                                                         "] of " + device + "; nothing was sent");
   const apt::StageModel& s = config.stage;
   if (!s.continuous && (target < s.travel_min - 1e-9 || target > s.travel_max + 1e-9))
-    throw DeviceError(DeviceError::Kind::SoftLimit, what + " to " + fmt(target, unit) +
-                                                        " refused: outside the travel [" + fmt(s.travel_min, unit) +
-                                                        ", " + fmt(s.travel_max, unit) + "] of the " + s.name +
-                                                        "; nothing was sent");
+    throw DeviceError(DeviceError::Kind::SoftLimit,
+                      what + " to " + fmt(target, unit) + " refused: outside the travel [" + fmt(s.travel_min, unit) +
+                          ", " + fmt(s.travel_max, unit) + "] of the " + s.name + "; nothing was sent");
   checkEncodable(config, target, what + " to " + fmt(target, unit));
 }
 

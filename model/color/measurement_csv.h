@@ -29,7 +29,7 @@ struct CsvProblem {
 struct MeasurementImport {
   ColorMeasurements measurements;  // valid only when problems is empty
   std::vector<CsvProblem> problems;
-  int rows = 0;                       // readings accepted
+  int rows = 0;                          // readings accepted
   int min_repeats = 0, max_repeats = 0;  // readings per level, over all channels
   bool ok() const { return problems.empty(); }
 };

@@ -25,7 +25,8 @@ QString writeReadings(const char* name, const std::string& corrupt_line = {}) {
   const QString path = tmp(name);
   std::ofstream out(path.toStdString());
   out << "display,channel,level,x,y,Y,repeat\n";
-  const double xy[2][3][2] = {{{0.64, 0.33}, {0.265, 0.69}, {0.15, 0.06}}, {{0.72, 0.28}, {0.25, 0.68}, {0.145, 0.035}}};
+  const double xy[2][3][2] = {{{0.64, 0.33}, {0.265, 0.69}, {0.15, 0.06}},
+                              {{0.72, 0.28}, {0.25, 0.68}, {0.145, 0.035}}};
   const double peak[2][3] = {{60, 180, 15}, {35, 120, 9}};
   const char* d[2] = {"foveal", "peripheral"};
   const char* c[3] = {"R", "G", "B"};
@@ -72,8 +73,8 @@ class TestCliColorMeasurements : public QObject {
   void badRowsByLineAndNothingWritten() {
     const QString cal = tmp("bad-cal.json");
     QFile::remove(cal);
-    const Run r = cli({"color-calibrate", "--measurements", writeReadings("bad.csv", "foveal,R,19,0.64,0.33,-2,0"),
-                       "--out", cal});
+    const Run r = cli(
+        {"color-calibrate", "--measurements", writeReadings("bad.csv", "foveal,R,19,0.64,0.33,-2,0"), "--out", cal});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("bad.csv:40: negative luminance Y = -2"), r.err.constData());
     // Level 19 keeps its other repeat, so the row is the only problem.

@@ -155,8 +155,8 @@ class TestCliStage : public QObject {
 
   void controllerErrorInWords() {
     const QString trace = tmp("reject.trace");
-    const Run r = cli({"stage", "--virtual", "MTS25-Z8", "--virtual-fault", "reject", "--trace", trace, "move-abs",
-                       "14"});
+    const Run r =
+        cli({"stage", "--virtual", "MTS25-Z8", "--virtual-fault", "reject", "--trace", trace, "move-abs", "14"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("reported code 0x0001 (1) after MOT_MOVE_ABSOLUTE: virtual fault: motion command rejected"),
              r.err.constData());

@@ -287,7 +287,8 @@ class TestAptCodec : public QObject {
     // Non-printable bytes in the controller's text never reach the user raw.
     Message noisy = rich;
     noisy.data[4] = 0x07;
-    QCOMPARE(describe(*parseControllerResponse(noisy)), std::string("code 0x0011 (17) after MOT_MOVE_ABSOLUTE: otor drive fault"));
+    QCOMPARE(describe(*parseControllerResponse(noisy)),
+             std::string("code 0x0011 (17) after MOT_MOVE_ABSOLUTE: otor drive fault"));
     QVERIFY(!parseControllerResponse(moveHome(0x50, 1)));
   }
 
@@ -311,15 +312,35 @@ class TestAptCodec : public QObject {
       for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
       Message m;
       switch (pick(rng)) {
-        case 0: m = moveAbsoluteStored(0x50, 1); break;
-        case 1: m = moveRelativeStored(0x50, 1); break;
-        case 2: m = moveCompleted(0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 0, 0x80000030}); break;
-        case 3: { m = moveCompleted(0x50, ChannelStatus{}); m.data.clear(); break; }  // header-only completion
-        case 4: m = hwRichResponse(0x50, ControllerResponse{0x0453, 7, "error text", true}); break;
-        case 5: m = hwResponse(0x50, 3); break;
-        case 6: m = getStatusUpdate(0x50, ChannelStatus{1, 5, 5, 0x80000400}); break;
-        case 7: m = setMoveAbsParams(0x50, 1, static_cast<std::int32_t>(rng())); break;
-        default: m = getLimSwitchParams(0x50, LimitSwitchParams{}); break;
+        case 0:
+          m = moveAbsoluteStored(0x50, 1);
+          break;
+        case 1:
+          m = moveRelativeStored(0x50, 1);
+          break;
+        case 2:
+          m = moveCompleted(0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 0, 0x80000030});
+          break;
+        case 3: {
+          m = moveCompleted(0x50, ChannelStatus{});
+          m.data.clear();
+          break;
+        }  // header-only completion
+        case 4:
+          m = hwRichResponse(0x50, ControllerResponse{0x0453, 7, "error text", true});
+          break;
+        case 5:
+          m = hwResponse(0x50, 3);
+          break;
+        case 6:
+          m = getStatusUpdate(0x50, ChannelStatus{1, 5, 5, 0x80000400});
+          break;
+        case 7:
+          m = setMoveAbsParams(0x50, 1, static_cast<std::int32_t>(rng()));
+          break;
+        default:
+          m = getLimSwitchParams(0x50, LimitSwitchParams{});
+          break;
       }
       sent.push_back(m);
       auto b = encode(m);

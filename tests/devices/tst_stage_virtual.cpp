@@ -77,7 +77,10 @@ class TestStageVirtual : public QObject {
     r.stage->home();
     const auto& u = r.stage->units();
     const double a = u.aptToAcceleration(r.controller->velParams().acceleration);
-    const double expected = trapezoidTime(10.0, 1.0 /* MTS25-Z8 homing speed */, a);
+    // The HOMEPARAMS velocity: the MTS25-Z8's 1 mm/s homing speed, quantised to APT units.
+    const double hv = u.aptToVelocity(r.controller->homeParams().velocity);
+    QVERIFY(std::abs(hv - 1.0) < 1e-5);
+    const double expected = trapezoidTime(10.0, hv, a);
     QVERIFY2(std::abs(r.clock->now() - t0 - expected) < 1e-6, qPrintable(QString::number(r.clock->now() - t0)));
     QVERIFY(r.stage->state().homed);
     QCOMPARE(r.stage->state().position, 0.0);
@@ -114,22 +117,30 @@ class TestStageVirtual : public QObject {
       QFAIL("a move beyond the travel was sent");
     } catch (const DeviceError& e) {
       QCOMPARE(e.kind(), DeviceError::Kind::SoftLimit);
-      QVERIFY2(std::string(e.what()).find("outside the travel [0.0000 mm, 25.0000 mm] of the MTS25-Z8") !=
-                   std::string::npos,
-               e.what());
+      QVERIFY2(
+          std::string(e.what()).find("outside the travel [0.0000 mm, 25.0000 mm] of the MTS25-Z8") != std::string::npos,
+          e.what());
     }
     QVERIFY(!wide.traceHas("TX 53 04"));
     // A limit switch that closes early (here at 20 mm) ends the move with MOVE_STOPPED: an error.
-    Rig short_travel("MTS25-Z8", [](VirtualControllerConfig& c) { c.stage.travel_max = 20.0; });
-    short_travel.stage->connect();
+    auto early_switch = std::make_shared<VirtualAptController>(
+        [&] {
+          VirtualControllerConfig c = wide.controller->config();
+          c.stage.travel_max = 20.0;  // the emulated switch; the host keeps the model's 25 mm
+          return c;
+        }(),
+        wide.clock);
+    Stage short_travel(std::make_unique<VirtualTransport>(early_switch, wide.clock),
+                       defaultStageConfig(*apt::findController("KDC101"), *apt::findStage("MTS25-Z8")));
+    short_travel.connect();
     try {
-      short_travel.stage->moveAbsolute(22.0);
+      short_travel.moveAbsolute(22.0);
       QFAIL("a move through the limit switch reported success");
     } catch (const DeviceError& e) {
       QVERIFY2(std::string(e.what()).find("limit switch") != std::string::npos, e.what());
     }
-    QCOMPARE(short_travel.stage->state().position, 20.0);
-    QVERIFY(short_travel.stage->state().forward_limit);
+    QCOMPARE(short_travel.state().position, 20.0);
+    QVERIFY(short_travel.state().forward_limit);
   }
 
   void softLimitsSendNothing() {
@@ -403,8 +414,8 @@ class TestStageVirtual : public QObject {
     const double t0 = r.clock->now();
     s.home();
     const double a = u.aptToAcceleration(r.controller->velParams().acceleration);
-    QVERIFY(std::abs(r.clock->now() - t0 - trapezoidTime(5.0, u.aptToVelocity(r.controller->homeParams().velocity), a)) <
-            1e-6);
+    QVERIFY(std::abs(r.clock->now() - t0 -
+                     trapezoidTime(5.0, u.aptToVelocity(r.controller->homeParams().velocity), a)) < 1e-6);
     // Nothing asked: nothing written, everything still read.
     Rig plain;
     plain.stage->connect();

@@ -107,7 +107,7 @@ class TestMeasurementCsv : public QObject {
     lines[6] = "foveal,Q,5,0.64,1.33,0.5,0,x";
     lines[10] = "# level 9 not measured";
     lines.push_back("foveal,R,255,0.64,0.33,60,0");  // duplicate of an earlier reading
-    lines.push_back("peripheral,G,17");               // too few columns
+    lines.push_back("peripheral,G,17");              // too few columns
     std::string joined;
     for (const auto& l : lines) joined += l + "\n";
     const MeasurementImport m = importSpectroradiometerCsv(joined);

@@ -118,9 +118,9 @@ void AxisTable::setBench(devices::LiveBench* live) {
     axis.target->setRange(-1e6, 1e6);
     axis.target->setValue(0.0);
     const auto& b = w->binding();
-    axis.target->setToolTip(tr("Element coordinate; soft limits %1 … %2")
-                                .arg(formatAxisValue(b.soft_limits[0], axis.unit),
-                                     formatAxisValue(b.soft_limits[1], axis.unit)));
+    axis.target->setToolTip(
+        tr("Element coordinate; soft limits %1 … %2")
+            .arg(formatAxisValue(b.soft_limits[0], axis.unit), formatAxisValue(b.soft_limits[1], axis.unit)));
     axis.go = new QPushButton(tr("Go"), this);
     axis.go->setObjectName("go_" + axis.key);
     for (QPushButton* pb : {axis.reverse, axis.forward}) pb->setFixedWidth(28);
@@ -208,33 +208,33 @@ void AxisTable::submit(const Row& row, const QString& what, std::function<void(d
   auto stops = stops_;
   const int stops_before = *stops;
   ++*pending;
-  row.worker->submit([this, key, unit, binding, what, command = std::move(command), pending, stops,
-                      stops_before](devices::Stage& s) {
-    QString error;
-    bool stopped_by_user = false;
-    double stopped_at = 0;
-    try {
-      command(s);
-    } catch (const std::exception& e) {
-      error = QString::fromStdString(e.what());
-      stopped_by_user = *stops != stops_before;
-      stopped_at = devices::stageToElement(binding, s.state().position);
-    }
-    --*pending;
-    // Queued to the GUI thread; dropped if the table is gone (the panel joins the workers first).
-    QMetaObject::invokeMethod(
-        this,
-        [this, key, unit, what, error, stopped_by_user, stopped_at] {
-          if (error.isEmpty())
-            emit report(tr("%1: %2 done").arg(key, what), false);
-          else if (stopped_by_user)  // in the row's frame, not the stage's raw coordinate
-            emit report(tr("%1: %2 stopped by you at %3").arg(key, what, formatAxisValue(stopped_at, unit)), true);
-          else
-            emit report(tr("%1: %2 refused or failed — %3").arg(key, what, error), true);
-          refresh();
-        },
-        Qt::QueuedConnection);
-  });
+  row.worker->submit(
+      [this, key, unit, binding, what, command = std::move(command), pending, stops, stops_before](devices::Stage& s) {
+        QString error;
+        bool stopped_by_user = false;
+        double stopped_at = 0;
+        try {
+          command(s);
+        } catch (const std::exception& e) {
+          error = QString::fromStdString(e.what());
+          stopped_by_user = *stops != stops_before;
+          stopped_at = devices::stageToElement(binding, s.state().position);
+        }
+        --*pending;
+        // Queued to the GUI thread; dropped if the table is gone (the panel joins the workers first).
+        QMetaObject::invokeMethod(
+            this,
+            [this, key, unit, what, error, stopped_by_user, stopped_at] {
+              if (error.isEmpty())
+                emit report(tr("%1: %2 done").arg(key, what), false);
+              else if (stopped_by_user)  // in the row's frame, not the stage's raw coordinate
+                emit report(tr("%1: %2 stopped by you at %3").arg(key, what, formatAxisValue(stopped_at, unit)), true);
+              else
+                emit report(tr("%1: %2 refused or failed — %3").arg(key, what, error), true);
+              refresh();
+            },
+            Qt::QueuedConnection);
+      });
 }
 
 void AxisTable::noteEmergencyStop() {

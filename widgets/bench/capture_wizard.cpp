@@ -108,8 +108,9 @@ CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidg
   connect(start_, &QPushButton::clicked, this, &CaptureWizard::start);
   connect(pause_, &QPushButton::clicked, this, &CaptureWizard::pause);
   connect(import_, &QPushButton::clicked, this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, tr("Import colour measurements"), {},
-                                                   tr("Measurements (*.json *.csv);;Spectroradiometer readings (*.csv);;JSON (*.json)"));
+    const QString f = QFileDialog::getOpenFileName(
+        this, tr("Import colour measurements"), {},
+        tr("Measurements (*.json *.csv);;Spectroradiometer readings (*.csv);;JSON (*.json)"));
     if (f.isEmpty()) return;
     QString error;
     if (!importMeasurement(f, &error)) status_->setText(error);
