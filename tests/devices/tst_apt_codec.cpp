@@ -3,6 +3,7 @@
 // the streaming decoder against garbage, partial and concatenated input (fixed-seed fuzz).
 #include <QtTest>
 
+#include <functional>
 #include <random>
 
 #include "devices/apt/apt_decoder.h"
@@ -15,6 +16,36 @@ using Bytes = std::vector<std::uint8_t>;
 namespace {
 std::string hex(const Message& m) {
   return toHex(encode(m));
+}
+// Interleaves random byte runs (up to max_garbage bytes) with `count` messages from `make`
+// and decodes the stream fed in random chunks; returns what was sent and what came out.
+std::pair<std::vector<Message>, std::vector<Message>> fuzzDecoder(std::mt19937& rng, int count, int max_garbage,
+                                                                  int max_chunk,
+                                                                  const std::function<Message(std::mt19937&)>& make) {
+  std::uniform_int_distribution<int> byte(0, 255), len(0, max_garbage);
+  std::vector<Message> sent, got;
+  Bytes stream;
+  for (int i = 0; i < count; ++i) {
+    for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
+    sent.push_back(make(rng));
+    const auto b = encode(sent.back());
+    stream.insert(stream.end(), b.begin(), b.end());
+  }
+  StreamDecoder d;
+  for (std::size_t at = 0; at < stream.size();) {
+    const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % static_cast<unsigned>(max_chunk));
+    d.feed(std::span(stream).subspan(at, n));
+    at += n;
+    while (auto m = d.next()) got.push_back(*m);
+  }
+  return {sent, got};
+}
+// How many of `sent` come out of `got` in order.
+std::size_t foundInOrder(const std::vector<Message>& sent, const std::vector<Message>& got) {
+  std::size_t found = 0;
+  for (const auto& m : got)
+    if (found < sent.size() && m == sent[found]) ++found;
+  return found;
 }
 UnitConverter converter(const char* controller, const char* stage) {
   return UnitConverter(*findController(controller), *findStage(stage));
@@ -185,52 +216,27 @@ class TestAptCodec : public QObject {
 
   void decoderFuzzFixedSeed() {
     std::mt19937 rng(20261123);
-    std::uniform_int_distribution<int> byte(0, 255), len(0, 40), pick(0, 5);
-    std::vector<Message> sent;
-    Bytes stream;
-    for (int i = 0; i < 3000; ++i) {
-      for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
-      Message m;
-      switch (pick(rng)) {
+    std::uniform_int_distribution<int> byte(0, 255);
+    const auto [sent, got] = fuzzDecoder(rng, 3000, 40, 97, [](std::mt19937& g) {
+      switch (g() % 6) {
         case 0:
-          m = moveAbsolute(0x50, 1, static_cast<std::int32_t>(rng()));
-          break;
+          return moveAbsolute(0x50, 1, static_cast<std::int32_t>(g()));
         case 1:
-          m = moveHome(0x50, 1);
-          break;
+          return moveHome(0x50, 1);
         case 2:
-          m = getDcStatusUpdate(
-              0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 3, static_cast<std::uint32_t>(rng())});
-          break;
+          return getDcStatusUpdate(
+              0x50, ChannelStatus{1, static_cast<std::int32_t>(g()), 3, static_cast<std::uint32_t>(g())});
         case 3:
-          m = setJogParams(0x50, JogParams{});
-          break;
+          return setJogParams(0x50, JogParams{});
         case 4:
-          m = moveStop(0x50, 1, StopMode::Immediate);
-          break;
+          return moveStop(0x50, 1, StopMode::Immediate);
         default:
-          m = reqHwInfo();
-          break;
+          return reqHwInfo();
       }
-      sent.push_back(m);
-      auto b = encode(m);
-      stream.insert(stream.end(), b.begin(), b.end());
-    }
-    // Feed in random chunk sizes; random bytes must never crash and every real message must
-    // come out in order (an extremely rare fake header from noise is tolerated but counted).
-    StreamDecoder d;
-    std::vector<Message> got;
-    std::size_t at = 0;
-    while (at < stream.size()) {
-      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 97);
-      d.feed(std::span(stream).subspan(at, n));
-      at += n;
-      while (auto m = d.next()) got.push_back(*m);
-    }
-    std::size_t found = 0;
-    for (const auto& m : got)
-      if (found < sent.size() && m == sent[found]) ++found;
-    QCOMPARE(found, sent.size());
+    });
+    // Random bytes must never crash and every real message must come out in order (an
+    // extremely rare fake header from noise is tolerated but counted).
+    QCOMPARE(foundInOrder(sent, got), sent.size());
     QVERIFY2(got.size() - sent.size() <= 3, "noise produced too many fake messages");
     // Pure noise: no crash, nearly everything discarded.
     StreamDecoder noise;
@@ -305,59 +311,32 @@ class TestAptCodec : public QObject {
     // header-only moves, both completion forms, error reports): every valid message that
     // follows a run of garbage comes out, in order, whatever the chunking.
     std::mt19937 rng(424242);
-    std::uniform_int_distribution<int> byte(0, 255), len(1, 64), pick(0, 8);
-    std::vector<Message> sent;
-    Bytes stream;
-    for (int i = 0; i < 4000; ++i) {
-      for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
-      Message m;
-      switch (pick(rng)) {
+    const auto [sent, got] = fuzzDecoder(rng, 4000, 64, 61, [](std::mt19937& g) {
+      switch (g() % 9) {
         case 0:
-          m = moveAbsoluteStored(0x50, 1);
-          break;
+          return moveAbsoluteStored(0x50, 1);
         case 1:
-          m = moveRelativeStored(0x50, 1);
-          break;
+          return moveRelativeStored(0x50, 1);
         case 2:
-          m = moveCompleted(0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 0, 0x80000030});
-          break;
+          return moveCompleted(0x50, ChannelStatus{1, static_cast<std::int32_t>(g()), 0, 0x80000030});
         case 3: {
-          m = moveCompleted(0x50, ChannelStatus{});
-          m.data.clear();
-          break;
-        }  // header-only completion
+          Message m = moveCompleted(0x50, ChannelStatus{});
+          m.data.clear();  // header-only completion (old firmware)
+          return m;
+        }
         case 4:
-          m = hwRichResponse(0x50, ControllerResponse{0x0453, 7, "error text", true});
-          break;
+          return hwRichResponse(0x50, ControllerResponse{0x0453, 7, "error text", true});
         case 5:
-          m = hwResponse(0x50, 3);
-          break;
+          return hwResponse(0x50, 3);
         case 6:
-          m = getStatusUpdate(0x50, ChannelStatus{1, 5, 5, 0x80000400});
-          break;
+          return getStatusUpdate(0x50, ChannelStatus{1, 5, 5, 0x80000400});
         case 7:
-          m = setMoveAbsParams(0x50, 1, static_cast<std::int32_t>(rng()));
-          break;
+          return setMoveAbsParams(0x50, 1, static_cast<std::int32_t>(g()));
         default:
-          m = getLimSwitchParams(0x50, LimitSwitchParams{});
-          break;
+          return getLimSwitchParams(0x50, LimitSwitchParams{});
       }
-      sent.push_back(m);
-      auto b = encode(m);
-      stream.insert(stream.end(), b.begin(), b.end());
-    }
-    StreamDecoder d;
-    std::vector<Message> got;
-    for (std::size_t at = 0; at < stream.size();) {
-      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 61);
-      d.feed(std::span(stream).subspan(at, n));
-      at += n;
-      while (auto m = d.next()) got.push_back(*m);
-    }
-    std::size_t found = 0;
-    for (const auto& m : got)
-      if (found < sent.size() && m == sent[found]) ++found;
-    QCOMPARE(found, sent.size());
+    });
+    QCOMPARE(foundInOrder(sent, got), sent.size());
     QVERIFY2(got.size() - sent.size() <= 2, "noise produced too many fake messages");
   }
 };

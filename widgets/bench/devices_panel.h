@@ -22,6 +22,7 @@
 #include <QPointer>
 #include <QWidget>
 
+#include <array>
 #include <future>
 #include <memory>
 #include <optional>
