@@ -1,5 +1,6 @@
 #include "widgets/bench/devices_panel.h"
 
+#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QKeyEvent>
 #include <QLabel>
@@ -12,6 +13,7 @@
 #include "widgets/bench/capture_wizard.h"
 #include "widgets/bench/eye_camera_box.h"
 #include "widgets/bench/follow_gaze_box.h"
+#include "widgets/bench/pupil_tracker_view.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
@@ -74,6 +76,19 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
     else
       camera_->stop();
   });
+
+  // The pupil tracker (pupil_tracker_view.h): while it tracks, its gaze drives follow gaze.
+  auto* trackBox = new QGroupBox(tr("Pupil tracker"), this);
+  auto* tl = new QVBoxLayout(trackBox);
+  tl->setContentsMargins(4, 4, 4, 4);
+  tracker_ = new PupilTrackerView(currentScene(), trackBox);
+  tl->addWidget(tracker_);
+  root->addWidget(trackBox, 1);
+  connect(tracker_, &PupilTrackerView::gazeTracked, this,
+          [this](double y, double p, double) { follow_->setFollowerGaze(y, p); });
+  // The virtual eye looks where the sliders say; the sliders drive the axes unless the tracker does.
+  follow_->setGazeHooks([this](double y, double p) { tracker_->setEyeGaze(y, p); },
+                        [this] { return tracker_->tracking(); });
 
   wizardButton_ = new QPushButton(tr("Calibration capture…"), this);
   wizardButton_->setObjectName("captureWizardButton");

@@ -42,6 +42,7 @@ class SceneDocument;
 class AxisTable;
 class EyeCameraBox;
 class FollowGazeBox;
+class PupilTrackerView;
 
 struct DevicesPanelOptions {
   bool auto_connect = true;               // connect when a scene is opened
@@ -68,6 +69,7 @@ class DevicesPanel : public QWidget {
   void setSelectedAxis(const QString& key);  // "hoe.x"
   QString selectedAxis() const;
   CaptureWizard* wizard() const { return wizard_; }
+  PupilTrackerView* pupilTracker() const { return tracker_; }
   // Element position of an axis from its last snapshot (nullopt: unknown / no such axis).
   std::optional<double> axisPosition(const QString& key) const;
   bool followGaze() const;
@@ -121,6 +123,7 @@ class DevicesPanel : public QWidget {
   AxisTable* axes_ = nullptr;
   FollowGazeBox* follow_ = nullptr;
   EyeCameraBox* camera_ = nullptr;
+  PupilTrackerView* tracker_ = nullptr;
   QPushButton* wizardButton_ = nullptr;
   QTimer* timer_ = nullptr;
   QPointer<CaptureWizard> wizard_;

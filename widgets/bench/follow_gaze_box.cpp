@@ -96,7 +96,8 @@ void FollowGazeBox::setGaze(double yaw, double pitch) {
     yaw_->setValue(y);
     pitch_->setValue(p);
   }
-  if (follower_) follower_->setGaze(yaw, pitch);
+  if (on_gaze_) on_gaze_(yaw, pitch);
+  if (follower_ && !(hold_ && hold_())) follower_->setGaze(yaw, pitch);
   refresh();
 }
 

@@ -30,6 +30,16 @@ class FollowGazeBox : public QGroupBox {
   bool followGaze() const;
   void setFollowGaze(bool on);
   void setGaze(double yaw_deg, double pitch_deg);
+  // A gaze from elsewhere (the pupil tracker): drives the axes, leaves the sliders.
+  void setFollowerGaze(double yaw_deg, double pitch_deg) {
+    if (follower_) follower_->setGaze(yaw_deg, pitch_deg);
+  }
+  // on_gaze: told every slider gaze (the virtual eye looks there); hold: while true the
+  // sliders do not drive the axes (the tracker does).
+  void setGazeHooks(std::function<void(double, double)> on_gaze, std::function<bool()> hold) {
+    on_gaze_ = std::move(on_gaze);
+    hold_ = std::move(hold);
+  }
   void setSceneGaze(std::array<double, 2> gaze_deg);  // moves the sliders
   bool tableReady() const;
   // Starts the gaze study's table now (follow gaze starts it on first use anyway).
@@ -57,6 +67,8 @@ class FollowGazeBox : public QGroupBox {
   std::unique_ptr<devices::FollowGazeTableTask> task_;
   bool table_applied_ = false;
   std::array<double, 2> gaze_{0.0, 0.0};
+  std::function<void(double, double)> on_gaze_;
+  std::function<bool()> hold_;
 };
 
 }  // namespace fovea::widgets
