@@ -1,11 +1,17 @@
-// fovea-cli color-calibrate MEAS.json --out CAL.json [--white-xy x,y] [--gamma G] [--json]
+// fovea-cli color-calibrate (MEAS.json | --measurements READINGS.csv) --out CAL.json
+//                           [--white-xy x,y] [--gamma G] [--json]
+// READINGS.csv: spectroradiometer readings (display,channel,level,x,y,Y,repeat), averaged
+// per level (model/color/measurement_csv.h); bad rows are reported by line (exit 1).
 // Seed B.2.2: common primaries of the foveal and peripheral displays, white balance and the
 // look-up tables; writes the calibration file used by `color-map`.
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "app/cli/cli_common.h"
 #include "app/cli/preview_json_io.h"
 #include "model/color/color_calibration.h"
+#include "model/color/measurement_csv.h"
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
@@ -18,13 +24,16 @@ nlohmann::json xyJson(color::Xy p) {
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("color-calibrate", "Colour-match the foveal and peripheral displays (B.2.2)");
   struct Args {
-    std::string meas, out, white;
+    std::string meas, csv, out, white;
     double gamma = 2.2;
     int grid = 9;
     bool json = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("MEAS", a->meas, "colour measurements (fovea-color-measurements JSON)")->required();
+  auto* meas = cmd->add_option("MEAS", a->meas, "colour measurements (fovea-color-measurements JSON)");
+  cmd->add_option("--measurements", a->csv,
+                  "spectroradiometer readings CSV (display,channel,level,x,y,Y,repeat) instead of MEAS")
+      ->excludes(meas);
   cmd->add_option("--out", a->out, "calibration file to write")->required();
   cmd->add_option("--white-xy", a->white, "white point chromaticity x,y (default D65 0.3127,0.3290)");
   cmd->add_option("--gamma", a->gamma, "gamma of the calibrated display (default 2.2)");
@@ -39,11 +48,32 @@ void install(CLI::App& app) {
     }
     if (!(a->gamma > 0 && a->gamma < 10)) usageError("--gamma must lie in (0, 10)");
     o.gamma = a->gamma;
+    if (a->meas.empty() == a->csv.empty()) usageError("give exactly one of MEAS.json or --measurements FILE.csv");
     color::ColorCalibration cal;
+    nlohmann::json imported;
+    const std::string source = a->csv.empty() ? a->meas : a->csv;
     try {
-      cal = color::calibrateColor(color::parseColorMeasurements(readJsonFileOrExit(a->meas)), o);
+      color::ColorMeasurements m;
+      if (!a->csv.empty()) {
+        std::ifstream in(a->csv, std::ios::binary);
+        if (!in) inputError(a->csv + ": cannot read the measurements");
+        std::ostringstream text;
+        text << in.rdbuf();
+        const color::MeasurementImport imp = color::importSpectroradiometerCsv(text.str());
+        if (!imp.ok())
+          inputError(std::to_string(imp.problems.size()) + " problem(s) in the measurements, nothing calibrated:\n" +
+                     color::formatProblems(imp, a->csv));
+        m = imp.measurements;
+        imported = {{"file", a->csv},
+                    {"readings", imp.rows},
+                    {"repeats_min", imp.min_repeats},
+                    {"repeats_max", imp.max_repeats}};
+      } else {
+        m = color::parseColorMeasurements(readJsonFileOrExit(a->meas));
+      }
+      cal = color::calibrateColor(m, o);
     } catch (const std::invalid_argument& e) {
-      inputError(a->meas + ": " + e.what());
+      inputError(source + ": " + e.what());
     }
     try {
       writeFileAtomic(a->out, color::toJson(cal).dump(2) + "\n");
@@ -78,6 +108,7 @@ void install(CLI::App& app) {
                          {"mean_unquantised", r.mean_real_drive},
                          {"max_unquantised", r.max_real_drive}}},
                        {"calibration_file", a->out}};
+    if (!imported.is_null()) out["measurements_csv"] = imported;
     if (a->json) {
       printJson(out);
       return;

@@ -17,12 +17,21 @@
 // -home_offset, e.g. 12.5 mm for the prototype's HOE stages), else at 0 (the home switch). MODEL is a stage (MTS25-Z8,
 // Z825B, DDSM50, K10CR1) or a controller (KDC101, TDC001, KBD101); the scene binding with that model supplies serial
 // and soft limits.
-// --virtual-fault mute makes the emulator swallow every message (to exercise timeouts).
+// --virtual-fault mute makes the emulator swallow every message (to exercise timeouts);
+// --virtual-fault reject makes it answer every motion command with HW_RICHRESPONSE (to
+// exercise controller errors, reported in the controller's words, exit 1).
+// --transcript FILE records every message with its link-clock time (devices/replay).
+//
+// Refused before any byte (exit 2): targets outside the soft limits or the stage's travel
+// (whatever --soft-limits says; an override is intersected with the travel), targets and
+// distances that do not fit the protocol's signed 32-bit counts, --soft-limits MIN,MAX with
+// MIN >= MAX, a --timeout outside (0, 3600] s.
 #include <cmath>
 #include <iostream>
 #include <optional>
 
 #include "app/cli/cli_common.h"
+#include "devices/replay/transcript.h"
 #include "devices/stage/stage.h"
 #include "devices/stage/stage_binding.h"
 #include "devices/transport/libusb_transport.h"
@@ -34,11 +43,13 @@ namespace {
 using devices::DeviceError;
 
 struct StageArgs {
-  std::string virtual_model, serial, trace, command, arg, scene, fault, soft_limits;
+  std::string virtual_model, serial, trace, transcript, command, arg, scene, fault, soft_limits;
   int channel = 1;
   bool json = false, immediate = false;
   double timeout_s = 2.0;
 };
+
+constexpr double kMaxTimeout_s = 3600.0;
 
 int exitCodeFor(DeviceError::Kind k) {
   switch (k) {
@@ -75,16 +86,53 @@ nlohmann::json stateJson(const devices::Stage& s, const devices::AxisState& st) 
   return j;
 }
 
+// What the controller reported on connect (after the writes the scene asked for).
+nlohmann::json controllerSetupJson(const devices::Stage& s) {
+  const std::string unit = s.config().stage.unit();
+  const devices::ControllerParameters& p = s.controllerParameters();
+  nlohmann::json j{{"velocity",
+                    {{"max_" + unit + "_per_s", p.velocity.max_velocity},
+                     {"acceleration_" + unit + "_per_s2", p.velocity.acceleration}}},
+                   {"written", p.written}};
+  if (p.jog)
+    j["jog"] = {{"mode", p.jog->continuous ? "continuous" : "single-step"},
+                {"step_" + unit, p.jog->step},
+                {"max_" + unit + "_per_s", p.jog->max_velocity},
+                {"acceleration_" + unit + "_per_s2", p.jog->acceleration},
+                {"stop", p.jog->immediate_stop ? "immediate" : "profiled"}};
+  else
+    j["jog"] = nullptr;
+  if (p.home)
+    j["home"] = {{"direction", p.home->direction == 1 ? "forward" : "reverse"},
+                 {"limit_switch", p.home->limit_switch},
+                 {"velocity_" + unit + "_per_s", p.home_velocity},
+                 {"offset_" + unit, p.home_offset}};
+  else
+    j["home"] = "not reported by the controller";
+  if (p.limit_switches)
+    j["limit_switches"] = {{"cw_hard", p.limit_switches->cw_hard},
+                           {"ccw_hard", p.limit_switches->ccw_hard},
+                           {"soft_limit_mode", p.limit_switches->soft_mode}};
+  else
+    j["limit_switches"] = "not reported by the controller";
+  return j;
+}
+
 void run(const StageArgs& a) {
   if (a.virtual_model.empty() == a.serial.empty()) usageError("give exactly one of --virtual MODEL or --serial SERIAL");
   if (a.channel < 1 || a.channel > 4) usageError("--channel: expected 1 to 4, got " + std::to_string(a.channel));
-  if (!(a.timeout_s > 0) || !std::isfinite(a.timeout_s)) usageError("--timeout: expected a positive number of seconds");
+  if (!(a.timeout_s > 0 && a.timeout_s <= kMaxTimeout_s)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "--timeout: expected seconds in (0, %.0f], got %g", kMaxTimeout_s, a.timeout_s);
+    usageError(buf);
+  }
   static const std::vector<std::string> commands = {"info",     "enable", "disable", "home",    "move-abs",
                                                     "move-rel", "jog",    "stop",    "position"};
   if (std::find(commands.begin(), commands.end(), a.command) == commands.end())
     usageError("unknown stage command '" + a.command +
                "' (info, enable, disable, home, move-abs MM, move-rel MM, jog forward|reverse, stop, position)");
-  if (!a.fault.empty() && a.fault != "mute") usageError("--virtual-fault: only 'mute' is known");
+  if (!a.fault.empty() && a.fault != "mute" && a.fault != "reject")
+    usageError("--virtual-fault: expected 'mute' or 'reject', got '" + a.fault + "'");
 
   const Scene scene = loadSceneOrExit(a.scene);
   std::optional<StageBinding> binding;
@@ -112,6 +160,8 @@ void run(const StageArgs& a) {
           std::clamp(devices::elementToStage(*binding, 0.0), cfg.stage.continuous ? -1e9 : cfg.stage.travel_min,
                      cfg.stage.continuous ? 1e9 : cfg.stage.travel_max);
     }
+    if (a.fault == "reject")
+      cfg.reject_motion = apt::ControllerResponse{0, 0x0001, "virtual fault: motion command rejected", true};
     emulator = std::make_shared<devices::VirtualAptController>(cfg, clock);
     emulator->setMute(a.fault == "mute");
     controller = emulator->config().controller;
@@ -140,19 +190,34 @@ void run(const StageArgs& a) {
   }
   if (!a.soft_limits.empty()) {
     const auto l = parseNumberList(a.soft_limits, "--soft-limits", 2, 2);
-    config.soft_min = std::min(l[0], l[1]);
-    config.soft_max = std::max(l[0], l[1]);
+    if (!(l[0] < l[1]))
+      usageError("--soft-limits " + a.soft_limits + ": expected MIN,MAX with MIN < MAX (" + stage->unit() + ")");
+    // An override narrows, never widens, what the stage can do: intersect with its travel.
+    config.soft_min = stage->continuous ? l[0] : std::max(l[0], stage->travel_min);
+    config.soft_max = stage->continuous ? l[1] : std::min(l[1], stage->travel_max);
+    if (!(config.soft_min < config.soft_max)) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "--soft-limits %s: no overlap with the travel [%g, %g] %s of the %s",
+                    a.soft_limits.c_str(), stage->travel_min, stage->travel_max, stage->unit().c_str(),
+                    stage->name.c_str());
+      usageError(buf);
+    }
   }
   config.channel = static_cast<std::uint8_t>(a.channel);
   config.reply_timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
 
   std::shared_ptr<devices::TraceSink> trace;
-  if (!a.trace.empty()) {
-    try {
-      trace = std::make_shared<devices::FileTrace>(a.trace);
-    } catch (const std::exception& e) {
-      inputError(e.what());
+  try {
+    std::vector<std::shared_ptr<devices::TraceSink>> sinks;
+    if (!a.trace.empty()) sinks.push_back(std::make_shared<devices::FileTrace>(a.trace));
+    if (!a.transcript.empty()) {
+      devices::Transport* link = transport.get();
+      sinks.push_back(std::make_shared<devices::TranscriptRecorder>(a.transcript, [link] { return link->now(); }));
     }
+    if (sinks.size() == 1) trace = sinks[0];
+    if (sinks.size() == 2) trace = std::make_shared<devices::TraceFanout>(sinks);
+  } catch (const std::exception& e) {
+    inputError(e.what());
   }
   const std::string unit = stage->unit();
   // Absolute targets are checked before anything touches the device.
@@ -171,13 +236,14 @@ void run(const StageArgs& a) {
   devices::Stage s(std::move(transport), config, trace);
   nlohmann::json out;
   try {
-    if (a.command == "move-abs" && (*target < config.soft_min || *target > config.soft_max)) {
-      // Same check and message as Stage::startMoveAbsolute, before even opening the link.
-      char buf[256];
-      std::snprintf(buf, sizeof buf,
-                    "move to %.4f %s refused: outside the soft limits [%.4f, %.4f] %s; nothing was sent", *target,
-                    unit.c_str(), config.soft_min, config.soft_max, unit.c_str());
-      throw DeviceError(DeviceError::Kind::SoftLimit, buf);
+    // The same checks as Stage::startMove*, before even opening the link.
+    const std::string device = controller->name + " " + (emulator ? emulator->config().serial : a.serial);
+    if (a.command == "move-abs") devices::checkMoveTarget(config, *target, "move", device);
+    if (a.command == "move-rel") {
+      if (!std::isfinite(*target)) throw DeviceError(DeviceError::Kind::Usage, "move-rel: distance is not finite");
+      char what[96];
+      std::snprintf(what, sizeof what, "relative move by %.4f %s", *target, unit.c_str());
+      devices::checkEncodable(config, *target, what);
     }
     s.connect();
     if (a.command == "enable")
@@ -207,6 +273,9 @@ void run(const StageArgs& a) {
                          {"channels", hw.channels}};
       out["velocity"] = {{"max_" + unit + "_per_s", vel.max_velocity},
                          {"acceleration_" + unit + "_per_s2", vel.acceleration}};
+      out["controller_setup"] = controllerSetupJson(s);
+      out["counts_per_" + unit] = config.stage.counts_per_unit;
+      out["counts_source"] = config.stage.source;
     }
   } catch (const DeviceError& e) {
     throw CliError(exitCodeFor(e.kind()), e.what());
@@ -251,7 +320,10 @@ void install(CLI::App& app) {
   cmd->add_option("--scene", a->scene, "scene with the stage bindings (default: the prototype bench)");
   cmd->add_option("--timeout", a->timeout_s, "seconds to wait for each reply (default 2)");
   cmd->add_option("--soft-limits", a->soft_limits, "override the soft limits: MIN,MAX in mm (deg)");
-  cmd->add_option("--virtual-fault", a->fault, "make the virtual device misbehave: mute");
+  cmd->add_option("--virtual-fault", a->fault,
+                  "make the virtual device misbehave: mute (never answers), reject (HW_RICHRESPONSE to every move)");
+  cmd->add_option("--transcript", a->transcript,
+                  "write every APT message as 'SECONDS TX|RX HH HH ...' lines to FILE (a replayable transcript)");
   cmd->add_option("COMMAND", a->command, "info|enable|disable|home|move-abs|move-rel|jog|stop|position")->required();
   cmd->add_option("ARG", a->arg, "distance in mm (deg) for move-abs/move-rel, forward|reverse for jog");
   cmd->positionals_at_end(false);

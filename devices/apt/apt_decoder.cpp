@@ -20,7 +20,10 @@ std::optional<Message> StreamDecoder::next() {
     const std::uint8_t dest = static_cast<std::uint8_t>(dest_raw & ~addr::kDataFlag);
     const std::uint16_t length = has_data ? static_cast<std::uint16_t>(buffer_[2] | (buffer_[3] << 8)) : 0;
 
-    bool valid = addr::plausible(dest) && addr::plausible(source) && dest != source;
+    // Every message on a host link has the host at one end (rack-internal traffic between
+    // bays never reaches USB), which rejects most random address pairs.
+    bool valid = addr::plausible(dest) && addr::plausible(source) && dest != source &&
+                 (dest == addr::kHost || source == addr::kHost);
     if (valid) {
       if (in_sync_ && !knownDataLength(msg_id)) {
         // An id this codec does not know: only inside the documented id blocks (generic

@@ -2,11 +2,13 @@
 // Streaming APT decoder: bytes in (any chunking), whole messages out. Survives garbage,
 // partial and concatenated packets and resynchronises on the next valid header.
 //
-// Header validation: while in sync (the previous message ended exactly here) a header with
-// an unknown id is accepted when its addresses are plausible, its id lies in a documented
-// id block and its length is short, so messages this codec does not know still pass through. After garbage (out of
-// sync) only known message ids with their documented data length and plausible addresses are accepted, so random bytes
-// almost never fake a header (~40 ids of 65536, x the address checks).
+// Every valid header form is accepted, including the header-only MOVE_ABSOLUTE (0x0453) /
+// MOVE_RELATIVE (0x0448) and the header-only or 14-byte completions.
+// Header validation (both directions): addresses plausible, distinct, one of them the host. While in sync (the previous
+// message ended exactly here) a header with an unknown id is accepted when its addresses are plausible, its id lies in
+// a documented id block and its length is short, so messages this codec does not know still pass through. After garbage
+// (out of sync) only known message ids with their documented data length and plausible addresses are accepted, so
+// random bytes almost never fake a header (~40 ids of 65536, x the address checks).
 #include <cstddef>
 #include <cstdint>
 #include <deque>

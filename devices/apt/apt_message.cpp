@@ -35,6 +35,18 @@ constexpr Known kKnown[] = {
     {id::kMotSetJogParams, 22, "MOT_SET_JOGPARAMS"},
     {id::kMotReqJogParams, 0, "MOT_REQ_JOGPARAMS"},
     {id::kMotGetJogParams, 22, "MOT_GET_JOGPARAMS"},
+    {id::kMotSetLimSwitchParams, 16, "MOT_SET_LIMSWITCHPARAMS"},
+    {id::kMotReqLimSwitchParams, 0, "MOT_REQ_LIMSWITCHPARAMS"},
+    {id::kMotGetLimSwitchParams, 16, "MOT_GET_LIMSWITCHPARAMS"},
+    {id::kMotSetHomeParams, 14, "MOT_SET_HOMEPARAMS"},
+    {id::kMotReqHomeParams, 0, "MOT_REQ_HOMEPARAMS"},
+    {id::kMotGetHomeParams, 14, "MOT_GET_HOMEPARAMS"},
+    {id::kMotSetMoveRelParams, 6, "MOT_SET_MOVERELPARAMS"},
+    {id::kMotReqMoveRelParams, 0, "MOT_REQ_MOVERELPARAMS"},
+    {id::kMotGetMoveRelParams, 6, "MOT_GET_MOVERELPARAMS"},
+    {id::kMotSetMoveAbsParams, 6, "MOT_SET_MOVEABSPARAMS"},
+    {id::kMotReqMoveAbsParams, 0, "MOT_REQ_MOVEABSPARAMS"},
+    {id::kMotGetMoveAbsParams, 6, "MOT_GET_MOVEABSPARAMS"},
     {id::kMotMoveHome, 0, "MOT_MOVE_HOME"},
     {id::kMotMoveHomed, 0, "MOT_MOVE_HOMED"},
     {id::kMotMoveRelative, 6, "MOT_MOVE_RELATIVE"},
@@ -137,7 +149,15 @@ bool acceptsLength(std::uint16_t message_id, std::uint16_t data_length) {
   // Older firmware sends these as header-only messages; newer ones append a status block.
   const bool either =
       message_id == id::kMotMoveCompleted || message_id == id::kMotMoveStopped || message_id == id::kMotMoveHomed;
-  return either && (data_length == 0 || data_length == 14);
+  if (either) return data_length == 0 || data_length == 14;
+  // Header-only moves by the stored MOVEABSPARAMS / MOVERELPARAMS.
+  const bool move = message_id == id::kMotMoveAbsolute || message_id == id::kMotMoveRelative;
+  return move && data_length == 0;
+}
+
+std::uint8_t channelIdent(int channel, bool bit_mask) {
+  if (bit_mask && channel >= 1 && channel <= 8) return static_cast<std::uint8_t>(1u << (channel - 1));
+  return static_cast<std::uint8_t>(channel);
 }
 
 std::string messageName(std::uint16_t message_id) {
@@ -257,6 +277,58 @@ Message reqJogParams(std::uint8_t dest, std::uint8_t channel) {
   return shortMsg(id::kMotReqJogParams, channel, 0, dest, addr::kHost);
 }
 
+namespace {
+std::vector<std::uint8_t> homeData(const HomeParams& p) {
+  std::vector<std::uint8_t> d;
+  put16(d, p.channel);
+  put16(d, p.direction);
+  put16(d, p.limit_switch);
+  putS32(d, p.velocity);
+  putS32(d, p.offset);
+  return d;
+}
+std::vector<std::uint8_t> limSwitchData(const LimitSwitchParams& p) {
+  std::vector<std::uint8_t> d;
+  put16(d, p.channel);
+  put16(d, p.cw_hard);
+  put16(d, p.ccw_hard);
+  put32(d, p.cw_soft);
+  put32(d, p.ccw_soft);
+  put16(d, p.soft_mode);
+  return d;
+}
+std::vector<std::uint8_t> channelLong(std::uint16_t channel, std::int32_t value) {
+  std::vector<std::uint8_t> d;
+  put16(d, channel);
+  putS32(d, value);
+  return d;
+}
+}  // namespace
+Message setHomeParams(std::uint8_t dest, const HomeParams& p) {
+  return longMsg(id::kMotSetHomeParams, homeData(p), dest, addr::kHost);
+}
+Message reqHomeParams(std::uint8_t dest, std::uint8_t channel) {
+  return shortMsg(id::kMotReqHomeParams, channel, 0, dest, addr::kHost);
+}
+Message setLimSwitchParams(std::uint8_t dest, const LimitSwitchParams& p) {
+  return longMsg(id::kMotSetLimSwitchParams, limSwitchData(p), dest, addr::kHost);
+}
+Message reqLimSwitchParams(std::uint8_t dest, std::uint8_t channel) {
+  return shortMsg(id::kMotReqLimSwitchParams, channel, 0, dest, addr::kHost);
+}
+Message setMoveAbsParams(std::uint8_t dest, std::uint16_t channel, std::int32_t position_counts) {
+  return longMsg(id::kMotSetMoveAbsParams, channelLong(channel, position_counts), dest, addr::kHost);
+}
+Message setMoveRelParams(std::uint8_t dest, std::uint16_t channel, std::int32_t distance_counts) {
+  return longMsg(id::kMotSetMoveRelParams, channelLong(channel, distance_counts), dest, addr::kHost);
+}
+Message moveAbsoluteStored(std::uint8_t dest, std::uint8_t channel) {
+  return shortMsg(id::kMotMoveAbsolute, channel, 0, dest, addr::kHost);
+}
+Message moveRelativeStored(std::uint8_t dest, std::uint8_t channel) {
+  return shortMsg(id::kMotMoveRelative, channel, 0, dest, addr::kHost);
+}
+
 // ---- Controller -> host ------------------------------------------------------------------------
 Message getHwInfo(std::uint8_t source, const HwInfo& info) {
   std::vector<std::uint8_t> d;
@@ -300,6 +372,24 @@ Message getVelParams(std::uint8_t source, const VelParams& p) {
 }
 Message getJogParams(std::uint8_t source, const JogParams& p) {
   return longMsg(id::kMotGetJogParams, jogData(p), addr::kHost, source);
+}
+
+Message getHomeParams(std::uint8_t source, const HomeParams& p) {
+  return longMsg(id::kMotGetHomeParams, homeData(p), addr::kHost, source);
+}
+Message getLimSwitchParams(std::uint8_t source, const LimitSwitchParams& p) {
+  return longMsg(id::kMotGetLimSwitchParams, limSwitchData(p), addr::kHost, source);
+}
+Message hwResponse(std::uint8_t source, std::uint16_t code) {
+  return shortMsg(id::kHwResponse, static_cast<std::uint8_t>(code & 0xFF), static_cast<std::uint8_t>(code >> 8),
+                  addr::kHost, source);
+}
+Message hwRichResponse(std::uint8_t source, const ControllerResponse& r) {
+  std::vector<std::uint8_t> d;
+  put16(d, r.message_id);
+  put16(d, r.code);
+  putText(d, r.text, 64);
+  return longMsg(id::kHwRichResponse, std::move(d), addr::kHost, source);
 }
 
 // ---- Parsers ------------------------------------------------------------------------------------
@@ -352,6 +442,51 @@ std::optional<JogParams> parseJogParams(const Message& m) {
   p.max_velocity = getS32(m.data, 16);
   p.stop_mode = get16(m.data, 20) == 0x01 ? StopMode::Immediate : StopMode::Profiled;
   return p;
+}
+
+std::optional<HomeParams> parseHomeParams(const Message& m) {
+  if ((m.id != id::kMotGetHomeParams && m.id != id::kMotSetHomeParams) || m.data.size() != 14) return std::nullopt;
+  return HomeParams{get16(m.data, 0), get16(m.data, 2), get16(m.data, 4), getS32(m.data, 6), getS32(m.data, 10)};
+}
+
+std::optional<LimitSwitchParams> parseLimSwitchParams(const Message& m) {
+  if ((m.id != id::kMotGetLimSwitchParams && m.id != id::kMotSetLimSwitchParams) || m.data.size() != 16)
+    return std::nullopt;
+  return LimitSwitchParams{get16(m.data, 0), get16(m.data, 2),  get16(m.data, 4),
+                           get32(m.data, 6), get32(m.data, 10), get16(m.data, 14)};
+}
+
+std::optional<ControllerResponse> parseControllerResponse(const Message& m) {
+  if (m.id == id::kHwResponse && m.data.empty())
+    return ControllerResponse{0, static_cast<std::uint16_t>(m.param1 | (m.param2 << 8)), "", false};
+  if (m.id == id::kHwRichResponse && m.data.size() == 68)
+    return ControllerResponse{get16(m.data, 0), get16(m.data, 2), getText(m.data, 4, 64), true};
+  return std::nullopt;
+}
+
+std::string describe(const ControllerResponse& r) {
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04X", r.code);
+  std::string s = std::string("code ") + code + " (" + std::to_string(r.code) + ")";
+  if (r.message_id) s += " after " + messageName(r.message_id);
+  // The controller's text, printable characters only (it comes off the wire).
+  std::string text;
+  for (char c : r.text)
+    if (c >= 0x20 && c < 0x7F) text.push_back(c);
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  s += text.empty() ? std::string(r.rich ? ": (no text)" : ": HW_RESPONSE, no text") : ": " + text;
+  return s;
+}
+
+std::optional<ChannelValue> parseMoveParams(const Message& m) {
+  const bool params = m.id == id::kMotSetMoveAbsParams || m.id == id::kMotGetMoveAbsParams ||
+                      m.id == id::kMotSetMoveRelParams || m.id == id::kMotGetMoveRelParams;
+  if (!params || m.data.size() != 6) return std::nullopt;
+  return ChannelValue{get16(m.data, 0), getS32(m.data, 2)};
+}
+
+bool isStoredMove(const Message& m) {
+  return (m.id == id::kMotMoveAbsolute || m.id == id::kMotMoveRelative) && m.data.empty();
 }
 
 std::optional<ChannelValue> parseMoveAbsolute(const Message& m) {

@@ -41,6 +41,18 @@ inline constexpr std::uint16_t kModReqChanEnableState = 0x0211;
 inline constexpr std::uint16_t kModGetChanEnableState = 0x0212;
 inline constexpr std::uint16_t kModIdentify = 0x0223;
 inline constexpr std::uint16_t kMotSetVelParams = 0x0413;
+inline constexpr std::uint16_t kMotSetLimSwitchParams = 0x0423;
+inline constexpr std::uint16_t kMotReqLimSwitchParams = 0x0424;
+inline constexpr std::uint16_t kMotGetLimSwitchParams = 0x0425;
+inline constexpr std::uint16_t kMotSetHomeParams = 0x0440;
+inline constexpr std::uint16_t kMotReqHomeParams = 0x0441;
+inline constexpr std::uint16_t kMotGetHomeParams = 0x0442;
+inline constexpr std::uint16_t kMotSetMoveRelParams = 0x0445;  // distance of the header-only MOVE_RELATIVE
+inline constexpr std::uint16_t kMotReqMoveRelParams = 0x0446;
+inline constexpr std::uint16_t kMotGetMoveRelParams = 0x0447;
+inline constexpr std::uint16_t kMotSetMoveAbsParams = 0x0450;  // target of the header-only MOVE_ABSOLUTE
+inline constexpr std::uint16_t kMotReqMoveAbsParams = 0x0451;
+inline constexpr std::uint16_t kMotGetMoveAbsParams = 0x0452;
 inline constexpr std::uint16_t kMotReqVelParams = 0x0414;
 inline constexpr std::uint16_t kMotGetVelParams = 0x0415;
 inline constexpr std::uint16_t kMotSetJogParams = 0x0416;
@@ -62,12 +74,19 @@ inline constexpr std::uint16_t kMotAckDcStatusUpdate = 0x0492;  // host keep-ali
 }  // namespace id
 
 // Expected data length of a known message id: 0 for header-only messages, N for messages
-// with an N-byte data packet, nullopt for an id this codec does not know. MOVE_COMPLETED,
-// MOVE_STOPPED and MOVE_HOMED are header-only on old controllers and carry a 14-byte status
-// on newer ones; both are accepted (see acceptsLength).
+// with an N-byte data packet, nullopt for an id this codec does not know. Some ids have two
+// valid forms, both accepted (see acceptsLength): MOVE_COMPLETED, MOVE_STOPPED and
+// MOVE_HOMED are header-only on old controllers and carry a 14-byte status on newer ones;
+// MOVE_ABSOLUTE and MOVE_RELATIVE have a header-only form (channel in param1) that moves by
+// the MOVEABSPARAMS / MOVERELPARAMS set before, besides the 6-byte form with the counts.
 std::optional<std::uint16_t> knownDataLength(std::uint16_t message_id);
 bool acceptsLength(std::uint16_t message_id, std::uint16_t data_length);
 std::string messageName(std::uint16_t message_id);  // "MOT_MOVE_ABSOLUTE", or "0x1234"
+
+// Channel ident of channel 1..4. Single- and dual-channel controllers number channels
+// 1, 2, 3, 4; controllers that address channels as bits (protocol document, "Chan Ident":
+// 0x01, 0x02, 0x04, 0x08) need the bit mask for channels 3 and 4.
+std::uint8_t channelIdent(int channel, bool bit_mask);
 
 struct Message {
   std::uint16_t id = 0;
@@ -142,6 +161,35 @@ struct JogParams {  // SET/GET_JOGPARAMS, 22 data bytes, APT units
   bool operator==(const JogParams&) const = default;
 };
 
+struct HomeParams {  // SET/GET_HOMEPARAMS, 14 data bytes
+  std::uint16_t channel = 1;
+  std::uint16_t direction = 2;     // 1 forward, 2 reverse
+  std::uint16_t limit_switch = 1;  // 1 reverse (CCW) switch, 4 forward (CW) switch
+  std::int32_t velocity = 0;       // APT velocity units
+  std::int32_t offset = 0;         // encoder counts
+  bool operator==(const HomeParams&) const = default;
+};
+
+// Limit-switch modes of SET/GET_LIMSWITCHPARAMS (protocol document): 1 ignore, 2 switch
+// makes on contact, 3 switch breaks on contact, 4/5 the same for the homing switch only;
+// 0x80 OR-ed in swaps CW and CCW.
+struct LimitSwitchParams {  // SET/GET_LIMSWITCHPARAMS, 16 data bytes
+  std::uint16_t channel = 1;
+  std::uint16_t cw_hard = 2, ccw_hard = 2;
+  std::uint32_t cw_soft = 0, ccw_soft = 0;  // encoder counts (x 134218 on some controllers)
+  std::uint16_t soft_mode = 1;              // 1 ignore soft limits, 2 stop immediately, 3 profiled stop
+  bool operator==(const LimitSwitchParams&) const = default;
+};
+
+// A controller's error report: HW_RICHRESPONSE (id of the message that caused it, code,
+// 64-character text) or HW_RESPONSE (header-only; the code in param1/param2).
+struct ControllerResponse {
+  std::uint16_t message_id = 0;  // the offending message (0: not given)
+  std::uint16_t code = 0;
+  std::string text;
+  bool rich = false;
+};
+
 // ---- Host -> controller ----------------------------------------------------------------
 Message identify(std::uint8_t dest = addr::kGenericUsb, std::uint8_t channel = 0);
 Message reqHwInfo(std::uint8_t dest = addr::kGenericUsb);
@@ -161,6 +209,14 @@ Message setVelParams(std::uint8_t dest, const VelParams& p);
 Message reqVelParams(std::uint8_t dest, std::uint8_t channel);
 Message setJogParams(std::uint8_t dest, const JogParams& p);
 Message reqJogParams(std::uint8_t dest, std::uint8_t channel);
+Message setHomeParams(std::uint8_t dest, const HomeParams& p);
+Message reqHomeParams(std::uint8_t dest, std::uint8_t channel);
+Message setLimSwitchParams(std::uint8_t dest, const LimitSwitchParams& p);
+Message reqLimSwitchParams(std::uint8_t dest, std::uint8_t channel);
+Message setMoveAbsParams(std::uint8_t dest, std::uint16_t channel, std::int32_t position_counts);
+Message setMoveRelParams(std::uint8_t dest, std::uint16_t channel, std::int32_t distance_counts);
+Message moveAbsoluteStored(std::uint8_t dest, std::uint8_t channel);  // header-only form
+Message moveRelativeStored(std::uint8_t dest, std::uint8_t channel);  // header-only form
 
 // ---- Controller -> host (the emulator builds these; dest is the host) ----------------------
 Message getHwInfo(std::uint8_t source, const HwInfo& info);
@@ -172,6 +228,10 @@ Message getDcStatusUpdate(std::uint8_t source, const ChannelStatus& s);
 Message getStatusUpdate(std::uint8_t source, const ChannelStatus& s);  // stepper layout
 Message getVelParams(std::uint8_t source, const VelParams& p);
 Message getJogParams(std::uint8_t source, const JogParams& p);
+Message getHomeParams(std::uint8_t source, const HomeParams& p);
+Message getLimSwitchParams(std::uint8_t source, const LimitSwitchParams& p);
+Message hwResponse(std::uint8_t source, std::uint16_t code);
+Message hwRichResponse(std::uint8_t source, const ControllerResponse& r);
 
 // ---- Parsers (nullopt: wrong id or wrong length) ---------------------------------------------
 std::optional<HwInfo> parseHwInfo(const Message& m);
@@ -179,13 +239,22 @@ std::optional<HwInfo> parseHwInfo(const Message& m);
 // MOVE_COMPLETED, MOVE_STOPPED; stepper layout (position long, encoder long, bits) for
 // GET_STATUSUPDATE.
 std::optional<ChannelStatus> parseChannelStatus(const Message& m);
-std::optional<VelParams> parseVelParams(const Message& m);  // GET_ or SET_VELPARAMS
-std::optional<JogParams> parseJogParams(const Message& m);  // GET_ or SET_JOGPARAMS
+std::optional<VelParams> parseVelParams(const Message& m);                    // GET_ or SET_VELPARAMS
+std::optional<JogParams> parseJogParams(const Message& m);                    // GET_ or SET_JOGPARAMS
+std::optional<HomeParams> parseHomeParams(const Message& m);                  // GET_ or SET_HOMEPARAMS
+std::optional<LimitSwitchParams> parseLimSwitchParams(const Message& m);      // GET_ or SET_LIMSWITCHPARAMS
+std::optional<ControllerResponse> parseControllerResponse(const Message& m);  // HW_RESPONSE / HW_RICHRESPONSE
+// "code 0x0042 (after MOT_MOVE_ABSOLUTE): Move beyond travel" (the controller's words).
+std::string describe(const ControllerResponse& r);
 struct ChannelValue {
   std::uint16_t channel = 1;
   std::int32_t value = 0;
 };
+// The 6-byte forms only (the header-only forms carry no counts: see isStoredMove).
 std::optional<ChannelValue> parseMoveAbsolute(const Message& m);
 std::optional<ChannelValue> parseMoveRelative(const Message& m);
+std::optional<ChannelValue> parseMoveParams(const Message& m);  // SET/GET_MOVEABSPARAMS, _MOVERELPARAMS
+// A header-only MOVE_ABSOLUTE / MOVE_RELATIVE (moves by the stored parameters).
+bool isStoredMove(const Message& m);
 
 }  // namespace fovea::apt

@@ -16,16 +16,29 @@ const std::vector<ControllerModel>& controllerModels() {
 }
 
 const std::vector<StageModel>& stageModels() {
-  // Encoder counts from the protocol document's stage table: Z8 motors 512 counts/rev x
-  // 67:1 gearbox / 1 mm lead screw = 34 304 counts/mm; DDS linear encoder 0.5 um = 2 000
-  // counts/mm; K10CR1 200 steps x 2048 microsteps x 120:1 worm / 360 deg = 409 600/3 per deg.
-  // Travel and speed limits from the datasheets.
+  // Encoder counts per unit, each from the protocol document's conversion table ("Thorlabs
+  // APT Controllers Host-Controller Communications Protocol", issue 25, section "Conversion
+  // between position, velocity and acceleration values in encoder counts and real world
+  // units"). Travel and speed limits from the stages' datasheets. A scene axis may override
+  // counts_per_unit (calibrated against a gauge).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   static const std::vector<StageModel> models = {
-      {"MTS25-Z8", false, 34304.0, 0.0, 25.0, false, 2.4, 4.0, 2.0, 1.5, 1.0},
-      {"Z825B", false, 34304.0, 0.0, 25.0, false, 2.6, 4.0, 2.0, 1.5, 1.0},
-      {"DDSM50", false, 2000.0, 0.0, 50.0, false, 500.0, 5000.0, 100.0, 1000.0, 10.0},
-      {"K10CR1", true, 409600.0 / 3.0, -std::numeric_limits<double>::infinity(),
-       std::numeric_limits<double>::infinity(), true, 10.0, 20.0, 10.0, 10.0, 5.0},
+      // Z8 motor: 512 counts/rev x 67:1 gearbox / 1 mm lead screw = 34 304 counts/mm, the
+      // document's figure for MTS25-Z8 / MTS50-Z8 / Z8xx on TDC001 and KDC101. (Kinesis ships
+      // 34 554.96 counts/mm, a 67.49:1 gearbox; users who measure that override per axis.)
+      {"MTS25-Z8", false, 34304.0, 0.0, 25.0, false, 2.4, 4.0, 2.0, 1.5, 1.0,
+       "protocol document conversion table, MTS25-Z8 on KDC101/TDC001: 34 304 counts/mm (512 x 67 / 1 mm)"},
+      // Z825B: the same Z8 motor and gearbox on a 1 mm lead screw -> the same figure.
+      {"Z825B", false, 34304.0, 0.0, 25.0, false, 2.6, 4.0, 2.0, 1.5, 1.0,
+       "protocol document conversion table, Z8xx actuators on KDC101/TDC001: 34 304 counts/mm"},
+      // DDSM50: linear encoder of 0.5 um resolution -> 2 000 counts/mm (the document's DDS /
+      // DDSM row for KBD101 / TBD001: 2 000 counts/mm, velocity x 13 421.77, accel. x 1.374).
+      {"DDSM50", false, 2000.0, 0.0, 50.0, false, 500.0, 5000.0, 100.0, 1000.0, 10.0,
+       "protocol document conversion table, DDSM/DDS stages on KBD101/TBD001: 2 000 counts/mm (0.5 um encoder)"},
+      // K10CR1: 200 steps x 2048 microsteps x 120:1 worm per 360 deg = 136 533.33 counts/deg
+      // (document: "K10CR1 ... 136 533 per degree", velocity x 7 329 109, accel. x 1 502).
+      {"K10CR1", true, 409600.0 / 3.0, -kInf, kInf, true, 10.0, 20.0, 10.0, 10.0, 5.0,
+       "protocol document conversion table, K10CR1: 136 533 counts/deg (200 x 2048 x 120 / 360)"},
   };
   return models;
 }

@@ -29,6 +29,7 @@ struct ControllerModel {
   std::string serial_prefix;                  // Thorlabs serial numbers start with a model code ("27")
   std::string default_stage;                  // "MTS25-Z8"
   std::string description;
+  bool channel_bit_mask = false;  // channel idents 3/4 sent as 0x04/0x08 (multi-channel benchtop units)
 };
 
 struct StageModel {
@@ -42,6 +43,7 @@ struct StageModel {
   double default_velocity = 1.0, default_acceleration = 1.0;
   double home_velocity = 1.0;
   std::string unit() const { return rotation ? "deg" : "mm"; }
+  std::string source;  // where counts_per_unit comes from
 };
 
 const std::vector<ControllerModel>& controllerModels();

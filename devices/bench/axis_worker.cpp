@@ -77,6 +77,7 @@ void AxisWorker::publish(Stage& s, const std::string& error) {
     snapshot_.state = s.state();
     snapshot_.element_position = stageToElement(binding_, snapshot_.state.position);
     if (!error.empty()) snapshot_.last_error = error;
+    if (s.connected()) snapshot_.controller_setup = describeSetup(s.controllerParameters(), s.config().stage.unit());
     snapshot_.busy = !queue_.empty();
     snap = snapshot_;
   }

@@ -24,6 +24,7 @@ struct AxisSnapshot {
   AxisState state;                // stage coordinates
   double element_position = 0.0;  // state.position + home_offset (valid when state.known)
   std::string last_error;
+  std::string controller_setup;  // what connect read (and wrote), in words (describeSetup)
 };
 
 class AxisWorker {

@@ -1,5 +1,7 @@
 #include "devices/calibration/capture_session.h"
 
+#include "model/color/measurement_csv.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -195,6 +197,21 @@ fs::path CaptureSession::importMeasurement(const fs::path& file) {
   if (!in) throw std::invalid_argument(file.string() + ": cannot be read");
   std::stringstream ss;
   ss << in.rdbuf();
+  if (file.extension() == ".csv" || file.extension() == ".CSV") {
+    // Spectroradiometer readings: averaged per level; every bad row named by its line.
+    const color::MeasurementImport imp = color::importSpectroradiometerCsv(ss.str());
+    if (!imp.ok())
+      throw std::invalid_argument(std::to_string(imp.problems.size()) + " problem(s):\n" +
+                                  color::formatProblems(imp, file.string()));
+    std::string name = "measurement_" + std::to_string(measurements_.size() + 1) + "_" + file.stem().string();
+    if (!folder_.empty()) {
+      writeAtomically(folder_ / (name + ".csv"), ss.str());  // the readings as taken
+      writeAtomically(folder_ / (name + ".json"), color::toJson(imp.measurements).dump(2) + "\n");
+    }
+    measurements_.push_back(name + ".json");
+    save();
+    return folder_.empty() ? fs::path(name + ".json") : folder_ / (name + ".json");
+  }
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(ss.str());

@@ -25,6 +25,18 @@
 
 namespace fovea::devices {
 
+// Controller parameters the scene asks for, written on connect (unset: left as the
+// controller has them). Units: mm or deg, per s, per s^2.
+struct ControllerSetup {
+  std::optional<double> max_velocity, acceleration;  // SET_VELPARAMS
+  std::optional<double> jog_step;                    // SET_JOGPARAMS (single-step jogs)
+  std::optional<double> home_velocity;               // SET_HOMEPARAMS
+  // SET_LIMSWITCHPARAMS hard-limit mode for both switches: 1 ignore, 2 makes on contact,
+  // 3 breaks on contact (protocol document).
+  std::optional<std::uint16_t> limit_switch_mode;
+  bool empty() const { return !max_velocity && !acceleration && !jog_step && !home_velocity && !limit_switch_mode; }
+};
+
 struct StageConfig {
   apt::ControllerModel controller;
   apt::StageModel stage;
@@ -34,6 +46,7 @@ struct StageConfig {
   std::chrono::milliseconds reply_timeout{2000};  // requests (info, status, params)
   double move_timeout_margin_s = 3.0;             // added to 1.5x the profile time
   double settle_s = 0.05;                         // ringing after a motion completion (the camera stale-frame rule)
+  ControllerSetup setup;                          // written on connect
 };
 // Soft limits default to the stage's travel (or +-180 deg for continuous rotation).
 StageConfig defaultStageConfig(const apt::ControllerModel& controller, const apt::StageModel& stage);
@@ -54,6 +67,27 @@ struct JogSettings {
   double step = 0, max_velocity = 0, acceleration = 0;
   bool immediate_stop = false;
 };
+// What the controller reported on connect (after the writes the scene asked for).
+struct ControllerParameters {
+  VelocitySettings velocity;
+  std::optional<JogSettings> jog;
+  std::optional<apt::HomeParams> home;  // raw; home_velocity converted below
+  double home_velocity = 0;             // units/s
+  double home_offset = 0;               // units
+  std::optional<apt::LimitSwitchParams> limit_switches;
+  std::vector<std::string> written;  // "velocity", "jog", "home", "limit switches"
+};
+
+// "velocity 2 mm/s, 1.5 mm/s^2; jog single-step 0.1 mm at 1 mm/s; home reverse at 1 mm/s;
+// limit switches CW makes, CCW makes (written on connect: velocity)".
+std::string describeSetup(const ControllerParameters& p, const std::string& unit);
+
+// Checks of a target before any byte is sent (used by Stage and the CLI): finite, inside
+// the soft limits, inside the stage's travel whatever the soft limits say, and encodable in
+// the protocol's signed 32-bit counts. Throws DeviceError(SoftLimit / Usage).
+void checkMoveTarget(const StageConfig& config, double target, const std::string& what, const std::string& device);
+// The same for a relative distance's counts.
+void checkEncodable(const StageConfig& config, double distance, const std::string& what);
 
 class Stage {
  public:
@@ -95,6 +129,10 @@ class Stage {
   void setVelocity(const VelocitySettings& v);
   JogSettings jogSettings();
   void setJogSettings(const JogSettings& j);
+  // Read on connect (and written first where config().setup asks).
+  const ControllerParameters& controllerParameters() const { return params_; }
+  // The last error the controller reported (HW_RESPONSE / HW_RICHRESPONSE), in words.
+  const std::string& lastControllerError() const { return last_controller_error_; }
 
   // Unsolicited status messages (update stream) go here as well as into state().
   void setStateCallback(std::function<void(const AxisState&)> cb) { on_state_ = std::move(cb); }
@@ -112,6 +150,8 @@ class Stage {
   void requireConnected() const;
   void requireReady();  // enabled and homed
   void waitMotionEnd(double timeout_s, const std::string& what);
+  void setUpController();
+  std::uint8_t chan() const;  // channel ident on the wire
 
   std::unique_ptr<Transport> transport_;
   StageConfig config_;
@@ -121,6 +161,8 @@ class Stage {
   apt::HwInfo info_;
   AxisState state_;
   apt::VelParams vel_;
+  ControllerParameters params_;
+  std::string last_controller_error_;
   bool connected_ = false;
   std::string pending_what_ = "move";
   double settled_at_ = 0.0;

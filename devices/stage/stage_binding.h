@@ -11,7 +11,10 @@
 
 namespace fovea::devices {
 
-// Throws DeviceError(Usage) naming the unknown model or the empty limit interval.
+// The scene's controller set-up request in the Stage's terms.
+ControllerSetup controllerSetupFor(const StageControllerSetup& setup);
+// Throws DeviceError(Usage) naming the unknown model or the empty limit interval. Applies
+// the binding's counts-per-unit override and controller set-up.
 StageConfig stageConfigForBinding(const StageBinding& binding);
 inline double elementToStage(const StageBinding& b, double element) {
   return element - b.home_offset;

@@ -17,6 +17,7 @@ class DeviceError : public std::runtime_error {
     Disabled,      // the channel (motor drive) is disabled
     Protocol,      // a malformed or unexpected reply
     Usage,         // invalid argument (NaN distance, unknown model, ...)
+    Controller,    // the controller reported an error (HW_RESPONSE / HW_RICHRESPONSE)
   };
   DeviceError(Kind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
   Kind kind() const { return kind_; }

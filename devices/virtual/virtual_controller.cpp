@@ -30,6 +30,8 @@ VirtualAptController::VirtualAptController(VirtualControllerConfig config, std::
           units_.accelerationToApt(s.default_acceleration),
           units_.velocityToApt(s.default_velocity / 2),
           apt::StopMode::Profiled};
+  home_ = {1, 2, 1, units_.velocityToApt(s.home_velocity), 0};
+  limits_ = {1, 2, 2, 0, 0, 1};
 }
 
 double VirtualAptController::minTravel() const {
@@ -82,6 +84,14 @@ apt::JogParams VirtualAptController::jogParams() const {
   Lock lock(mutex_);
   return jog_;
 }
+apt::HomeParams VirtualAptController::homeParams() const {
+  Lock lock(mutex_);
+  return home_;
+}
+apt::LimitSwitchParams VirtualAptController::limSwitchParams() const {
+  Lock lock(mutex_);
+  return limits_;
+}
 void VirtualAptController::setMute(bool mute) {
   Lock lock(mutex_);
   mute_ = mute;
@@ -118,6 +128,16 @@ apt::ChannelStatus VirtualAptController::status() const {
     if (x <= minTravel() + eps) b |= kReverseHardLimit;
   }
   s.bits = b;
+  return s;
+}
+
+apt::ChannelStatus VirtualAptController::completionStatus() const {
+  apt::ChannelStatus s = status();
+  // Completions use the DC layout; a stepper has no velocity word to report (zeros), where
+  // its status update carries the encoder count.
+  if (config_.controller.kind == apt::MotorKind::Stepper) s.velocity_or_encoder = 0;
+  if (config_.completion_reports_moving)
+    s.bits = apt::status::kChannelEnabled | apt::status::kMovingForward | apt::status::kMovingReverse;
   return s;
 }
 
@@ -194,13 +214,13 @@ void VirtualAptController::finishMotion() {
     case Motion::Move:
     case Motion::JogStep:
       if (limit_hit_)
-        send(apt::moveStopped(config_.address, status()));
+        send(apt::moveStopped(config_.address, completionStatus()));
       else
-        send(apt::moveCompleted(config_.address, status()));
+        send(apt::moveCompleted(config_.address, completionStatus()));
       break;
     case Motion::JogContinuous:
     case Motion::Stopping:
-      send(apt::moveStopped(config_.address, status()));
+      send(apt::moveStopped(config_.address, completionStatus()));
       break;
     case Motion::None:
       break;
@@ -244,6 +264,15 @@ void VirtualAptController::handle(const apt::Message& m) {
   namespace id = apt::id;
   const double vmax = units_.aptToVelocity(vel_.max_velocity);
   const double acc = units_.aptToAcceleration(vel_.acceleration);
+  const bool motion = m.id == id::kMotMoveHome || m.id == id::kMotMoveAbsolute || m.id == id::kMotMoveRelative ||
+                      m.id == id::kMotMoveJog;
+  if (motion && config_.reject_motion) {
+    apt::ControllerResponse r = *config_.reject_motion;
+    r.message_id = m.id;
+    r.rich = true;
+    send(apt::hwRichResponse(config_.address, r));
+    return;
+  }
   switch (m.id) {
     case id::kModIdentify:
       ++identify_count_;
@@ -302,20 +331,49 @@ void VirtualAptController::handle(const apt::Message& m) {
     case id::kMotReqJogParams:
       send(apt::getJogParams(config_.address, jog_));
       break;
+    case id::kMotSetHomeParams:
+      if (auto p = apt::parseHomeParams(m)) home_ = *p;
+      break;
+    case id::kMotReqHomeParams:
+      send(apt::getHomeParams(config_.address, home_));
+      break;
+    case id::kMotSetLimSwitchParams:
+      if (auto p = apt::parseLimSwitchParams(m)) limits_ = *p;
+      break;
+    case id::kMotReqLimSwitchParams:
+      send(apt::getLimSwitchParams(config_.address, limits_));
+      break;
+    case id::kMotSetMoveAbsParams:
+      if (auto p = apt::parseMoveParams(m)) stored_abs_ = p->value;
+      break;
+    case id::kMotSetMoveRelParams:
+      if (auto p = apt::parseMoveParams(m)) stored_rel_ = p->value;
+      break;
     case id::kMotMoveHome:
       if (enabled_) {
         homed_ = false;
-        startMove(0.0, config_.stage.home_velocity, acc, Motion::Home);
+        const double hv = units_.aptToVelocity(home_.velocity);
+        startMove(0.0, hv > 0 ? hv : config_.stage.home_velocity, acc, Motion::Home);
       }
       break;
-    case id::kMotMoveAbsolute:
-      if (auto p = apt::parseMoveAbsolute(m); p && enabled_)
-        startMove(units_.countsToPosition(p->value), vmax, acc, Motion::Move);
+    case id::kMotMoveAbsolute: {
+      std::optional<std::int32_t> counts;
+      if (apt::isStoredMove(m))
+        counts = stored_abs_;
+      else if (auto p = apt::parseMoveAbsolute(m))
+        counts = p->value;
+      if (counts && enabled_) startMove(units_.countsToPosition(*counts), vmax, acc, Motion::Move);
       break;
-    case id::kMotMoveRelative:
-      if (auto p = apt::parseMoveRelative(m); p && enabled_)
-        startMove(positionLocked() + units_.countsToPosition(p->value), vmax, acc, Motion::Move);
+    }
+    case id::kMotMoveRelative: {
+      std::optional<std::int32_t> counts;
+      if (apt::isStoredMove(m))
+        counts = stored_rel_;
+      else if (auto p = apt::parseMoveRelative(m))
+        counts = p->value;
+      if (counts && enabled_) startMove(positionLocked() + units_.countsToPosition(*counts), vmax, acc, Motion::Move);
       break;
+    }
     case id::kMotMoveJog:
       if (enabled_) {
         const double dir = m.param2 == static_cast<std::uint8_t>(apt::JogDirection::Forward) ? 1.0 : -1.0;

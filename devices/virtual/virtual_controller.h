@@ -8,18 +8,23 @@
 //  - HW_REQ_INFO -> HW_GET_INFO (serial, model, "virtual <stage>" in the notes).
 //  - MOD_SET/REQ_CHANENABLESTATE; disabling stops the motor where it is.
 //  - MOT_MOVE_HOME: drives to the home switch (0) at the homing speed -> MOVE_HOMED.
-//  - MOT_MOVE_ABSOLUTE / RELATIVE: trapezoid with the VELPARAMS -> MOVE_COMPLETED, or
+//  - MOT_MOVE_ABSOLUTE / RELATIVE (6-byte form, or header-only form moving by the stored
+//    SET_MOVEABSPARAMS / SET_MOVERELPARAMS): trapezoid with the VELPARAMS -> MOVE_COMPLETED, or
 //    MOVE_STOPPED with a limit bit when the travel range cuts the move short. A new move
 //    during a move replans from the current position at rest (simplification).
 //  - MOT_MOVE_JOG: single step (step size) or continuous (to the travel end) with JOGPARAMS.
 //  - MOT_MOVE_STOP: immediate (motor stops at once) or profiled (decelerates) -> MOVE_STOPPED.
 //  - HW_START/STOP_UPDATEMSGS: status every 100 ms (DCSTATUSUPDATE; STATUSUPDATE for
 //    steppers); the stream stops after 50 updates without MOT_ACK_DCSTATUSUPDATE.
-//  - MOT_REQ_(DC)STATUSUPDATE, REQ_VELPARAMS, REQ_JOGPARAMS answered; SET_ stored.
+//  - MOT_REQ_(DC)STATUSUPDATE, REQ_VELPARAMS, REQ_JOGPARAMS, REQ_HOMEPARAMS,
+//    REQ_LIMSWITCHPARAMS answered; SET_ stored (homing runs at the HOMEPARAMS velocity).
+//  - Steppers' MOVE_COMPLETED / MOVE_STOPPED use the DC status layout with a zero velocity
+//    word (a real K10CR1's), not the stepper layout of GET_STATUSUPDATE.
 //  - Motion commands on a disabled channel are ignored, as on the hardware.
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +46,12 @@ struct VirtualControllerConfig {
   bool homed = true;
   bool enabled = true;
   double position = 0.0;  // mm or deg
+  // A real K10CR1's MOVE_COMPLETED carries status 0x80000030 (both moving bits set, homed
+  // clear) although the move is over; true reproduces that.
+  bool completion_reports_moving = false;
+  // Fault injection: answer every motion command with HW_RICHRESPONSE (this code and text)
+  // instead of moving.
+  std::optional<apt::ControllerResponse> reject_motion;
 };
 
 class VirtualAptController {
@@ -67,6 +78,8 @@ class VirtualAptController {
   std::vector<apt::Message> received() const;
   apt::VelParams velParams() const;
   apt::JogParams jogParams() const;
+  apt::HomeParams homeParams() const;
+  apt::LimitSwitchParams limSwitchParams() const;
 
  private:
   enum class Motion { None, Move, Home, JogStep, JogContinuous, Stopping };
@@ -79,6 +92,7 @@ class VirtualAptController {
   void finishMotion();
   void stop(bool immediate);
   apt::ChannelStatus status() const;
+  apt::ChannelStatus completionStatus() const;
   double minTravel() const;
   double maxTravel() const;
 
@@ -97,6 +111,9 @@ class VirtualAptController {
   int jog_direction_ = 0;
   apt::VelParams vel_;
   apt::JogParams jog_;
+  apt::HomeParams home_;
+  apt::LimitSwitchParams limits_;
+  std::int32_t stored_abs_ = 0, stored_rel_ = 0;  // MOVEABSPARAMS, MOVERELPARAMS (counts)
   bool updates_ = false;
   double next_update_ = 0.0;
   int unacknowledged_ = 0;

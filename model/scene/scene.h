@@ -143,6 +143,14 @@ struct Foveation {
   bool operator==(const Foveation&) const = default;
 };
 
+// Controller parameters written on connect (0 or "": leave the controller's own). Units:
+// the axis's (mm or deg) per s, per s^2.
+struct StageControllerSetup {
+  double max_velocity = 0, acceleration = 0, jog_step = 0, home_velocity = 0;
+  std::string limit_switches;  // "", "ignore", "makes" (switch closes on contact), "breaks"
+  bool operator==(const StageControllerSetup&) const = default;
+};
+
 // Which motorised axis drives which element coordinate (issue: live bench).
 struct StageBinding {
   std::string element;            // "hoe", "foveal_display", "projector", "lens", "camera"
@@ -153,6 +161,8 @@ struct StageBinding {
   int channel = 1;
   std::array<double, 2> soft_limits{-10.0, 10.0};  // mm or deg, in the element axis
   double home_offset = 0.0;        // element coordinate when the stage reads 0
+  double counts_per_unit = 0.0;    // encoder counts per mm (deg); 0: the stage model's figure
+  StageControllerSetup setup;
   bool operator==(const StageBinding&) const = default;
 };
 

@@ -229,6 +229,27 @@ FieldTable<StageBinding> makeStage() {
   });
   t.add<&S::home_offset>("home_offset", "", kCoord, kOpt, {"Home offset"}, "element coordinate when the stage reads 0")
       .axisUnit();
+  t.add<&S::counts_per_unit>("counts_per", "", Range::open(0, 1e9), kOpt, {"Encoder counts per unit"},
+                             "calibrated counts per mm (deg); absent: the stage model's figure")
+      .axisUnit()
+      .omitDefault();
+  t.group("Controller set-up (written on connect)").object("controller_setup", kOpt);
+  t.add<&S::setup, &StageControllerSetup::max_velocity>("controller_setup.max_velocity", "", Range::open(0, 1e4), kOpt,
+                                                        {"Max velocity"}, "mm/s (deg/s); absent: the controller's")
+      .omitDefault();
+  t.add<&S::setup, &StageControllerSetup::acceleration>("controller_setup.acceleration", "", Range::open(0, 1e5), kOpt,
+                                                        {"Acceleration"}, "mm/s^2 (deg/s^2)")
+      .omitDefault();
+  t.add<&S::setup, &StageControllerSetup::jog_step>("controller_setup.jog_step", "", Range::open(0, 1e3), kOpt,
+                                                    {"Jog step"}, "mm (deg), single-step jogs")
+      .omitDefault();
+  t.add<&S::setup, &StageControllerSetup::home_velocity>("controller_setup.home_velocity", "", Range::open(0, 1e4),
+                                                         kOpt, {"Home velocity"}, "mm/s (deg/s)")
+      .omitDefault();
+  t.text<&S::setup, &StageControllerSetup::limit_switches>("controller_setup.limit_switches", kOpt, "Limit switches",
+                                                           "hard limit switches: ignore, makes or breaks on contact",
+                                                           {"ignore", "makes", "breaks"})
+      .omitDefault();
   return t;
 }
 

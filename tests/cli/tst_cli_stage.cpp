@@ -118,6 +118,74 @@ class TestCliStage : public QObject {
     QCOMPARE(r.code, 0);
   }
 
+  void refusedBeforeAnyByte() {
+    const QString trace = tmp("refused.trace");
+    // Reversed limits are refused, not swapped.
+    Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--soft-limits", "8,-8", "position"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--soft-limits 8,-8: expected MIN,MAX with MIN < MAX (mm)"), r.err.constData());
+    // An absurd timeout is refused instead of printing a negative number of seconds.
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--timeout", "1e308", "position"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--timeout: expected seconds in (0, 3600], got 1e+308"), r.err.constData());
+    // 1e12 deg does not fit the protocol's 32-bit counts, whatever the soft limits say.
+    r = cli({"stage", "--virtual", "K10CR1", "--trace", trace, "--soft-limits", "-1e308,1e308", "move-abs", "1e12"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("beyond the protocol's signed 32-bit range; nothing was sent"), r.err.constData());
+    QVERIFY(lines(trace).empty());
+    r = cli({"stage", "--virtual", "K10CR1", "--trace", trace, "move-rel", "1e12"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("32-bit"), r.err.constData());
+    QVERIFY(lines(trace).empty());
+    // A soft-limit override is intersected with the stage's travel: 30 mm stays out of reach.
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "--soft-limits", "-100,100", "move-abs", "30"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("outside the soft limits [0.0000, 25.0000]") ||
+                 r.err.contains("outside the soft limits [0.0000 mm, 25.0000 mm]"),
+             r.err.constData());
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "--soft-limits", "-100,100", "position"});
+    QCOMPARE(r.code, 0);
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["soft_limits_mm"][0].get<double>(), 0.0);
+    QCOMPARE(j["soft_limits_mm"][1].get<double>(), 25.0);
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--soft-limits", "30,40", "position"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("no overlap with the travel [0, 25] mm of the MTS25-Z8"), r.err.constData());
+  }
+
+  void controllerErrorInWords() {
+    const QString trace = tmp("reject.trace");
+    const Run r =
+        cli({"stage", "--virtual", "MTS25-Z8", "--virtual-fault", "reject", "--trace", trace, "move-abs", "14"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("reported code 0x0001 (1) after MOT_MOVE_ABSOLUTE: virtual fault: motion command rejected"),
+             r.err.constData());
+    QVERIFY(hasLine(lines(trace), "RX 81 00 44 00 81 50 53 04 01 00"));  // HW_RICHRESPONSE
+  }
+
+  void infoShowsControllerSetUp() {
+    const QString transcript = tmp("info.apt");
+    const Run r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "--transcript", transcript, "info"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    const auto& c = j["controller_setup"];
+    QVERIFY(std::abs(c["velocity"]["max_mm_per_s"].get<double>() - 2.0) < 1e-5);
+    QCOMPARE(c["jog"]["mode"].get<std::string>(), std::string("single-step"));
+    QVERIFY(std::abs(c["jog"]["step_mm"].get<double>() - 0.1) < 1e-4);
+    QCOMPARE(c["home"]["direction"].get<std::string>(), std::string("reverse"));
+    QVERIFY(std::abs(c["home"]["velocity_mm_per_s"].get<double>() - 1.0) < 1e-5);
+    QCOMPARE(c["limit_switches"]["cw_hard"].get<int>(), 2);
+    QVERIFY(c["written"].is_array() && c["written"].empty());
+    QCOMPARE(j["counts_per_mm"].get<double>(), 34304.0);
+    QVERIFY(j["counts_source"].get<std::string>().find("protocol document") != std::string::npos);
+    // The transcript: a header comment, then "SECONDS TX|RX HH ..." lines from 0.
+    const auto ls = lines(transcript);
+    QVERIFY(ls.size() > 10);
+    QVERIFY(ls[0].rfind("#", 0) == 0);
+    QVERIFY2(ls[1].rfind("0.000000 TX 05 00 00 00 50 01", 0) == 0, ls[1].c_str());
+    QVERIFY(ls[2].find(" RX 06 00 54 00 81 50") != std::string::npos);
+  }
+
   void silentOrMissingDeviceExit3() {
     Run r = cli({"stage", "--virtual", "MTS25-Z8", "--virtual-fault", "mute", "--timeout", "0.5", "position"});
     QCOMPARE(r.code, 3);

@@ -3,6 +3,7 @@
 // the streaming decoder against garbage, partial and concatenated input (fixed-seed fuzz).
 #include <QtTest>
 
+#include <functional>
 #include <random>
 
 #include "devices/apt/apt_decoder.h"
@@ -15,6 +16,36 @@ using Bytes = std::vector<std::uint8_t>;
 namespace {
 std::string hex(const Message& m) {
   return toHex(encode(m));
+}
+// Interleaves random byte runs (up to max_garbage bytes) with `count` messages from `make`
+// and decodes the stream fed in random chunks; returns what was sent and what came out.
+std::pair<std::vector<Message>, std::vector<Message>> fuzzDecoder(std::mt19937& rng, int count, int max_garbage,
+                                                                  int max_chunk,
+                                                                  const std::function<Message(std::mt19937&)>& make) {
+  std::uniform_int_distribution<int> byte(0, 255), len(0, max_garbage);
+  std::vector<Message> sent, got;
+  Bytes stream;
+  for (int i = 0; i < count; ++i) {
+    for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
+    sent.push_back(make(rng));
+    const auto b = encode(sent.back());
+    stream.insert(stream.end(), b.begin(), b.end());
+  }
+  StreamDecoder d;
+  for (std::size_t at = 0; at < stream.size();) {
+    const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % static_cast<unsigned>(max_chunk));
+    d.feed(std::span(stream).subspan(at, n));
+    at += n;
+    while (auto m = d.next()) got.push_back(*m);
+  }
+  return {sent, got};
+}
+// How many of `sent` come out of `got` in order.
+std::size_t foundInOrder(const std::vector<Message>& sent, const std::vector<Message>& got) {
+  std::size_t found = 0;
+  for (const auto& m : got)
+    if (found < sent.size() && m == sent[found]) ++found;
+  return found;
 }
 UnitConverter converter(const char* controller, const char* stage) {
   return UnitConverter(*findController(controller), *findStage(stage));
@@ -185,52 +216,27 @@ class TestAptCodec : public QObject {
 
   void decoderFuzzFixedSeed() {
     std::mt19937 rng(20261123);
-    std::uniform_int_distribution<int> byte(0, 255), len(0, 40), pick(0, 5);
-    std::vector<Message> sent;
-    Bytes stream;
-    for (int i = 0; i < 3000; ++i) {
-      for (int k = len(rng); k > 0; --k) stream.push_back(static_cast<std::uint8_t>(byte(rng)));
-      Message m;
-      switch (pick(rng)) {
+    std::uniform_int_distribution<int> byte(0, 255);
+    const auto [sent, got] = fuzzDecoder(rng, 3000, 40, 97, [](std::mt19937& g) {
+      switch (g() % 6) {
         case 0:
-          m = moveAbsolute(0x50, 1, static_cast<std::int32_t>(rng()));
-          break;
+          return moveAbsolute(0x50, 1, static_cast<std::int32_t>(g()));
         case 1:
-          m = moveHome(0x50, 1);
-          break;
+          return moveHome(0x50, 1);
         case 2:
-          m = getDcStatusUpdate(
-              0x50, ChannelStatus{1, static_cast<std::int32_t>(rng()), 3, static_cast<std::uint32_t>(rng())});
-          break;
+          return getDcStatusUpdate(
+              0x50, ChannelStatus{1, static_cast<std::int32_t>(g()), 3, static_cast<std::uint32_t>(g())});
         case 3:
-          m = setJogParams(0x50, JogParams{});
-          break;
+          return setJogParams(0x50, JogParams{});
         case 4:
-          m = moveStop(0x50, 1, StopMode::Immediate);
-          break;
+          return moveStop(0x50, 1, StopMode::Immediate);
         default:
-          m = reqHwInfo();
-          break;
+          return reqHwInfo();
       }
-      sent.push_back(m);
-      auto b = encode(m);
-      stream.insert(stream.end(), b.begin(), b.end());
-    }
-    // Feed in random chunk sizes; random bytes must never crash and every real message must
-    // come out in order (an extremely rare fake header from noise is tolerated but counted).
-    StreamDecoder d;
-    std::vector<Message> got;
-    std::size_t at = 0;
-    while (at < stream.size()) {
-      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 97);
-      d.feed(std::span(stream).subspan(at, n));
-      at += n;
-      while (auto m = d.next()) got.push_back(*m);
-    }
-    std::size_t found = 0;
-    for (const auto& m : got)
-      if (found < sent.size() && m == sent[found]) ++found;
-    QCOMPARE(found, sent.size());
+    });
+    // Random bytes must never crash and every real message must come out in order (an
+    // extremely rare fake header from noise is tolerated but counted).
+    QCOMPARE(foundInOrder(sent, got), sent.size());
     QVERIFY2(got.size() - sent.size() <= 3, "noise produced too many fake messages");
     // Pure noise: no crash, nearly everything discarded.
     StreamDecoder noise;
@@ -241,6 +247,97 @@ class TestAptCodec : public QObject {
     while (noise.next()) ++fakes;
     QVERIFY(fakes <= 3);
     QVERIFY(noise.buffered() < 6 + StreamDecoder::kMaxDataLength);
+  }
+
+  void headerOnlyMovesAndParameterMessages() {
+    // Header-only MOVE_ABSOLUTE / MOVE_RELATIVE (channel in param1): valid protocol, decoded whole.
+    QCOMPARE(hex(moveAbsoluteStored(0x50, 1)), std::string("53 04 01 00 50 01"));
+    QCOMPARE(hex(moveRelativeStored(0x50, 1)), std::string("48 04 01 00 50 01"));
+    QVERIFY(acceptsLength(id::kMotMoveAbsolute, 0) && acceptsLength(id::kMotMoveAbsolute, 6));
+    QVERIFY(!acceptsLength(id::kMotMoveAbsolute, 4));
+    StreamDecoder d;
+    d.feed(encode(moveAbsoluteStored(0x50, 1)));
+    d.feed(encode(moveRelativeStored(0x50, 1)));
+    auto a = d.next(), b = d.next();
+    QVERIFY(a && b);
+    QVERIFY(isStoredMove(*a) && isStoredMove(*b));
+    QCOMPARE(a->param1, std::uint8_t{1});
+    QVERIFY(!parseMoveAbsolute(*a));  // no counts in the header-only form
+    // SET_MOVEABSPARAMS: 50 04 06 00 D0 01 | chan 01 00 | position 00 9E 02 00 (5 mm on a Z8).
+    QCOMPARE(hex(setMoveAbsParams(0x50, 1, 171520)), std::string("50 04 06 00 D0 01 01 00 00 9E 02 00"));
+    QCOMPARE(parseMoveParams(setMoveRelParams(0x50, 1, -34304))->value, -34304);
+    // SET_HOMEPARAMS (14 bytes: chan, direction, limit switch, velocity, offset).
+    QCOMPARE(hex(setHomeParams(0x50, HomeParams{1, 2, 1, 767367, 34304})),
+             std::string("40 04 0E 00 D0 01 01 00 02 00 01 00 87 B5 0B 00 00 86 00 00"));
+    // SET_LIMSWITCHPARAMS (16 bytes: chan, CW hard, CCW hard, CW soft, CCW soft, soft mode).
+    QCOMPARE(hex(setLimSwitchParams(0x50, LimitSwitchParams{1, 3, 3, 0, 0, 1})),
+             std::string("23 04 10 00 D0 01 01 00 03 00 03 00 00 00 00 00 00 00 00 00 01 00"));
+    const auto l = parseLimSwitchParams(getLimSwitchParams(0x50, LimitSwitchParams{1, 2, 3, 5, 6, 1}));
+    QVERIFY(l && l->cw_hard == 2 && l->ccw_hard == 3 && l->cw_soft == 5 && l->ccw_soft == 6);
+    QCOMPARE(parseHomeParams(getHomeParams(0x50, HomeParams{1, 1, 4, 99, -7}))->offset, -7);
+  }
+
+  void controllerErrorResponses() {
+    // HW_RICHRESPONSE: 81 00 44 00 81 50 | msg ident 53 04 | code 11 00 | 64 chars of text.
+    const Message rich = hwRichResponse(0x50, ControllerResponse{0x0453, 0x0011, "Motor drive fault", true});
+    const std::string h = hex(rich);
+    QVERIFY2(h.rfind("81 00 44 00 81 50 53 04 11 00 4D 6F 74 6F 72", 0) == 0, h.c_str());
+    QCOMPARE(encode(rich).size(), std::size_t{74});
+    const auto r = parseControllerResponse(rich);
+    QVERIFY(r && r->rich && r->code == 0x11 && r->message_id == id::kMotMoveAbsolute);
+    QCOMPARE(describe(*r), std::string("code 0x0011 (17) after MOT_MOVE_ABSOLUTE: Motor drive fault"));
+    // HW_RESPONSE: header only, the code in param1/param2.
+    const auto plain = parseControllerResponse(hwResponse(0x50, 0x0203));
+    QVERIFY(plain && !plain->rich && plain->code == 0x0203);
+    QCOMPARE(describe(*plain), std::string("code 0x0203 (515): HW_RESPONSE, no text"));
+    // Non-printable bytes in the controller's text never reach the user raw.
+    Message noisy = rich;
+    noisy.data[4] = 0x07;
+    QCOMPARE(describe(*parseControllerResponse(noisy)),
+             std::string("code 0x0011 (17) after MOT_MOVE_ABSOLUTE: otor drive fault"));
+    QVERIFY(!parseControllerResponse(moveHome(0x50, 1)));
+  }
+
+  void channelIdentsAsBitMasks() {
+    QCOMPARE(channelIdent(1, false), std::uint8_t{1});
+    QCOMPARE(channelIdent(3, false), std::uint8_t{3});
+    QCOMPARE(channelIdent(2, true), std::uint8_t{0x02});
+    QCOMPARE(channelIdent(3, true), std::uint8_t{0x04});
+    QCOMPARE(channelIdent(4, true), std::uint8_t{0x08});
+  }
+
+  void decoderRecoversEveryMessageAfterGarbage() {
+    // Random byte runs interleaved with every valid header form (long, header-only,
+    // header-only moves, both completion forms, error reports): every valid message that
+    // follows a run of garbage comes out, in order, whatever the chunking.
+    std::mt19937 rng(424242);
+    const auto [sent, got] = fuzzDecoder(rng, 4000, 64, 61, [](std::mt19937& g) {
+      switch (g() % 9) {
+        case 0:
+          return moveAbsoluteStored(0x50, 1);
+        case 1:
+          return moveRelativeStored(0x50, 1);
+        case 2:
+          return moveCompleted(0x50, ChannelStatus{1, static_cast<std::int32_t>(g()), 0, 0x80000030});
+        case 3: {
+          Message m = moveCompleted(0x50, ChannelStatus{});
+          m.data.clear();  // header-only completion (old firmware)
+          return m;
+        }
+        case 4:
+          return hwRichResponse(0x50, ControllerResponse{0x0453, 7, "error text", true});
+        case 5:
+          return hwResponse(0x50, 3);
+        case 6:
+          return getStatusUpdate(0x50, ChannelStatus{1, 5, 5, 0x80000400});
+        case 7:
+          return setMoveAbsParams(0x50, 1, static_cast<std::int32_t>(g()));
+        default:
+          return getLimSwitchParams(0x50, LimitSwitchParams{});
+      }
+    });
+    QCOMPARE(foundInOrder(sent, got), sent.size());
+    QVERIFY2(got.size() - sent.size() <= 2, "noise produced too many fake messages");
   }
 };
 

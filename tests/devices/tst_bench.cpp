@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "devices/bench/bench.h"
+#include "devices/bench/follow_gaze_table.h"
 #include "devices/bench/target_follower.h"
 #include "model/scene/scene_io.h"
 
@@ -159,6 +160,48 @@ class TestBench : public QObject {
       QVERIFY(!c->moving());
       QVERIFY(std::abs(c->position() - 12.5) < 1.0);  // stopped long before the 7 mm target
     }
+  }
+
+  void followGazeTableInterpolatesFromTheZeroGazeOptimum() {
+    // A hand-made gaze-study table: x_p(alpha) is relative to the optimum at zero gaze,
+    // linear between samples, clamped beyond the studied range.
+    FollowGazeTable t;
+    t.gazes_deg = {-10.0, 0.0, 10.0};
+    t.shift_x_mm = {-2.0, 0.5, 3.0};
+    t.shift_y_mm = {1.0, -1.0, -4.0};
+    auto s = t.hoeShift({5.0, 0.0});
+    QCOMPARE(s[0], 1.25);  // (0.5 + 3) / 2 - 0.5
+    QCOMPARE(s[1], 0.0);   // zero pitch: y stays at its zero-gaze optimum
+    s = t.hoeShift({-20.0, 10.0});
+    QCOMPARE(s[0], -2.5);  // clamped to the -10 deg sample
+    QCOMPARE(s[1], -3.0);
+    QCOMPARE(interpolateClamped({1.0}, {7.0}, 3.0), 7.0);
+    QCOMPARE(interpolateClamped({}, {}, 3.0), 0.0);
+  }
+
+  void sceneAxisOverridesAndControllerSetUpRoundTrip() {
+    // counts_per_mm and controller_setup on a stage binding: read, validated, written back.
+    Scene scene = prototype();
+    QVERIFY(!scene.stages.empty());
+    scene.stages[0].counts_per_unit = 34554.96;
+    scene.stages[0].setup.max_velocity = 1.5;
+    scene.stages[0].setup.limit_switches = "breaks";
+    const std::string text = serializeScene(scene);
+    QVERIFY(text.find("\"counts_per_mm\": 34554.96") != std::string::npos);
+    QVERIFY(text.find("\"limit_switches\": \"breaks\"") != std::string::npos);
+    const auto back = parseScene(text, "round-trip");
+    QVERIFY(back.ok());
+    QCOMPARE(back.scene->stages[0], scene.stages[0]);
+    // The untouched bindings write no new keys.
+    QVERIFY(serializeScene(prototype()).find("controller_setup") == std::string::npos);
+    // Bad values are named.
+    std::string bad = text;
+    bad.replace(bad.find("\"breaks\""), 8, "\"sticky\"");
+    const auto r = parseScene(bad, "bad");
+    QVERIFY(!r.ok());
+    QVERIFY2(
+        r.errors[0].find("controller_setup.limit_switches: must be one of ignore, makes, breaks") != std::string::npos,
+        r.errors[0].c_str());
   }
 };
 

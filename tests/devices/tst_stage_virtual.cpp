@@ -77,7 +77,10 @@ class TestStageVirtual : public QObject {
     r.stage->home();
     const auto& u = r.stage->units();
     const double a = u.aptToAcceleration(r.controller->velParams().acceleration);
-    const double expected = trapezoidTime(10.0, 1.0 /* MTS25-Z8 homing speed */, a);
+    // The HOMEPARAMS velocity: the MTS25-Z8's 1 mm/s homing speed, quantised to APT units.
+    const double hv = u.aptToVelocity(r.controller->homeParams().velocity);
+    QVERIFY(std::abs(hv - 1.0) < 1e-5);
+    const double expected = trapezoidTime(10.0, hv, a);
     QVERIFY2(std::abs(r.clock->now() - t0 - expected) < 1e-6, qPrintable(QString::number(r.clock->now() - t0)));
     QVERIFY(r.stage->state().homed);
     QCOMPARE(r.stage->state().position, 0.0);
@@ -106,17 +109,38 @@ class TestStageVirtual : public QObject {
     const double d = r.stage->units().countsToPosition(r.stage->units().positionToCounts(0.1));  // 3430 counts
     QVERIFY(std::abs(r.clock->now() - t0 - 2 * std::sqrt(d / slow.acceleration)) < 1e-6);
     QVERIFY_THROWS_EXCEPTION(DeviceError, r.stage->setVelocity({50.0, 1.0}));  // beyond the Z8's 2.4 mm/s
-    // Moving beyond the hardware travel ends with MOVE_STOPPED at the limit switch: an error.
+    // Beyond the stage's travel: refused before any byte, whatever the soft limits say.
     Rig wide("MTS25-Z8", {}, std::make_pair(-5.0, 30.0));
     wide.stage->connect();
     try {
       wide.stage->moveAbsolute(28.0);
+      QFAIL("a move beyond the travel was sent");
+    } catch (const DeviceError& e) {
+      QCOMPARE(e.kind(), DeviceError::Kind::SoftLimit);
+      QVERIFY2(
+          std::string(e.what()).find("outside the travel [0.0000 mm, 25.0000 mm] of the MTS25-Z8") != std::string::npos,
+          e.what());
+    }
+    QVERIFY(!wide.traceHas("TX 53 04"));
+    // A limit switch that closes early (here at 20 mm) ends the move with MOVE_STOPPED: an error.
+    auto early_switch = std::make_shared<VirtualAptController>(
+        [&] {
+          VirtualControllerConfig c = wide.controller->config();
+          c.stage.travel_max = 20.0;  // the emulated switch; the host keeps the model's 25 mm
+          return c;
+        }(),
+        wide.clock);
+    Stage short_travel(std::make_unique<VirtualTransport>(early_switch, wide.clock),
+                       defaultStageConfig(*apt::findController("KDC101"), *apt::findStage("MTS25-Z8")));
+    short_travel.connect();
+    try {
+      short_travel.moveAbsolute(22.0);
       QFAIL("a move through the limit switch reported success");
     } catch (const DeviceError& e) {
       QVERIFY2(std::string(e.what()).find("limit switch") != std::string::npos, e.what());
     }
-    QCOMPARE(wide.stage->state().position, 25.0);
-    QVERIFY(wide.stage->state().forward_limit);
+    QCOMPARE(short_travel.state().position, 20.0);
+    QVERIFY(short_travel.state().forward_limit);
   }
 
   void softLimitsSendNothing() {
@@ -332,6 +356,146 @@ class TestStageVirtual : public QObject {
     link.write(apt::encode(apt::stopUpdateMsgs(0x50)));
     d.feed(link.read(std::chrono::milliseconds(1000)));
     QVERIFY(!d.next().has_value());
+  }
+
+  void completionStateComesFromThePoll() {
+    // An emulator whose MOVE_COMPLETED says 0x80000030 (moving, not homed), like a K10CR1.
+    Rig r("K10CR1", [](VirtualControllerConfig& c) { c.completion_reports_moving = true; });
+    r.stage->connect();
+    r.stage->moveAbsolute(10.0);
+    QVERIFY(r.stage->state().homed && !r.stage->state().moving);
+    r.stage->moveAbsolute(-5.0);  // accepted: not "not homed"
+    QVERIFY(std::abs(r.stage->state().position + 5.0) < 1e-5);
+    // Every completion is followed by a status poll (80 04 for a stepper).
+    const auto lines = r.trace->lines();
+    for (std::size_t i = 0; i + 1 < lines.size(); ++i)
+      if (lines[i].rfind("RX 64 04", 0) == 0) QVERIFY(lines[i + 1].rfind("TX 80 04 01 00 50 01", 0) == 0);
+  }
+
+  void stepperCompletionHasZeroVelocityWord() {
+    Rig r("K10CR1");
+    r.stage->connect();
+    r.stage->moveAbsolute(3.0);
+    for (const auto& l : r.trace->lines()) {
+      if (l.rfind("RX 64 04 0E 00 81 50", 0) != 0) continue;
+      // Header (18 chars) + chan (6) + position (12): the velocity word follows.
+      QCOMPARE(l.substr(3 + 18 + 6 + 12, 5), std::string("00 00"));
+      QVERIFY(l.substr(3 + 18 + 6, 11) != "00 00 00 00");  // while the position is not zero
+      return;
+    }
+    QFAIL("no MOVE_COMPLETED in the trace");
+  }
+
+  void controllerSetUpOnConnect() {
+    Rig r;
+    StageConfig c = r.stage->config();
+    c.setup.max_velocity = 1.2;
+    c.setup.acceleration = 2.0;
+    c.setup.jog_step = 0.25;
+    c.setup.home_velocity = 0.8;
+    c.setup.limit_switch_mode = 3;
+    auto t = std::make_unique<VirtualTransport>(r.controller, r.clock);
+    Stage s(std::move(t), c, r.trace);
+    s.connect();
+    const auto& u = s.units();
+    QVERIFY(std::abs(u.aptToVelocity(r.controller->velParams().max_velocity) - 1.2) < 1e-5);
+    QVERIFY(std::abs(u.countsToPosition(r.controller->jogParams().step_size) - 0.25) < 1e-4);
+    QVERIFY(std::abs(u.aptToVelocity(r.controller->homeParams().velocity) - 0.8) < 1e-5);
+    QCOMPARE(r.controller->limSwitchParams().cw_hard, std::uint16_t{3});
+    QCOMPARE(r.controller->limSwitchParams().ccw_hard, std::uint16_t{3});
+    const auto& p = s.controllerParameters();
+    QCOMPARE(p.written, (std::vector<std::string>{"velocity", "jog", "home", "limit switches"}));
+    QVERIFY(std::abs(p.velocity.max_velocity - 1.2) < 1e-5 && std::abs(p.velocity.acceleration - 2.0) < 5e-3);
+    QVERIFY(p.jog && std::abs(p.jog->step - 0.25) < 1e-4);
+    QVERIFY(std::abs(p.home_velocity - 0.8) < 1e-5);
+    QVERIFY(p.limit_switches && p.limit_switches->cw_hard == 3);
+    // Homing runs at the home velocity written: 5 mm at 0.8 mm/s.
+    s.moveAbsolute(5.0);
+    const double t0 = r.clock->now();
+    s.home();
+    const double a = u.aptToAcceleration(r.controller->velParams().acceleration);
+    QVERIFY(std::abs(r.clock->now() - t0 -
+                     trapezoidTime(5.0, u.aptToVelocity(r.controller->homeParams().velocity), a)) < 1e-6);
+    // Nothing asked: nothing written, everything still read.
+    Rig plain;
+    plain.stage->connect();
+    QVERIFY(plain.stage->controllerParameters().written.empty());
+    QVERIFY(!plain.traceHas("TX 13 04") && !plain.traceHas("TX 40 04") && !plain.traceHas("TX 23 04"));
+    QVERIFY(plain.traceHas("TX 41 04 01 00 50 01") && plain.traceHas("TX 24 04 01 00 50 01"));
+  }
+
+  void countsPerUnitOverrideFromTheScene() {
+    fovea::StageBinding b;
+    b.element = "hoe";
+    b.axis = "x";
+    b.controller = "KDC101";
+    b.stage_model = "MTS25-Z8";
+    b.soft_limits = {-10.0, 10.0};
+    b.home_offset = -12.5;
+    StageConfig c = stageConfigForBinding(b);
+    QCOMPARE(c.stage.counts_per_unit, 34304.0);
+    QVERIFY(c.stage.source.find("protocol document") != std::string::npos);
+    b.counts_per_unit = 34554.96;  // the 67.49:1 gearbox figure
+    b.setup.limit_switches = "breaks";
+    b.setup.jog_step = 0.05;
+    c = stageConfigForBinding(b);
+    QCOMPARE(c.stage.counts_per_unit, 34554.96);
+    QCOMPARE(c.setup.limit_switch_mode.value_or(0), std::uint16_t{3});
+    QCOMPARE(c.setup.jog_step.value_or(0), 0.05);
+    QVERIFY(!c.setup.max_velocity);
+    QCOMPARE(apt::UnitConverter(c.controller, c.stage).positionToCounts(10.0), 345550);
+  }
+
+  void movesThatCannotBeEncodedAreRefused() {
+    // Continuous rotation with absurd soft limits: 1e12 deg is 1.4e17 counts, beyond int32.
+    Rig r("K10CR1", {}, std::make_pair(-1e308, 1e308));
+    r.stage->connect();
+    try {
+      r.stage->moveAbsolute(1e12);
+      QFAIL("an unencodable move was sent");
+    } catch (const DeviceError& e) {
+      QCOMPARE(e.kind(), DeviceError::Kind::SoftLimit);
+      QVERIFY2(std::string(e.what()).find("beyond the protocol's signed 32-bit range; nothing was sent") !=
+                   std::string::npos,
+               e.what());
+    }
+    QVERIFY_THROWS_EXCEPTION(DeviceError, r.stage->moveRelative(-2e4));  // 2.7e9 counts
+    QVERIFY(!r.traceHas("TX 53 04") && !r.traceHas("TX 48 04"));
+    r.stage->moveRelative(15000.0);  // 2.05e9 counts: still encodable
+    QVERIFY(std::abs(r.stage->state().position - 15000.0) < 1e-3);
+  }
+
+  void controllerErrorsArrivePromptly() {
+    Rig r("MTS25-Z8", [](VirtualControllerConfig& c) {
+      c.reject_motion = apt::ControllerResponse{0, 0x0042, "Position outside limits", true};
+    });
+    r.stage->connect();
+    const double t0 = r.clock->now();
+    try {
+      r.stage->moveAbsolute(5.0);
+      QFAIL("a rejected move reported success");
+    } catch (const DeviceError& e) {
+      QCOMPARE(e.kind(), DeviceError::Kind::Controller);
+      QVERIFY2(std::string(e.what()).find("code 0x0042 (66) after MOT_MOVE_ABSOLUTE: Position outside limits") !=
+                   std::string::npos,
+               e.what());
+    }
+    QVERIFY(r.clock->now() - t0 < 0.1);  // the reply, not the move timeout
+    QVERIFY(!r.stage->lastControllerError().empty());
+  }
+
+  void channelBitMaskOnTheWire() {
+    auto clock = std::make_shared<SimulatedClock>();
+    auto ctrl = makeVirtualController("MTS25-Z8", "", clock);
+    apt::ControllerModel bits = ctrl->config().controller;
+    bits.channel_bit_mask = true;
+    StageConfig c = defaultStageConfig(bits, ctrl->config().stage);
+    c.channel = 3;
+    auto trace = std::make_shared<MemoryTrace>();
+    Stage s(std::make_unique<VirtualTransport>(ctrl, clock), c, trace);
+    s.connect();
+    QVERIFY(trace->lines().size() > 2);
+    QCOMPARE(trace->lines()[2], std::string("TX 11 02 04 00 50 01"));  // REQ_CHANENABLESTATE, channel 3 = 0x04
   }
 };
 

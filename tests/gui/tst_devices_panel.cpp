@@ -5,6 +5,8 @@
 // taking the HOE to the analyses' x_p(alpha), and the main window's Bench dock marked VIRTUAL.
 #include <QtTest>
 
+#include <QRegularExpression>
+
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFile>
@@ -92,6 +94,9 @@ class TestDevicesPanel : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
     QVERIFY(rig.panel->isVirtual());
     QVERIFY(rig.panel->bannerText().contains("VIRTUAL"));
+    // The controller set-up read on connect is shown on the axis.
+    QTRY_VERIFY_WITH_TIMEOUT(rig.panel->findChild<QLabel*>("name_hoe.x")->toolTip().contains("velocity 2 mm/s"), 3000);
+    QVERIFY(rig.panel->findChild<QLabel*>("name_hoe.x")->toolTip().contains("limit switches CW makes"));
     const double start = rig.emulator("hoe", "x").position();  // stage mm (home offset -12.5)
     rig.panel->setStepSize(0.25);
     rig.panel->setSelectedAxis("hoe.x");
@@ -136,6 +141,16 @@ class TestDevicesPanel : public QObject {
     QTest::qWait(300);                                         // still stopped: nothing restarted the moves
     QVERIFY(!rig.emulator("hoe", "x").moving());
     QCOMPARE(rig.emulator("hoe", "x").position(), x);
+    // The status says "stopped" with where the axis stopped, in the row's (element) frame:
+    // stage reading + home offset (-12.5 mm), not the raw stage coordinate.
+    QTRY_VERIFY_WITH_TIMEOUT(rig.panel->statusText().contains("stopped by you at"), 3000);
+    const QString status = rig.panel->statusText();
+    const bool is_x = status.startsWith("hoe.x");
+    const double stage = is_x ? x : y;
+    const QRegularExpression at("stopped by you at (-?[0-9.]+) mm");
+    const auto m = at.match(status);
+    QVERIFY2(m.hasMatch(), qPrintable(status));
+    QVERIFY2(std::abs(m.captured(1).toDouble() - (stage - 12.5)) < 2e-3, qPrintable(status));
   }
 
   void goToOutsideTheSoftLimitsIsRefusedAndSendsNothing() {
@@ -146,6 +161,12 @@ class TestDevicesPanel : public QObject {
     auto* target = rig.panel->findChild<QDoubleSpinBox*>("target_hoe.x");
     auto* go = rig.panel->findChild<QPushButton*>("go_hoe.x");
     QVERIFY(target && go);
+    target->setValue(50.0);  // far outside: the field keeps what was typed, never clips it
+    QCOMPARE(target->value(), 50.0);
+    QTest::mouseClick(go, Qt::LeftButton);
+    QVERIFY2(rig.panel->statusText().contains(
+                 "hoe.x: go to 50.000 mm refused — outside the soft limits -8.000 mm … 8.000 mm (hoe coordinates)"),
+             qPrintable(rig.panel->statusText()));
     target->setValue(9.0);  // the binding's soft limits are -8 .. 8 mm
     QCOMPARE(target->value(), 9.0);
     QTest::mouseClick(go, Qt::LeftButton);

@@ -87,6 +87,10 @@ CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidg
   status_->setObjectName("captureStatus");
   status_->setWordWrap(true);
   root->addWidget(status_);
+  hoe_source_ = new QLabel(this);
+  hoe_source_->setObjectName("hoeShiftSource");
+  hoe_source_->setWordWrap(true);
+  root->addWidget(hoe_source_);
 
   folder_->setText(defaultFolder());
   connect(kind_, &QComboBox::currentIndexChanged, this, [this] {
@@ -104,7 +108,9 @@ CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidg
   connect(start_, &QPushButton::clicked, this, &CaptureWizard::start);
   connect(pause_, &QPushButton::clicked, this, &CaptureWizard::pause);
   connect(import_, &QPushButton::clicked, this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, tr("Import colour measurements"), {}, tr("JSON (*.json)"));
+    const QString f = QFileDialog::getOpenFileName(
+        this, tr("Import colour measurements"), {},
+        tr("Measurements (*.json *.csv);;Spectroradiometer readings (*.csv);;JSON (*.json)"));
     if (f.isEmpty()) return;
     QString error;
     if (!importMeasurement(f, &error)) status_->setText(error);
@@ -188,11 +194,22 @@ bool CaptureWizard::openSession() {
     return false;
   }
   captured_ = static_cast<int>(session_->capturedCount());
-  status_->setText(
+  QString text =
       captured_ > 0
           ? tr("Resumed: %1 of %2 steps were already captured in %3").arg(captured_).arg(stepCount()).arg(folder())
           : tr("New session in %1 (%2 steps)").arg(folder()).arg(stepCount()) +
-                (skipped_.isEmpty() ? QString() : tr("; skipped: ") + skipped_.join("; ")));
+                (skipped_.isEmpty() ? QString() : tr("; skipped: ") + skipped_.join("; "));
+  status_->setText(text);
+  hoe_source_->clear();
+  hoe_source_->setStyleSheet("");
+  if (kind() == devices::CaptureKind::Geometric && hoe_shift_source_) {
+    const auto [analysed, source] = hoe_shift_source_();
+    hoe_source_->setText(analysed ? tr("HOE at x_p(α) from the %1").arg(QString::fromStdString(source))
+                                  : tr("WARNING: the gaze study's x_p(α) is not ready yet; the HOE goes to the "
+                                       "geometric guess (reopen the session once the Bench dock's follow-gaze line "
+                                       "names the gaze study)"));
+    hoe_source_->setStyleSheet(analysed ? "" : "color: #c62828; font-weight: bold;");
+  }
   refreshList();
   return true;
 }

@@ -20,7 +20,9 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <string>
 #include <thread>
+#include <utility>
 
 #include "devices/bench/live_bench.h"
 #include "devices/calibration/capture_session.h"
@@ -43,6 +45,9 @@ class CaptureWizard : public QDialog {
 
   // x_p(alpha) for the geometric plan (the devices panel passes the analyses' table).
   void setHoeShift(std::function<std::array<double, 2>(std::array<double, 2>)> f) { hoe_shift_ = std::move(f); }
+  // Where that x_p(alpha) comes from now: (from the gaze study?, description). A geometric
+  // session opened before the gaze study is ready says so in a visible warning.
+  void setHoeShiftSource(std::function<std::pair<bool, std::string>()> f) { hoe_shift_source_ = std::move(f); }
   // The bench is going away: the running step finishes, nothing more runs.
   void detachBench();
   bool hasBench() const { return live_ != nullptr; }
@@ -87,6 +92,7 @@ class CaptureWizard : public QDialog {
   Scene scene_;
   devices::LiveBench* live_;
   std::function<std::array<double, 2>(std::array<double, 2>)> hoe_shift_;
+  std::function<std::pair<bool, std::string>()> hoe_shift_source_;
   std::unique_ptr<devices::CaptureSession> session_;
   QStringList skipped_;
   std::thread worker_;
@@ -98,7 +104,7 @@ class CaptureWizard : public QDialog {
   QLineEdit* folder_ = nullptr;
   QPushButton *browse_ = nullptr, *open_ = nullptr, *start_ = nullptr, *pause_ = nullptr, *import_ = nullptr;
   QListWidget* steps_ = nullptr;
-  QLabel *instruction_ = nullptr, *thumbnail_ = nullptr, *status_ = nullptr;
+  QLabel *instruction_ = nullptr, *thumbnail_ = nullptr, *status_ = nullptr, *hoe_source_ = nullptr;
   QProgressBar* progress_ = nullptr;
 };
 

@@ -1,0 +1,88 @@
+#pragma once
+// The Bench dock's axes: one row per stage binding (element position in the scene's frame,
+// state, jog buttons, Home, a go-to field), the jog step and speed, the selected axis.
+//
+// Typed targets are never changed by the field: it takes any number, and a target outside
+// the binding's soft limits is refused with the reason in the preferred units and in the
+// row's frame (element coordinates); nothing is sent. After an emergency stop the axes that
+// were moving report "stopped" with the position where they stopped, in the row's frame.
+//
+// Threads: commands run on the axis workers; results come back as queued calls.
+#include <QGroupBox>
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "devices/bench/live_bench.h"
+
+class QButtonGroup;
+class QDoubleSpinBox;
+class QGridLayout;
+class QLabel;
+class QPushButton;
+class QRadioButton;
+
+namespace fovea::widgets {
+
+class AxisTable : public QGroupBox {
+  Q_OBJECT
+ public:
+  explicit AxisTable(QWidget* parent = nullptr);
+
+  void setBench(devices::LiveBench* live);  // nullptr: no rows
+  void refresh();                           // readouts from the axis snapshots
+
+  void jog(const QString& axis_key, int direction);  // +1 forward, -1 reverse
+  void goTo(const QString& axis_key, double element_value);
+  void homeAll();
+  // Call right after the bench's emergencyStopAll(): the rows report where they stopped.
+  void noteEmergencyStop();
+
+  double stepSize() const;
+  void setStepSize(double step);
+  void setSpeed(double speed);
+  void scaleStep(double factor);
+  void setSelectedAxis(const QString& key);
+  QString selectedAxis() const;
+  void selectNext(int delta);  // +1 down, -1 up (wraps)
+  bool hasRows() const { return !rows_.empty(); }
+  std::optional<double> axisPosition(const QString& key) const;
+
+  // The jog controls (step, speed, key help) live in the panel's layout under the table.
+  QWidget* jogControls() const { return jog_controls_; }
+
+ signals:
+  void report(const QString& text, bool error);
+
+ private:
+  struct Row {
+    devices::AxisWorker* worker = nullptr;
+    QString key, unit;
+    QRadioButton* select = nullptr;
+    QLabel *name = nullptr, *position = nullptr, *state = nullptr;
+    QPushButton *reverse = nullptr, *forward = nullptr, *home = nullptr, *go = nullptr;
+    QDoubleSpinBox* target = nullptr;
+    std::shared_ptr<std::atomic<int>> pending = std::make_shared<std::atomic<int>>(0);
+  };
+  void clearRows();
+  void submit(const Row& row, const QString& what, std::function<void(devices::Stage&)> command);
+  Row* row(const QString& key);
+  const Row* row(const QString& key) const;
+
+  devices::LiveBench* live_ = nullptr;
+  std::vector<Row> rows_;
+  QGridLayout* grid_ = nullptr;
+  QButtonGroup* select_group_ = nullptr;
+  QWidget* jog_controls_ = nullptr;
+  QDoubleSpinBox *step_ = nullptr, *speed_ = nullptr;
+  // Counts emergency stops; a command that fails after one started was stopped by the user.
+  std::shared_ptr<std::atomic<int>> stops_ = std::make_shared<std::atomic<int>>(0);
+};
+
+// "12.500 mm" / "20.00°" in the preferred display units (model values in mm or deg).
+QString formatAxisValue(double value, const QString& unit);
+
+}  // namespace fovea::widgets
