@@ -146,10 +146,10 @@ void run(const StageArgs& a) {
   config.channel = static_cast<std::uint8_t>(a.channel);
   config.reply_timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
 
-  std::shared_ptr<devices::TraceSink> trace;
+  std::shared_ptr<devices::AptLogSink> trace;
   if (!a.trace.empty()) {
     try {
-      trace = std::make_shared<devices::FileTrace>(a.trace);
+      trace = std::make_shared<devices::AptFileLog>(a.trace);
     } catch (const std::exception& e) {
       inputError(e.what());
     }

@@ -20,7 +20,7 @@
 #include <memory>
 
 #include "app/studio/main_window.h"
-#include "app/studio/trace_workbench.h"
+#include "app/studio/live_trace_features.h"
 #include "fovea/version.h"
 #include "model/scene/scene_geometry.h"
 #include "viz/scene_view.h"
@@ -256,7 +256,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   const Eigen::Vector3d shownShift = view->hoeDisplayShift();
   // The gaze figures borrow the live overlay (its layers are the view's "rays", "eye_marks"
   // and "effmap"); without a live trace part a temporary one draws them.
-  TraceWorkbench* live = window.traceWorkbench();
+  LiveTraceFeatures* live = window.liveTraceFeatures();
   std::unique_ptr<viz::TraceOverlay> own;
   viz::TraceOverlay* overlay = live ? live->overlay() : nullptr;
   if (!overlay) overlay = (own = std::make_unique<viz::TraceOverlay>(view)).get();

@@ -17,7 +17,7 @@ struct Rig {
   std::shared_ptr<SimulatedClock> clock = std::make_shared<SimulatedClock>();
   std::shared_ptr<VirtualAptController> controller;
   VirtualTransport* link = nullptr;  // owned by the stage
-  std::shared_ptr<MemoryTrace> trace = std::make_shared<MemoryTrace>();
+  std::shared_ptr<AptMemoryLog> trace = std::make_shared<AptMemoryLog>();
   std::unique_ptr<Stage> stage;
 
   explicit Rig(const std::string& model = "MTS25-Z8", std::function<void(VirtualControllerConfig&)> tweak = {},

@@ -7,7 +7,7 @@
 // Analyses and their twins: trace, sweep, compare-shift, sensitivity, resolution,
 // optimize-lens, selectivity (`fovea-cli <id>`); grating = `fovea-cli grating` swept over the
 // probe angle (optionally against RCWA); kogelnik-vs-rcwa = the error/time map of
-// docs/benchmarks.md (bench/bench_rcwa.cpp).
+// docs/benchmarks.md (benchmarks/bench_rcwa.cpp).
 
 #include <QList>
 #include <QString>
