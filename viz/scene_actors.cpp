@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <vtkActor.h>
 #include <vtkCellArray.h>
@@ -18,6 +17,7 @@
 #include <vtkSphereSource.h>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 #include "viz/polyline.h"
 #include "viz/scene_elements.h"
 
@@ -25,7 +25,6 @@ namespace fovea::viz {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 vtkSmartPointer<vtkMatrix4x4> matrixOf(const Frame& f) {
   auto m = vtkSmartPointer<vtkMatrix4x4>::New();

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Frame shiftedHoeFrame(const Scene& scene, const std::array<double, 2>& shift_mm) {
   Frame f = frameOf(scene.hoe.pose);

@@ -10,11 +10,11 @@
 #include <nlopt.hpp>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kFwhmPerW = 1.1774100225154747;  // sqrt(2 ln 2): FWHM / (1/e^2 radius)
 constexpr double kClearApertureFraction = 0.9;
 using cd = std::complex<double>;

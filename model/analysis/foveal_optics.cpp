@@ -8,11 +8,11 @@
 #include <Eigen/Core>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kWavelengthNm = 550.0;
 
 double diffractionMtf(double nu_cpd, double cutoff_cpd) {

@@ -3,18 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <utility>
 #include <vector>
 
 #include "model/physics/trace.h"
 #include "model/physics/trace_pipeline.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Unit arrival direction of a field angle (yaw = atan2(x, z), pitch = asin(y); fieldAngleDeg()).
 Eigen::Vector3d fieldDirection(double yaw_deg, double pitch_deg) {

@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <opencv2/imgproc.hpp>
 
 #include "model/image/image_io.h"
+#include "model/units.h"
 
 namespace fovea::image {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 // sRGB (D65) linear RGB <-> XYZ, white Y = 1.
 const cv::Matx33f kRgbToXyz(0.4124f, 0.3576f, 0.1805f, 0.2126f, 0.7152f, 0.0722f, 0.0193f, 0.1192f, 0.9505f);
 const cv::Vec3f kWhite(0.9505f, 1.0f, 1.0889f);

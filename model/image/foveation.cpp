@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <opencv2/imgproc.hpp>
 
 #include "model/image/flip.h"
 #include "model/image/image_io.h"
+#include "model/units.h"
 
 namespace fovea::image {
 
@@ -48,8 +48,7 @@ DisplayAngles displayAngles(const Scene& s) {
   a.peripheral_px = s.projector.pixels;
   const auto& c = s.foveal_display.combiner;
   for (int k = 0; k < 2; ++k)
-    a.foveal_fov_deg[k] = 2.0 * std::atan(c.magnification * s.foveal_display.size_mm[k] / (2.0 * c.image_distance_mm)) *
-                          180.0 / std::numbers::pi;
+    a.foveal_fov_deg[k] = radToDeg(2.0 * std::atan(c.magnification * s.foveal_display.size_mm[k] / (2.0 * c.image_distance_mm)));
   a.foveal_px = s.foveal_display.pixels;
   return a;
 }

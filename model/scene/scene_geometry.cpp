@@ -1,12 +1,12 @@
 #include "model/scene/scene_geometry.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 }
 
 Eigen::Matrix3d rotationFromDeg(const std::array<double, 3>& ypr) {
