@@ -16,6 +16,7 @@
 #include <vtkRotationalExtrusionFilter.h>
 #include <vtkSphereSource.h>
 
+#include "model/color/srgb.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 #include "viz/polyline.h"
@@ -99,7 +100,7 @@ void addHoe(const Scene& scene, SceneLayer& layer) {
     const double t = l.thickness_um * 1e-3 * exaggeration, z = l.offset_um * 1e-3 * exaggeration;
     z_min = std::min(z_min, z - t / 2);
     z_max = std::max(z_max, z + t / 2);
-    auto actor = makeActor(box(w, h, t, {0, 0, z}), wavelengthColor(l.recording.wavelength_nm), 0.4, hf);
+    auto actor = makeActor(box(w, h, t, {0, 0, z}), color::wavelengthColor(l.recording.wavelength_nm), 0.4, hf);
     layer.add(actor, hoeLayerId(static_cast<int>(i)));
   }
   // The carrier's outline around the stack, and the substrate on the world side: local +z,
@@ -125,7 +126,7 @@ void addProjector(const Scene& scene, SceneLayer& layer) {
   const Frame pf = frameOf(p.pose);
   layer.add(makeActor(box(24.0, 16.0, 36.0, {0, 0, -18.5}), colors::kProjectorBody, 1.0, pf), "projector");
   layer.add(makeActor(sphereCap(std::max(p.exit_pupil_diameter_mm, 1.0), 90.0),
-                      p.wavelengths_nm.empty() ? colors::kProjectorFrustum : wavelengthColor(p.wavelengths_nm.front()),
+                      p.wavelengths_nm.empty() ? colors::kProjectorFrustum : color::wavelengthColor(p.wavelengths_nm.front()),
                       1.0, pf),
             "projector");
   // Frustum: the four corner rays of the projection up to where they meet the HOE plane
@@ -270,31 +271,6 @@ void addStages(const Scene& scene, SceneLayer& layer) {
 }
 
 }  // namespace
-
-std::array<double, 3> wavelengthColor(double nm) {
-  // Piecewise-linear spectrum approximation (after D. Bruton's widely used table).
-  double r = 0, g = 0, b = 0;
-  if (nm < 440) {
-    r = (440 - nm) / 60.0;
-    b = 1;
-  } else if (nm < 490) {
-    g = (nm - 440) / 50.0;
-    b = 1;
-  } else if (nm < 510) {
-    g = 1;
-    b = (510 - nm) / 20.0;
-  } else if (nm < 580) {
-    r = (nm - 510) / 70.0;
-    g = 1;
-  } else if (nm < 645) {
-    r = 1;
-    g = (645 - nm) / 65.0;
-  } else {
-    r = 1;
-  }
-  auto clamp = [](double v) { return std::clamp(v, 0.0, 1.0); };
-  return {clamp(r), clamp(g), clamp(b)};
-}
 
 void buildSceneActors(const Scene& scene, SceneLayer& layer) {
   addHoe(scene, layer);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "model/color/srgb.h"
 #include "model/units.h"
 
 namespace fovea::color {
@@ -18,9 +19,7 @@ Xy xyzToXy(const Eigen::Vector3d& xyz) {
 }
 
 Eigen::Vector3d xyzToLab(const Eigen::Vector3d& xyz, const Eigen::Vector3d& white_xyz) {
-  // f(t) = t^(1/3) above (6/29)^3, linear below (CIE 15:2004 8.2.1).
-  constexpr double d = 6.0 / 29.0;
-  auto f = [](double t) { return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0; };
+  const auto f = labCompand<double>;  // CIE 15:2004 8.2.1
   const double fx = f(xyz.x() / white_xyz.x());
   const double fy = f(xyz.y() / white_xyz.y());
   const double fz = f(xyz.z() / white_xyz.z());

@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/color/srgb.h"
 #include "model/image/flip.h"
 #include "model/image/image_io.h"
 #include "model/units.h"
@@ -285,7 +286,7 @@ FoveatedCompositor::Seam FoveatedCompositor::seamMetric() const {
   cv::Mat ref = target_(rect).clone(), test = perceived_(rect).clone();
   for (cv::Mat* m : {&ref, &test})
     m->forEach<cv::Vec3f>([](cv::Vec3f& p, const int*) {
-      for (int c = 0; c < 3; ++c) p[c] = linearToSrgb(p[c]);
+      for (int c = 0; c < 3; ++c) p[c] = color::linearToSrgb(p[c]);
     });
   const cv::Mat err = flipErrorMap(ref, test, ppd);
   std::vector<float> values;

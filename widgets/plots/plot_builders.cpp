@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "model/color/srgb.h"
 #include "model/json_numbers.h"
 
 namespace fovea::widgets {
@@ -14,6 +15,11 @@ namespace {
 
 using Style = PlotSeries::Style;
 
+// The colour the 3D view draws a wavelength in (model/color/srgb.h).
+QColor wavelengthQColor(double nm) {
+  const auto c = color::wavelengthColor(nm);
+  return QColor::fromRgbF(float(c[0]), float(c[1]), float(c[2]));
+}
 QVariant cell(double v) {
   return std::isfinite(v) ? QVariant(v) : QVariant();
 }
@@ -137,9 +143,9 @@ QList<PlotData> fromSelectivity(const nlohmann::json& r, const DisplayUnits& u, 
     const QString name = str(l, "name");
     const double probe = jsonNumber(l, {"probe_wavelength_nm"});
     const QString label = QString("%1 layer (%2 nm)").arg(name, fmt(probe));
-    PlotSeries a = series(label, Style::Line, wavelengthColor(probe));
+    PlotSeries a = series(label, Style::Line, wavelengthQColor(probe));
     for (const auto& s : arr(l, "angle")) addPoint(a, u.angleFromDeg(jsonNumber(s, {"detuning_deg"})), jsonNumber(s, {"efficiency"}));
-    PlotSeries w = series(label, Style::Line, wavelengthColor(probe));
+    PlotSeries w = series(label, Style::Line, wavelengthQColor(probe));
     for (const auto& s : arr(l, "spectrum")) {
       addPoint(w, jsonNumber(s, {"wavelength_nm"}), jsonNumber(s, {"efficiency"}));
       spec.rows.append({name, cell(jsonNumber(s, {"wavelength_nm"})), cell(jsonNumber(s, {"efficiency"})), cell(jsonNumber(s, {"xi"}))});
@@ -530,28 +536,6 @@ PlotData retinaMapPlot(const TraceResult& trace, double threshold, const Display
                        fmt(u.angleFromDeg(trace.fov_deg.vertical)), fmt(u.angleFromDeg(trace.fov_deg.diagonal)),
                        fmt(trace.mean_efficiency, 3));
   return p;
-}
-
-QColor wavelengthColor(double nm) {
-  // Piecewise-linear approximation of the spectral locus in sRGB (Bruton), darkened a little
-  // so that lines stay visible on white.
-  double r = 0, g = 0, b = 0;
-  if (nm >= 380 && nm < 440)
-    r = (440 - nm) / 60, b = 1;
-  else if (nm >= 440 && nm < 490)
-    g = (nm - 440) / 50, b = 1;
-  else if (nm >= 490 && nm < 510)
-    g = 1, b = (510 - nm) / 20;
-  else if (nm >= 510 && nm < 580)
-    r = (nm - 510) / 70, g = 1;
-  else if (nm >= 580 && nm < 645)
-    r = 1, g = (645 - nm) / 65;
-  else if (nm >= 645 && nm <= 780)
-    r = 1;
-  else
-    return QColor(90, 90, 90);
-  const double k = 0.85;
-  return QColor::fromRgbF(float(k * r), float(k * g), float(k * b));
 }
 
 }  // namespace fovea::widgets
