@@ -16,6 +16,8 @@
 #include <vtkRotationalExtrusionFilter.h>
 #include <vtkSphereSource.h>
 
+#include "model/analysis/beam_shaping.h"
+#include "model/analysis/foveal_optics.h"
 #include "model/color/srgb.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
@@ -193,10 +195,10 @@ void addFovealDisplay(const Scene& scene, SceneLayer& layer) {
   layer.add(makeActor(box(f.size_mm[0], f.size_mm[1], 1.0, {0, 0, -0.5}), colors::kMicroOled, 1.0, ff),
             "foveal_display");
   // Image combiner on the eye's zero-gaze axis, eye_distance_mm in front of the pupil. Its
-  // aperture passes the foveal field: half angle atan(M * width / 2 / d_f) plus the pupil.
+  // aperture passes the foveal field (half the horizontal foveal FOV) plus the pupil.
   const EyePlacement e = placeEye(scene, 0.0, 0.0);
   const ImageCombiner& ic = f.combiner;
-  const double half_fov = std::atan(ic.magnification * f.size_mm[0] / 2.0 / ic.image_distance_mm);
+  const double half_fov = 0.5 * fovealFovDeg(scene)[0] * kDeg;
   const double radius = ic.eye_distance_mm * std::tan(half_fov) + e.pupil_radius_mm;
   vtkNew<vtkCylinderSource> disc;  // axis along local y: turned to z by the frame below
   disc->SetRadius(radius);
@@ -211,8 +213,8 @@ void addFovealDisplay(const Scene& scene, SceneLayer& layer) {
 void addLens(const Scene& scene, SceneLayer& layer) {
   const BeamShapingLens& l = scene.lens;
   const double rim = l.diameter_mm / 2.0;
-  // Symmetric lens from the lensmaker's thin-lens equation: 1/f = (n - 1) * 2 / R.
-  const double R = 2.0 * l.focal_length_mm * (l.index - 1.0);
+  // Symmetric bi-convex lens with the thick-lens radii of the spot model (beam_shaping.h).
+  const double R = biconvexRadiusMm(l.focal_length_mm, l.index, l.center_thickness_mm);
   const double absR = std::max(std::abs(R), rim * 1.0001);
   auto sag = [&](double rr) { return std::copysign(absR - std::sqrt(absR * absR - rr * rr), R); };
   double half_ct = std::max(l.center_thickness_mm, 0.1) / 2.0;

@@ -65,6 +65,15 @@ struct RealLens {
   double r1 = 0, r2 = 0, clear_radius_mm = 0;
 };
 
+}  // namespace
+
+double biconvexRadiusMm(double focal_length_mm, double index, double center_thickness_mm) {
+  const double n = index, f = focal_length_mm, t = center_thickness_mm;
+  return (n - 1) * f * (1 + std::sqrt(std::max(0.0, 1 - t / (n * f))));
+}
+
+namespace {
+
 RealLens realLens(const LensGeometry& g, const StockLens& stock) {
   RealLens l;
   l.axis = g.normal;
@@ -73,8 +82,7 @@ RealLens realLens(const LensGeometry& g, const StockLens& stock) {
   l.clear_radius_mm = g.clear_radius_mm;
   const double n = g.index_d, f = g.focal_d_mm, t = stock.center_thickness_mm;
   if (stock.shape == "bi-convex") {
-    // Symmetric thick lens: 1/f = (n-1)(2/R - (n-1) t/(n R^2)), the larger root.
-    const double r = (n - 1) * f * (1 + std::sqrt(std::max(0.0, 1 - t / (n * f))));
+    const double r = biconvexRadiusMm(f, n, t);
     l.r1 = r;
     l.r2 = -r;
   } else {

@@ -45,6 +45,15 @@ std::optional<Eigen::Vector2d> traceCombinerToDisplay(const CombinerPrescription
   return Eigen::Vector2d(h.x(), h.y());
 }
 
+std::array<double, 2> fovealFovDeg(const Scene& scene) {
+  const FovealDisplay& f = scene.foveal_display;
+  const ImageCombiner& c = f.combiner;
+  std::array<double, 2> fov{};
+  for (int k = 0; k < 2; ++k)
+    fov[k] = radToDeg(2.0 * std::atan(c.magnification * f.size_mm[k] / (2.0 * c.image_distance_mm)));
+  return fov;
+}
+
 CombinerPrescription combinerPrescription(const Scene& scene) {
   const auto& ic = scene.foveal_display.combiner;
   CombinerPrescription c;

@@ -5,10 +5,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/analysis/foveal_optics.h"
 #include "model/color/srgb.h"
 #include "model/image/flip.h"
 #include "model/image/image_io.h"
-#include "model/units.h"
 
 namespace fovea::image {
 
@@ -47,9 +47,7 @@ DisplayAngles displayAngles(const Scene& s) {
   DisplayAngles a;
   a.peripheral_fov_deg = s.projector.fov_deg;
   a.peripheral_px = s.projector.pixels;
-  const auto& c = s.foveal_display.combiner;
-  for (int k = 0; k < 2; ++k)
-    a.foveal_fov_deg[k] = radToDeg(2.0 * std::atan(c.magnification * s.foveal_display.size_mm[k] / (2.0 * c.image_distance_mm)));
+  a.foveal_fov_deg = fovealFovDeg(s);
   a.foveal_px = s.foveal_display.pixels;
   return a;
 }
