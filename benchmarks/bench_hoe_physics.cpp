@@ -1,4 +1,4 @@
-// Timings of the HOE physics core (issue 6 targets: >= 20 M Kogelnik evaluations/s/core,
+// Timings of the HOE physics core (targets: >= 20 M Kogelnik evaluations/s/core,
 // a 20 000-ray gaze update in <= 16 ms).
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// fovea-cli bench [--quick] --json: run time against error (issue 6). Throughput of the
+// fovea-cli bench [--quick] --json: run time against error (docs/benchmarks.md). Throughput of the
 // Kogelnik kernel (scalar, SIMD double, SIMD float) on one core and on all cores, the gaze
 // update and cold trace of the default scene at 20 000 rays, a 41-gaze x_p sweep on two
 // cores, ray count vs FOV error, float/double/long double on efficiency and FOV, and

@@ -1,6 +1,6 @@
 #pragma once
-// The trace as a dependency graph of memoised stages (issue 6, "skip what a scene doesn't
-// need"). Each stage's result is stored under a 64-bit hash of exactly the inputs it reads
+// The trace as a dependency graph of memoised stages: a run skips what
+// the scene did not change. Each stage's result is stored under a 64-bit hash of exactly the inputs it reads
 // (scene fields, options, and the keys of the stages it consumes), so a run recomputes only
 // the stages whose inputs changed:
 //
