@@ -292,7 +292,7 @@ double distanceOutsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Ei
   bool inside = false;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Eigen::Vector2d a = poly[j], b = poly[i];
+    const Eigen::Vector2d &a = poly[j], &b = poly[i];
     if ((b.y() > p.y()) != (a.y() > p.y()) && p.x() < (a.x() - b.x()) * (p.y() - b.y()) / (a.y() - b.y()) + b.x())
       inside = !inside;
     const Eigen::Vector2d ab = a - b;

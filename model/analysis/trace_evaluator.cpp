@@ -88,6 +88,7 @@ ContinuousFov continuousFovOf(const std::vector<const Ray*>& rays, double effici
     Span h, v;
     if (centre != nullptr) {
       std::vector<const Ray*> line;
+      line.reserve(std::max(nx, ny));
       for (int i = 0; i < nx; ++i) line.push_back(at(i, centre->pixel[1]));
       h = widestRun(line, efficiency_threshold, 0);
       line.clear();
