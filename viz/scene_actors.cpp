@@ -28,7 +28,6 @@ namespace fovea::viz {
 
 namespace {
 
-
 vtkSmartPointer<vtkMatrix4x4> matrixOf(const Frame& f) {
   auto m = vtkSmartPointer<vtkMatrix4x4>::New();
   for (int r = 0; r < 3; ++r) {
@@ -127,10 +126,11 @@ void addProjector(const Scene& scene, SceneLayer& layer) {
   const Projector& p = scene.projector;
   const Frame pf = frameOf(p.pose);
   layer.add(makeActor(box(24.0, 16.0, 36.0, {0, 0, -18.5}), colors::kProjectorBody, 1.0, pf), "projector");
-  layer.add(makeActor(sphereCap(std::max(p.exit_pupil_diameter_mm, 1.0), 90.0),
-                      p.wavelengths_nm.empty() ? colors::kProjectorFrustum : color::wavelengthColor(p.wavelengths_nm.front()),
-                      1.0, pf),
-            "projector");
+  layer.add(
+      makeActor(sphereCap(std::max(p.exit_pupil_diameter_mm, 1.0), 90.0),
+                p.wavelengths_nm.empty() ? colors::kProjectorFrustum : color::wavelengthColor(p.wavelengths_nm.front()),
+                1.0, pf),
+      "projector");
   // Frustum: the four corner rays of the projection up to where they meet the HOE plane
   // (or 100 mm along the axis when a ray misses it or runs away from it).
   const Frame hf = frameOf(scene.hoe.pose);

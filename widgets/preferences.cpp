@@ -10,7 +10,6 @@
 #include <QStyle>
 #include <QStyleFactory>
 
-
 #include "model/units.h"
 
 namespace fovea::widgets {

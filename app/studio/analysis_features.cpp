@@ -20,9 +20,9 @@
 #include <algorithm>
 #include <atomic>
 
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_document.h"
-#include "app/studio/live_trace_features.h"
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/autosave.h"
@@ -225,9 +225,10 @@ void AnalysisFeatures::showPreferences() {
 }
 
 bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
-                             int* figures, QList<GazeFigureStats>* gazeFigures) {
+                                    int* figures, QList<GazeFigureStats>* gazeFigures) {
   ReportOptions options = requested;
-  if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze()) options.follow_gaze = true;
+  if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
+    options.follow_gaze = true;
   const Scene scene = window_->document()->scene();
   const QString scenePath = window_->document()->filePath();
   auto cancel = std::make_shared<std::atomic<bool>>(false);

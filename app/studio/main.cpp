@@ -18,11 +18,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/studio/analysis_features.h"
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_mode.h"
-#include "app/studio/live_trace_features.h"
 #include "app/studio/window_capture.h"
-#include "app/studio/analysis_features.h"
 #include "fovea/version.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"

@@ -17,9 +17,9 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
+#include "app/studio/analysis_features.h"
 #include "app/studio/live_trace_features.h"
 #include "app/studio/window_capture.h"
-#include "app/studio/analysis_features.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
 #include "widgets/bench/devices_panel.h"

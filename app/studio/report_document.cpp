@@ -19,8 +19,8 @@
 #include <cmath>
 #include <memory>
 
-#include "app/studio/main_window.h"
 #include "app/studio/live_trace_features.h"
+#include "app/studio/main_window.h"
 #include "fovea/version.h"
 #include "model/json_numbers.h"
 #include "model/scene/scene_geometry.h"
@@ -78,33 +78,35 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
     const auto& f = t.json.value("fov_deg", nlohmann::json::object());
     h += row3("Retinal FOV at gaze " + gazeText(t.gaze_deg, u),
               QString("%1 × %2 %3")
-                      .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))), g(u.angleFromDeg(jsonNumber(f, {"vertical"}))),
-                           u.angleSymbol()) +
+                      .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))),
+                           g(u.angleFromDeg(jsonNumber(f, {"vertical"}))), u.angleSymbol()) +
                   QString(" (diag. %1)").arg(g(u.angleFromDeg(jsonNumber(f, {"diagonal"})))),
               QString("trace, %1 rays/λ").arg(d.options.rays));
     QStringList per;
     for (const auto& w : t.json.value("per_wavelength", nlohmann::json::array()))
       per << QString("%1 nm: %2").arg(g(jsonNumber(w, {"wavelength_nm"}))).arg(pct(jsonNumber(w, {"mean_efficiency"})));
-    h += row3("Mean efficiency in the pupil at gaze " + gazeText(t.gaze_deg, u), pct(jsonNumber(t.json, {"mean_efficiency"})),
-              per.join(", "));
+    h += row3("Mean efficiency in the pupil at gaze " + gazeText(t.gaze_deg, u),
+              pct(jsonNumber(t.json, {"mean_efficiency"})), per.join(", "));
   }
   if (d.sweep.is_object()) {
     const auto& eb = d.sweep.value("eyebox", nlohmann::json::object());
     h += row3(
         "Eye box", u.length(jsonNumber(d.sweep, {"eyebox_mm"})),
         QString("sweep %1 … %2 %3, FOV within %4 %3 of the zero-gaze %5 %3")
-            .arg(g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN : jsonNumber(d.sweep["samples"].front(), {"gaze_deg"}))),
-                 g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN : jsonNumber(d.sweep["samples"].back(), {"gaze_deg"}))),
+            .arg(g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN
+                                                             : jsonNumber(d.sweep["samples"].front(), {"gaze_deg"}))),
+                 g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN
+                                                             : jsonNumber(d.sweep["samples"].back(), {"gaze_deg"}))),
                  u.angleSymbol(), g(u.angleFromDeg(1.0)), g(u.angleFromDeg(jsonNumber(eb, {"reference_fov_deg"})))));
     h += row3("Gaze range of the eye box",
               QString("%1 … %2 %3")
-                  .arg(g(u.angleFromDeg(jsonNumberAt(eb, "gaze_range_deg", 0))), g(u.angleFromDeg(jsonNumberAt(eb, "gaze_range_deg", 1))),
-                       u.angleSymbol()),
+                  .arg(g(u.angleFromDeg(jsonNumberAt(eb, "gaze_range_deg", 0))),
+                       g(u.angleFromDeg(jsonNumberAt(eb, "gaze_range_deg", 1))), u.angleSymbol()),
               "sweep (borders bisected)");
     h += row3("HOE travel at the eye-box borders",
               QString("%1 … %2 %3")
-                  .arg(g(u.lengthFromMm(jsonNumberAt(eb, "travel_mm", 0))), g(u.lengthFromMm(jsonNumberAt(eb, "travel_mm", 1))),
-                       u.lengthSymbol()),
+                  .arg(g(u.lengthFromMm(jsonNumberAt(eb, "travel_mm", 0))),
+                       g(u.lengthFromMm(jsonNumberAt(eb, "travel_mm", 1))), u.lengthSymbol()),
               "sweep: FOV-maximising HOE shift");
     double lo = INFINITY, hi = -INFINITY;
     for (const auto& s : d.sweep.value("samples", nlohmann::json::array())) {
@@ -120,13 +122,13 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
       if (e < nearest) nearest = e, best = jsonNumber(s, {"perceived_cpd"});
     }
     h += row3("Perceived resolution at the gaze", g(best) + " cpd", "resolution");
-    h += row3(
-        "Peripheral field",
-        QString("%1 … %2 %3")
-            .arg(g(u.angleFromDeg(jsonNumberAt(d.resolution, "peripheral_field_deg", 0))),
-                 g(u.angleFromDeg(jsonNumberAt(d.resolution, "peripheral_field_deg", 1))), u.angleSymbol()),
-        QString("%1 of %2 projector columns reach the eye")
-            .arg(g(jsonNumber(d.resolution, {"peripheral_pixel_integral"})), g(jsonNumber(d.resolution, {"pixels_horizontal"}), 6)));
+    h += row3("Peripheral field",
+              QString("%1 … %2 %3")
+                  .arg(g(u.angleFromDeg(jsonNumberAt(d.resolution, "peripheral_field_deg", 0))),
+                       g(u.angleFromDeg(jsonNumberAt(d.resolution, "peripheral_field_deg", 1))), u.angleSymbol()),
+              QString("%1 of %2 projector columns reach the eye")
+                  .arg(g(jsonNumber(d.resolution, {"peripheral_pixel_integral"})),
+                       g(jsonNumber(d.resolution, {"pixels_horizontal"}), 6)));
   }
   if (d.selectivity.is_object())
     for (const auto& l : d.selectivity.value("layers", nlohmann::json::array()))

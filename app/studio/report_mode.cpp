@@ -9,9 +9,9 @@
 #include <QJsonObject>
 #include <QTextStream>
 
+#include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_data.h"
-#include "app/studio/analysis_features.h"
 #include "widgets/message_log.h"
 
 namespace fovea::studio {

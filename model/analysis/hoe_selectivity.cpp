@@ -14,7 +14,6 @@ namespace fovea {
 
 namespace {
 
-
 double closestWavelength(const std::vector<double>& available, double target) {
   double best = target, dist = INFINITY;
   for (double w : available)

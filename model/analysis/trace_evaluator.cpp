@@ -14,7 +14,6 @@ namespace fovea {
 
 namespace {
 
-
 // Unit arrival direction of a field angle (yaw = atan2(x, z), pitch = asin(y); fieldAngleDeg()).
 Eigen::Vector3d fieldDirection(double yaw_deg, double pitch_deg) {
   const double y = yaw_deg * kDeg, p = pitch_deg * kDeg;

@@ -122,8 +122,7 @@ class DisplayCameraMap {
 
 std::unique_ptr<DisplayCameraMap> makePeripheralMap(const Scene& scene, const EyeViewCamera& camera,
                                                     const BenchPose& pose, const PeripheralMapOptions& options = {});
-std::unique_ptr<DisplayCameraMap> makeFovealMap(const Scene& scene, const EyeViewCamera& camera,
-                                                const BenchPose& pose);
+std::unique_ptr<DisplayCameraMap> makeFovealMap(const Scene& scene, const EyeViewCamera& camera, const BenchPose& pose);
 std::unique_ptr<DisplayCameraMap> makeDisplayMap(BenchDisplay display, const Scene& scene, const EyeViewCamera& camera,
                                                  const BenchPose& pose);
 

@@ -8,8 +8,7 @@
 
 namespace fovea {
 
-namespace {
-}
+namespace {}
 
 std::array<int, 2> projectorGrid(const Projector& p, int rays) {
   const double th = std::tan(0.5 * p.fov_deg[0] * kDeg), tv = std::tan(0.5 * p.fov_deg[1] * kDeg);

@@ -6,8 +6,7 @@
 
 namespace fovea {
 
-namespace {
-}
+namespace {}
 
 Eigen::Matrix3d rotationFromDeg(const std::array<double, 3>& ypr) {
   // Pitch > 0 must lift +z towards +y: a rotation about +x by -pitch (right-hand rule).

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "model/color/color_calibration.h"
-#include "model/gaze/pupil_camera.h"
 #include "model/gaze/gaze_calibration.h"
+#include "model/gaze/pupil_camera.h"
 #include "model/image/image_io.h"
 
 #include "tests/cli/cli_process.h"

@@ -14,8 +14,8 @@
 #include <cmath>
 
 #include "app/embedded_scene.h"
-#include "app/studio/main_window.h"
 #include "app/studio/analysis_features.h"
+#include "app/studio/main_window.h"
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"

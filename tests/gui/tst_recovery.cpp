@@ -19,8 +19,8 @@
 #include <QUndoStack>
 
 #include "app/embedded_scene.h"
-#include "app/studio/main_window.h"
 #include "app/studio/analysis_features.h"
+#include "app/studio/main_window.h"
 #include "model/scene/scene_io.h"
 #include "widgets/autosave.h"
 #include "widgets/preferences.h"

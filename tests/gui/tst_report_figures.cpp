@@ -12,9 +12,9 @@
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_document.h"
-#include "app/studio/live_trace_features.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "viz/scene_view.h"

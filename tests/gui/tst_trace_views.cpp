@@ -15,8 +15,8 @@
 #include <vtkProp.h>
 #include <vtkScalarBarActor.h>
 
-#include "app/studio/main_window.h"
 #include "app/studio/live_trace_features.h"
+#include "app/studio/main_window.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
 #include "viz/element_handles.h"

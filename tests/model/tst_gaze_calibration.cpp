@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "model/gaze/pupil_camera.h"
 #include "model/gaze/gaze_calibration.h"
+#include "model/gaze/pupil_camera.h"
 
 using namespace fovea::gaze;
 

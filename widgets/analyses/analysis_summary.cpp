@@ -25,8 +25,8 @@ struct Table {
 
 QString fovText(const nlohmann::json& f, const DisplayUnits& u) {
   return QString("%1 × %2 %3 (diagonal %4)")
-      .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))), g(u.angleFromDeg(jsonNumber(f, {"vertical"}))), u.angleSymbol(),
-           g(u.angleFromDeg(jsonNumber(f, {"diagonal"}))));
+      .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))), g(u.angleFromDeg(jsonNumber(f, {"vertical"}))),
+           u.angleSymbol(), g(u.angleFromDeg(jsonNumber(f, {"diagonal"}))));
 }
 
 QString range(const nlohmann::json& j, const char* key, bool length, const DisplayUnits& u) {
@@ -46,13 +46,15 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
     t.add("Gaze", range(r, "gaze_deg", false, u).replace(" … ", ", "));
     t.add("Rays in the pupil / efficient / traced",
           QString("%1 / %2 / %3")
-              .arg(g(jsonNumber(r, {"rays_in_pupil"}), 8), g(jsonNumber(r, {"rays_efficient"}), 8), g(jsonNumber(r, {"rays"}), 8)));
+              .arg(g(jsonNumber(r, {"rays_in_pupil"}), 8), g(jsonNumber(r, {"rays_efficient"}), 8),
+                   g(jsonNumber(r, {"rays"}), 8)));
     t.add("Mean efficiency in the pupil", pct(jsonNumber(r, {"mean_efficiency"})));
     t.add("Mean efficiency on the HOE", pct(jsonNumber(r, {"mean_efficiency_on_hoe"})));
     if (r.contains("per_wavelength"))
       for (const auto& w : r["per_wavelength"])
         t.add(QString("%1 nm").arg(g(jsonNumber(w, {"wavelength_nm"}))),
-              fovText(w.value("fov_deg", nlohmann::json::object()), u) + ", η " + pct(jsonNumber(w, {"mean_efficiency"})));
+              fovText(w.value("fov_deg", nlohmann::json::object()), u) + ", η " +
+                  pct(jsonNumber(w, {"mean_efficiency"})));
   } else if (id == "sweep") {
     const auto& eb = r.value("eyebox", nlohmann::json::object());
     t.add("Eye box", u.length(jsonNumber(r, {"eyebox_mm"})));
@@ -98,12 +100,14 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
   } else if (id == "optimize-lens") {
     t.add("Best lens", QString::fromStdString(r.value("vendor", std::string()) + " " + r.value("part", std::string())) +
                            QString(" (f = %1)").arg(u.length(jsonNumber(r, {"focal_length_mm"}))));
-    t.add("Distance / decentre / tilt", QString("%1 / %2 / %3")
-                                            .arg(u.length(jsonNumber(r, {"distance_mm"})), u.length(jsonNumber(r, {"decenter_mm"})),
-                                                 u.angle(jsonNumber(r, {"tilt_deg"}))));
-    t.add("RMS spot on the HOE", QString("%1 µm → %2 µm (%3 % sharper)")
-                                     .arg(g(jsonNumber(r, {"rms_spot_um", "before"})), g(jsonNumber(r, {"rms_spot_um", "after"})),
-                                          g(jsonNumber(r, {"improvement_percent"}), 3)));
+    t.add("Distance / decentre / tilt",
+          QString("%1 / %2 / %3")
+              .arg(u.length(jsonNumber(r, {"distance_mm"})), u.length(jsonNumber(r, {"decenter_mm"})),
+                   u.angle(jsonNumber(r, {"tilt_deg"}))));
+    t.add("RMS spot on the HOE",
+          QString("%1 µm → %2 µm (%3 % sharper)")
+              .arg(g(jsonNumber(r, {"rms_spot_um", "before"})), g(jsonNumber(r, {"rms_spot_um", "after"})),
+                   g(jsonNumber(r, {"improvement_percent"}), 3)));
   } else if (id == "selectivity") {
     for (const auto& l : r.value("layers", nlohmann::json::array()))
       t.add(QString::fromStdString(l.value("name", std::string())) +

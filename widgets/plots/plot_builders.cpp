@@ -93,13 +93,15 @@ QList<PlotData> fromSweep(const nlohmann::json& r, const DisplayUnits& u, const 
   for (const auto& s : arr(r, "samples")) {
     const double g = u.angleFromDeg(jsonNumber(s, {"gaze_deg"}));
     const double fh = u.angleFromDeg(jsonNumber(s, {"fov_deg", "horizontal"})),
-                 fv = u.angleFromDeg(jsonNumber(s, {"fov_deg", "vertical"})), fd = u.angleFromDeg(jsonNumber(s, {"fov_deg", "diagonal"}));
+                 fv = u.angleFromDeg(jsonNumber(s, {"fov_deg", "vertical"})),
+                 fd = u.angleFromDeg(jsonNumber(s, {"fov_deg", "diagonal"}));
     addPoint(h, g, fh);
     addPoint(v, g, fv);
     addPoint(d, g, fd);
     fov.rows.append({cell(g), cell(fh), cell(fv), cell(fd), cell(jsonNumber(s, {"mean_efficiency"})),
                      cell(jsonNumber(s, {"efficiency_uniformity"}))});
-    const double sh = u.lengthFromMm(jsonNumber(s, {"hoe_shift_mm"})), pp = u.lengthFromMm(jsonNumber(s, {"pupil_position_mm"}));
+    const double sh = u.lengthFromMm(jsonNumber(s, {"hoe_shift_mm"})),
+                 pp = u.lengthFromMm(jsonNumber(s, {"pupil_position_mm"}));
     addPoint(shift, g, sh);
     addPoint(pupil, g, pp);
     travel.rows.append({cell(g), cell(sh), cell(pp)});
@@ -144,20 +146,23 @@ QList<PlotData> fromSelectivity(const nlohmann::json& r, const DisplayUnits& u, 
     const double probe = jsonNumber(l, {"probe_wavelength_nm"});
     const QString label = QString("%1 layer (%2 nm)").arg(name, fmt(probe));
     PlotSeries a = series(label, Style::Line, wavelengthQColor(probe));
-    for (const auto& s : arr(l, "angle")) addPoint(a, u.angleFromDeg(jsonNumber(s, {"detuning_deg"})), jsonNumber(s, {"efficiency"}));
+    for (const auto& s : arr(l, "angle"))
+      addPoint(a, u.angleFromDeg(jsonNumber(s, {"detuning_deg"})), jsonNumber(s, {"efficiency"}));
     PlotSeries w = series(label, Style::Line, wavelengthQColor(probe));
     for (const auto& s : arr(l, "spectrum")) {
       addPoint(w, jsonNumber(s, {"wavelength_nm"}), jsonNumber(s, {"efficiency"}));
-      spec.rows.append({name, cell(jsonNumber(s, {"wavelength_nm"})), cell(jsonNumber(s, {"efficiency"})), cell(jsonNumber(s, {"xi"}))});
+      spec.rows.append({name, cell(jsonNumber(s, {"wavelength_nm"})), cell(jsonNumber(s, {"efficiency"})),
+                        cell(jsonNumber(s, {"xi"}))});
     }
     ang.series.append(a);
     spec.series.append(w);
     ang.columns << withUnit(name + " efficiency", {});
     angleCurves.push_back(&arr(l, "angle"));
     summary << QString("%1: η %2 at the nominal probe, peak %3 at %4, FWHM %5 / %6 nm")
-                   .arg(name, fmt(jsonNumber(l, {"nominal_efficiency"}), 3), fmt(jsonNumber(l, {"peak_angle_efficiency"}), 3),
-                        u.angle(jsonNumber(l, {"peak_detuning_deg"}), 3), u.angle(jsonNumber(l, {"angular_fwhm_deg"}), 3),
-                        fmt(jsonNumber(l, {"spectral_fwhm_nm"}), 3));
+                   .arg(name, fmt(jsonNumber(l, {"nominal_efficiency"}), 3),
+                        fmt(jsonNumber(l, {"peak_angle_efficiency"}), 3),
+                        u.angle(jsonNumber(l, {"peak_detuning_deg"}), 3),
+                        u.angle(jsonNumber(l, {"angular_fwhm_deg"}), 3), fmt(jsonNumber(l, {"spectral_fwhm_nm"}), 3));
   }
   // Wide table: the layers share the detuning samples.
   const std::size_t n = angleCurves.empty() ? 0 : angleCurves.front()->size();
@@ -199,7 +204,8 @@ QList<PlotData> fromGrating(const nlohmann::json& r, const DisplayUnits& u, cons
   for (const auto& s : arr(r, "samples")) {
     const double x = u.angleFromDeg(jsonNumber(s, {"detuning_deg"}));
     addPoint(k, x, jsonNumber(s, {"kogelnik_efficiency"}));
-    QVariantList row{cell(u.angleFromDeg(jsonNumber(s, {"probe_deg"}))), cell(x), cell(jsonNumber(s, {"kogelnik_efficiency"}))};
+    QVariantList row{cell(u.angleFromDeg(jsonNumber(s, {"probe_deg"}))), cell(x),
+                     cell(jsonNumber(s, {"kogelnik_efficiency"}))};
     if (rcwa) {
       addPoint(w, x, jsonNumber(s, {"rcwa_efficiency"}));
       row << cell(jsonNumber(s, {"rcwa_efficiency"}));
@@ -212,8 +218,8 @@ QList<PlotData> fromGrating(const nlohmann::json& r, const DisplayUnits& u, cons
   p.caption = QString(
                   "Planar %1 grating: efficiency vs probe angle around the request's probe (η %2, ν %3, "
                   "ξ %4 there)%5.")
-                  .arg(str(c, "type"), fmt(jsonNumber(c, {"efficiency"}), 4), fmt(jsonNumber(c, {"nu"}), 4), fmt(jsonNumber(c, {"xi"}), 4),
-                       rcwa ? ", Kogelnik against converged RCWA" : "");
+                  .arg(str(c, "type"), fmt(jsonNumber(c, {"efficiency"}), 4), fmt(jsonNumber(c, {"nu"}), 4),
+                       fmt(jsonNumber(c, {"xi"}), 4), rcwa ? ", Kogelnik against converged RCWA" : "");
   p.source = source;
   return {p};
 }
@@ -247,11 +253,12 @@ QList<PlotData> fromResolution(const nlohmann::json& r, const DisplayUnits& u, c
     addPoint(peripheral, e, jsonNumber(s, {"peripheral_cpd"}));
     addPoint(optical, e, jsonNumber(s, {"optical_limit_cpd"}));
     if (std::isfinite(e)) xmin = std::min(xmin, e), xmax = std::max(xmax, e);
-    p.rows.append(
-        {cell(e), cell(jsonNumber(s, {"foveal_cpd"})), cell(jsonNumber(s, {"peripheral_cpd"})), cell(jsonNumber(s, {"optical_limit_cpd"})),
-         cell(jsonNumber(s, {"optical_limit_model_cpd"})), cell(jsonNumber(s, {"perceived_cpd"})),
-         s.contains("foveal_shown") && s["foveal_shown"].is_boolean() ? QVariant(s["foveal_shown"].get<bool>())
-                                                                      : QVariant()});
+    p.rows.append({cell(e), cell(jsonNumber(s, {"foveal_cpd"})), cell(jsonNumber(s, {"peripheral_cpd"})),
+                   cell(jsonNumber(s, {"optical_limit_cpd"})), cell(jsonNumber(s, {"optical_limit_model_cpd"})),
+                   cell(jsonNumber(s, {"perceived_cpd"})),
+                   s.contains("foveal_shown") && s["foveal_shown"].is_boolean()
+                       ? QVariant(s["foveal_shown"].get<bool>())
+                       : QVariant()});
   }
   if (std::isfinite(eyeLimit) && xmin < xmax) eye.points = {QPointF(xmin, eyeLimit), QPointF(xmax, eyeLimit)};
   perceived.markerSize = 0;
@@ -305,8 +312,9 @@ QList<PlotData> fromKogelnikVsRcwa(const nlohmann::json& r, const DisplayUnits&,
     addPoint(byGeometry[g], jsonNumber(s, {"rho"}), std::max(kFloor, jsonNumber(s, {"abs_error"})));
     p.rows.append({QString::fromStdString(g), cell(jsonNumber(s, {"thickness_um"})), cell(jsonNumber(s, {"n1"})),
                    cell(jsonNumber(s, {"xi_target"})), cell(jsonNumber(s, {"rho"})), cell(jsonNumber(s, {"klein_q"})),
-                   cell(jsonNumber(s, {"kogelnik_efficiency"})), cell(jsonNumber(s, {"rcwa_efficiency"})), cell(jsonNumber(s, {"abs_error"})),
-                   cell(jsonNumber(s, {"kogelnik_ns"})), cell(jsonNumber(s, {"rcwa_ms"}))});
+                   cell(jsonNumber(s, {"kogelnik_efficiency"})), cell(jsonNumber(s, {"rcwa_efficiency"})),
+                   cell(jsonNumber(s, {"abs_error"})), cell(jsonNumber(s, {"kogelnik_ns"})),
+                   cell(jsonNumber(s, {"rcwa_ms"}))});
   }
   for (const auto& g : order) p.series.append(byGeometry[g]);
   QString html =
@@ -320,10 +328,11 @@ QList<PlotData> fromKogelnikVsRcwa(const nlohmann::json& r, const DisplayUnits&,
                 "<tr><td>%1 – %2</td><td align='right'>%3</td><td align='right'>%4</td><td align='right'>%5</td>"
                 "<td align='right'>%6</td><td align='right'>%7</td><td align='right'>%8</td>"
                 "<td align='right'>%9</td></tr>")
-                .arg(fmt(jsonNumber(b, {"rho_min"})), std::isfinite(hi) ? fmt(hi) : QStringLiteral("∞"), fmt(jsonNumber(b, {"points"})),
-                     QString::number(jsonNumber(b, {"max_error"}), 'e', 2), QString::number(jsonNumber(b, {"median_error"}), 'e', 2),
-                     QString::number(jsonNumber(b, {"max_error_weak"}), 'e', 2), fmt(jsonNumber(b, {"mean_kogelnik_ns"}), 3),
-                     fmt(jsonNumber(b, {"mean_rcwa_ms"}), 3),
+                .arg(fmt(jsonNumber(b, {"rho_min"})), std::isfinite(hi) ? fmt(hi) : QStringLiteral("∞"),
+                     fmt(jsonNumber(b, {"points"})), QString::number(jsonNumber(b, {"max_error"}), 'e', 2),
+                     QString::number(jsonNumber(b, {"median_error"}), 'e', 2),
+                     QString::number(jsonNumber(b, {"max_error_weak"}), 'e', 2),
+                     fmt(jsonNumber(b, {"mean_kogelnik_ns"}), 3), fmt(jsonNumber(b, {"mean_rcwa_ms"}), 3),
                      std::isfinite(ratio) ? QString::number(ratio, 'e', 1) : QStringLiteral("—"));
   }
   p.summaryHtml = html + "</table>";
@@ -407,8 +416,10 @@ QList<PlotData> fromLens(const nlohmann::json& r, const DisplayUnits& u, const Q
     addPoint(byDiameter[dia], f, jsonNumber(c, {"rms_spot_um"}));
     if (std::isfinite(f)) fmin = std::min(fmin, f), fmax = std::max(fmax, f);
     p.rows.append({QString::fromStdString(c.value("part", std::string())), cell(f), cell(u.lengthFromMm(dia)),
-                   cell(u.lengthFromMm(jsonNumber(c, {"distance_mm"}))), cell(u.lengthFromMm(jsonNumber(c, {"decenter_mm"}))),
-                   cell(u.angleFromDeg(jsonNumber(c, {"tilt_deg"}))), cell(jsonNumber(c, {"rms_spot_um"})), cell(jsonNumber(c, {"evaluations"}))});
+                   cell(u.lengthFromMm(jsonNumber(c, {"distance_mm"}))),
+                   cell(u.lengthFromMm(jsonNumber(c, {"decenter_mm"}))),
+                   cell(u.angleFromDeg(jsonNumber(c, {"tilt_deg"}))), cell(jsonNumber(c, {"rms_spot_um"})),
+                   cell(jsonNumber(c, {"evaluations"}))});
   }
   for (auto& [d, s] : byDiameter) p.series.append(s);
   const double before = jsonNumber(r, {"rms_spot_um", "before"});
@@ -420,8 +431,8 @@ QList<PlotData> fromLens(const nlohmann::json& r, const DisplayUnits& u, const Q
   p.caption = QString(
                   "Beam-shaping lens candidates (optimize-lens): the best placement of each stock lens. Best: "
                   "%1, RMS spot %2 µm → %3 µm (%4 % sharper).")
-                  .arg(str(r, "vendor") + " " + str(r, "part"), fmt(before), fmt(jsonNumber(r, {"rms_spot_um", "after"})),
-                       fmt(jsonNumber(r, {"improvement_percent"}), 3));
+                  .arg(str(r, "vendor") + " " + str(r, "part"), fmt(before),
+                       fmt(jsonNumber(r, {"rms_spot_um", "after"})), fmt(jsonNumber(r, {"improvement_percent"}), 3));
   p.source = source;
   return {p};
 }
