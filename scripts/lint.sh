@@ -2,9 +2,10 @@
 # Lint step of the test command (scripts/test.sh), also runnable alone after a build:
 #   bash scripts/lint.sh [BUILD_DIR]      (default build/default; needs its compile_commands.json)
 # 1. clang-format --dry-run -Werror over every tracked C++ file (the repo's .clang-format);
-# 2. clang-tidy (the repo's .clang-tidy, findings are errors) over model/, devices/ and app/cli/,
-#    in parallel, skipping units whose inputs are unchanged since a clean check
-#    (scripts/tidy_cached.py; cache in ~/.cache/fovea-clang-tidy or $FOVEA_TIDY_CACHE).
+# 2. clang-tidy (the repo's .clang-tidy, findings are errors) over the translation units of
+#    $FOVEA_TIDY_DIRS (default: model), one per core, skipping units whose inputs are unchanged
+#    since a clean check (scripts/tidy_cached.py; cache in ~/.cache/fovea-clang-tidy or
+#    $FOVEA_TIDY_CACHE). FOVEA_TIDY_DIRS="model devices app/cli" widens it.
 # FOVEA_LINT=format or FOVEA_LINT=tidy runs one half only. Exit status 1 on any finding.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +30,7 @@ if [ "$what" != format ]; then
     echo "lint: $build/compile_commands.json missing: configure and build first (cmake --preset default)" >&2
     exit 1
   fi
-  python3 scripts/tidy_cached.py --build "$build" --jobs "$(nproc)" model devices app/cli || status=1
+  # shellcheck disable=SC2086  # a list of folders
+  python3 scripts/tidy_cached.py --build "$build" --jobs "$(nproc)" ${FOVEA_TIDY_DIRS:-model} || status=1
 fi
 exit $status
