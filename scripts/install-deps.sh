@@ -11,7 +11,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev libtbb-dev
   xvfb xauth libgl1-mesa-dri x11-utils
   poppler-utils python3-numpy python3-matplotlib opencv-doc
-  clang-format umockdev libumockdev-dev
+  clang-format clang-tidy umockdev libumockdev-dev
 )
 
 missing=()

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# README "run": install Debian packages (idempotent), build, open fovea-studio on the
-# embedded default prototype scene. Without a DISPLAY it runs under Xvfb, saves a
+# README "run": install Debian packages (idempotent), build the studio and the CLI in the
+# default tree (warnings as errors; scripts/test.sh tests the same tree), open fovea-studio on
+# the embedded default prototype scene. Without a DISPLAY it runs under Xvfb, saves a
 # screenshot of the window, prints its path and exits 0.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
+export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/fovea-ccache}"
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-5G}"
 cmake --preset default >/dev/null
 cmake --build --preset default --target fovea-studio fovea-cli
 studio=build/default/app/fovea-studio

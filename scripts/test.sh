@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
-# README "test": install Debian packages (idempotent), build (warnings as errors), run the
-# whole CTest suite (GUI tests under Xvfb), then the model/devices/CLI tests under
-# ASan + UBSan.
+# README "test": install Debian packages (idempotent), build the default tree (warnings as
+# errors; the same tree scripts/run.sh uses), run the whole CTest suite (GUI tests under
+# Xvfb), lint (scripts/lint.sh: clang-format and clang-tidy), then build the ASan + UBSan tree
+# and run the model/devices/CLI tests in it. Two trees in all: build/default and build/asan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/fovea-ccache}"
 # Relative paths in the cache key: a fresh clone elsewhere reuses earlier compilations.
-export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE=5G
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-5G}"
 start=$(date +%s)
-cmake --preset ci >/dev/null
-cmake --build --preset ci
-xvfb-run -a -s "-screen 0 1920x1080x24" ctest --preset ci
+# Configure, build, test (CMakePresets.json workflow "default").
+xvfb-run -a -s "-screen 0 1920x1080x24" cmake --workflow --preset default
+echo "== Lint =="
+bash scripts/lint.sh build/default
 echo "== ASan + UBSan configuration =="
-cmake --preset asan >/dev/null
-cmake --build --preset asan
-ctest --preset asan
-echo "test.sh: all suites passed in $(( $(date +%s) - start )) s"
+cmake --workflow --preset asan
+echo "test.sh: all suites and the lint passed in $(( $(date +%s) - start )) s"

@@ -15,6 +15,7 @@
 #include <vtkProperty.h>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 #include "viz/polyline.h"
 #include "viz/scene_elements.h"
 #include "viz/scene_view.h"
@@ -23,7 +24,6 @@ namespace fovea::viz {
 
 namespace {
 constexpr std::array<std::array<double, 3>, 3> kAxisColor{{{0.95, 0.25, 0.25}, {0.30, 0.90, 0.30}, {0.30, 0.55, 1.00}}};
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr int kRingSegments = 96;
 // Ring colours: yaw turns about y (green), pitch about the yawed x (red), roll about z (blue).
 constexpr std::array<int, 3> kRingColorAxis{1, 0, 2};

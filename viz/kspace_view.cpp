@@ -19,6 +19,7 @@
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "model/color/srgb.h"
 #include "viz/efficiency_colors.h"
 #include "viz/scene_actors.h"
 
@@ -119,7 +120,7 @@ void KSpaceView::setCloud(const std::vector<GratingVectorSample>& samples, const
   for (const auto& s : samples) {
     if (std::any_of(hidden.begin(), hidden.end(), [&](double h) { return std::abs(h - s.wavelength_nm) < 1e-6; }))
       continue;
-    rec.add(s.k_recorded, wavelengthColor(s.wavelength_nm));
+    rec.add(s.k_recorded, color::wavelengthColor(s.wavelength_nm));
     const Eigen::Vector3d drawn = s.k_recorded + exaggeration_ * (s.k_probe - s.k_recorded);
     probe.add(drawn, efficiencyColor(s.efficiency));
     grow(s.k_recorded);

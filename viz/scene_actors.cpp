@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <vtkActor.h>
 #include <vtkCellArray.h>
@@ -17,15 +16,17 @@
 #include <vtkRotationalExtrusionFilter.h>
 #include <vtkSphereSource.h>
 
+#include "model/analysis/beam_shaping.h"
+#include "model/analysis/foveal_optics.h"
+#include "model/color/srgb.h"
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 #include "viz/polyline.h"
 #include "viz/scene_elements.h"
 
 namespace fovea::viz {
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 vtkSmartPointer<vtkMatrix4x4> matrixOf(const Frame& f) {
   auto m = vtkSmartPointer<vtkMatrix4x4>::New();
@@ -100,7 +101,7 @@ void addHoe(const Scene& scene, SceneLayer& layer) {
     const double t = l.thickness_um * 1e-3 * exaggeration, z = l.offset_um * 1e-3 * exaggeration;
     z_min = std::min(z_min, z - t / 2);
     z_max = std::max(z_max, z + t / 2);
-    auto actor = makeActor(box(w, h, t, {0, 0, z}), wavelengthColor(l.recording.wavelength_nm), 0.4, hf);
+    auto actor = makeActor(box(w, h, t, {0, 0, z}), color::wavelengthColor(l.recording.wavelength_nm), 0.4, hf);
     layer.add(actor, hoeLayerId(static_cast<int>(i)));
   }
   // The carrier's outline around the stack, and the substrate on the world side: local +z,
@@ -125,10 +126,11 @@ void addProjector(const Scene& scene, SceneLayer& layer) {
   const Projector& p = scene.projector;
   const Frame pf = frameOf(p.pose);
   layer.add(makeActor(box(24.0, 16.0, 36.0, {0, 0, -18.5}), colors::kProjectorBody, 1.0, pf), "projector");
-  layer.add(makeActor(sphereCap(std::max(p.exit_pupil_diameter_mm, 1.0), 90.0),
-                      p.wavelengths_nm.empty() ? colors::kProjectorFrustum : wavelengthColor(p.wavelengths_nm.front()),
-                      1.0, pf),
-            "projector");
+  layer.add(
+      makeActor(sphereCap(std::max(p.exit_pupil_diameter_mm, 1.0), 90.0),
+                p.wavelengths_nm.empty() ? colors::kProjectorFrustum : color::wavelengthColor(p.wavelengths_nm.front()),
+                1.0, pf),
+      "projector");
   // Frustum: the four corner rays of the projection up to where they meet the HOE plane
   // (or 100 mm along the axis when a ray misses it or runs away from it).
   const Frame hf = frameOf(scene.hoe.pose);
@@ -193,10 +195,10 @@ void addFovealDisplay(const Scene& scene, SceneLayer& layer) {
   layer.add(makeActor(box(f.size_mm[0], f.size_mm[1], 1.0, {0, 0, -0.5}), colors::kMicroOled, 1.0, ff),
             "foveal_display");
   // Image combiner on the eye's zero-gaze axis, eye_distance_mm in front of the pupil. Its
-  // aperture passes the foveal field: half angle atan(M * width / 2 / d_f) plus the pupil.
+  // aperture passes the foveal field (half the horizontal foveal FOV) plus the pupil.
   const EyePlacement e = placeEye(scene, 0.0, 0.0);
   const ImageCombiner& ic = f.combiner;
-  const double half_fov = std::atan(ic.magnification * f.size_mm[0] / 2.0 / ic.image_distance_mm);
+  const double half_fov = 0.5 * fovealFovDeg(scene)[0] * kDeg;
   const double radius = ic.eye_distance_mm * std::tan(half_fov) + e.pupil_radius_mm;
   vtkNew<vtkCylinderSource> disc;  // axis along local y: turned to z by the frame below
   disc->SetRadius(radius);
@@ -211,8 +213,8 @@ void addFovealDisplay(const Scene& scene, SceneLayer& layer) {
 void addLens(const Scene& scene, SceneLayer& layer) {
   const BeamShapingLens& l = scene.lens;
   const double rim = l.diameter_mm / 2.0;
-  // Symmetric lens from the lensmaker's thin-lens equation: 1/f = (n - 1) * 2 / R.
-  const double R = 2.0 * l.focal_length_mm * (l.index - 1.0);
+  // Symmetric bi-convex lens with the thick-lens radii of the spot model (beam_shaping.h).
+  const double R = biconvexRadiusMm(l.focal_length_mm, l.index, l.center_thickness_mm);
   const double absR = std::max(std::abs(R), rim * 1.0001);
   auto sag = [&](double rr) { return std::copysign(absR - std::sqrt(absR * absR - rr * rr), R); };
   double half_ct = std::max(l.center_thickness_mm, 0.1) / 2.0;
@@ -271,31 +273,6 @@ void addStages(const Scene& scene, SceneLayer& layer) {
 }
 
 }  // namespace
-
-std::array<double, 3> wavelengthColor(double nm) {
-  // Piecewise-linear spectrum approximation (after D. Bruton's widely used table).
-  double r = 0, g = 0, b = 0;
-  if (nm < 440) {
-    r = (440 - nm) / 60.0;
-    b = 1;
-  } else if (nm < 490) {
-    g = (nm - 440) / 50.0;
-    b = 1;
-  } else if (nm < 510) {
-    g = 1;
-    b = (510 - nm) / 20.0;
-  } else if (nm < 580) {
-    r = (nm - 510) / 70.0;
-    g = 1;
-  } else if (nm < 645) {
-    r = 1;
-    g = (645 - nm) / 65.0;
-  } else {
-    r = 1;
-  }
-  auto clamp = [](double v) { return std::clamp(v, 0.0, 1.0); };
-  return {clamp(r), clamp(g), clamp(b)};
-}
 
 void buildSceneActors(const Scene& scene, SceneLayer& layer) {
   addHoe(scene, layer);

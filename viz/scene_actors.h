@@ -37,9 +37,6 @@ inline constexpr std::array<double, 3> kStage{0.85, 0.35, 0.85};
 inline constexpr std::array<double, 3> kSelection{1.00, 1.00, 0.00};
 }  // namespace colors
 
-// Approximate sRGB colour of a wavelength (380..780 nm), for drawing only.
-std::array<double, 3> wavelengthColor(double wavelength_nm);
-
 // Adds every element's actors to `layer` (which the caller cleared).
 void buildSceneActors(const Scene& scene, SceneLayer& layer);
 

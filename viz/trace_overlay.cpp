@@ -20,6 +20,7 @@
 
 #include "model/physics/eye_model.h"
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 #include "viz/efficiency_colors.h"
 #include "viz/polyline.h"
 #include "viz/scene_view.h"
@@ -28,7 +29,6 @@ namespace fovea::viz {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kDash_mm = 1.2;         // dash and gap length of rays missing the pupil
 constexpr double kAwayLength_mm = 30.0;  // drawn length of rays that do not head into the eye
 constexpr std::array<double, 3> kPupilGreen{0.25, 0.95, 0.35};

@@ -1,7 +1,7 @@
 #pragma once
 // Our Qt 6 <-> VTK bridge: a QOpenGLWidget hosting a vtkGenericOpenGLRenderWindow.
 // VTK's own Qt module in Debian bookworm is built against Qt 5, so we do not use it
-// (docs: /work/shared/docs/PLATFORM.md quirk 1). VTK renders into its own framebuffer with
+// (docs/platform.md, quirk 1). VTK renders into its own framebuffer with
 // Qt's context current; paintGL() blits that into the widget's defaultFramebufferObject().
 // Mouse, wheel and key events are forwarded to a vtkRenderWindowInteractor, and VTK's
 // render requests become QWidget::update().

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/color/srgb.h"
 #include "viz/scene_actors.h"
 
 namespace fovea::widgets {
@@ -89,7 +90,7 @@ void DisplayPanel::setWavelengths(const std::vector<double>& wavelengths) {
   for (double nm : wavelengths) {
     auto* box = new QCheckBox(QStringLiteral("%1 nm").arg(nm), this);
     box->setObjectName(QStringLiteral("wavelength%1").arg(std::lround(nm)));
-    const auto c = viz::wavelengthColor(nm);
+    const auto c = color::wavelengthColor(nm);
     box->setStyleSheet(QStringLiteral("QCheckBox { color: rgb(%1,%2,%3); font-weight: bold; }")
                            .arg(std::lround(c[0] * 200 + 30))
                            .arg(std::lround(c[1] * 200 + 30))

@@ -10,7 +10,7 @@
 #include <QStyle>
 #include <QStyleFactory>
 
-#include <numbers>
+#include "model/units.h"
 
 namespace fovea::widgets {
 
@@ -43,7 +43,7 @@ double DisplayUnits::lengthFromMm(double mm) const {
 }
 
 double DisplayUnits::angleFromDeg(double deg) const {
-  return angleUnit == AngleUnit::Radian ? deg * std::numbers::pi / 180.0 : deg;
+  return angleUnit == AngleUnit::Radian ? fovea::degToRad(deg) : deg;
 }
 
 double DisplayUnits::lengthToMm(double v) const {
@@ -59,7 +59,7 @@ double DisplayUnits::lengthToMm(double v) const {
 }
 
 double DisplayUnits::angleToDeg(double v) const {
-  return angleUnit == AngleUnit::Radian ? v * 180.0 / std::numbers::pi : v;
+  return angleUnit == AngleUnit::Radian ? fovea::radToDeg(v) : v;
 }
 
 QString DisplayUnits::lengthSymbol() const {

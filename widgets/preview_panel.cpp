@@ -17,6 +17,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/color/srgb.h"
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
 #include "model/image/test_target.h"
@@ -39,7 +40,7 @@ QImage toQImage(const cv::Mat& linear, int max_width) {
   static const std::vector<uchar> lut = [] {
     std::vector<uchar> t(4097);
     for (int i = 0; i <= 4096; ++i)
-      t[i] = static_cast<uchar>(std::lround(255.0 * image::linearToSrgb(static_cast<float>(i) / 4096.0f)));
+      t[i] = static_cast<uchar>(std::lround(255.0 * color::linearToSrgb(static_cast<float>(i) / 4096.0f)));
     return t;
   }();
   QImage out(small.cols, small.rows, QImage::Format_RGB888);

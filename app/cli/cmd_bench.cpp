@@ -2,7 +2,7 @@
 // (scalar, SIMD double, SIMD float) on one core and on all cores, the gaze update and cold
 // trace of the default scene at 20 000 rays, a 41-gaze x_p sweep on two cores and on one
 // (scaling), ray count vs FOV error, float/double/long double on efficiency and FOV, and
-// Kogelnik vs RCWA. scripts/bench_tables.py turns the JSON into docs/benchmarks.md tables.
+// Kogelnik vs RCWA. scripts/benchmark_tables.py turns the JSON into docs/benchmarks.md tables.
 #include <algorithm>
 #include <atomic>
 #include <chrono>

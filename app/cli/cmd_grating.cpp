@@ -1,4 +1,4 @@
-// fovea-cli grating: diffraction of one planar volume grating (issue 4 contract), single shot
+// fovea-cli grating: diffraction of one planar volume grating (contract: docs/physics.md), single shot
 // or --batch JSONL. The physics lives in model/physics; this file parses, validates and
 // dispatches to a grating model by name (--model). To add a model, append it to models().
 #include <fstream>

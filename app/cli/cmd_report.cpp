@@ -4,7 +4,7 @@
 //
 // Why this command drives `fovea-studio --report` instead of linking the GUI: the report's
 // 3-D figures need VTK's OpenGL rendering inside a Qt window, i.e. an X display (Xvfb when
-// headless; Qt's offscreen platform gives VTK no GL context, PLATFORM.md quirk 6). Linking
+// headless; Qt's offscreen platform gives VTK no GL context, docs/platform.md, quirk 6). Linking
 // Qt Widgets + VTK into fovea-cli would make every command load them, slow every start, and
 // break the GUI-less builds (the ASan preset builds fovea-cli with FOVEA_BUILD_GUI=OFF). So
 // fovea-cli stays model-only and headless: it validates the arguments and the scene itself,

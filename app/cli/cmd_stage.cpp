@@ -206,10 +206,10 @@ void run(const StageArgs& a) {
   config.channel = static_cast<std::uint8_t>(a.channel);
   config.reply_timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
 
-  std::shared_ptr<devices::TraceSink> trace;
+  std::shared_ptr<devices::AptLogSink> trace;
   try {
-    std::vector<std::shared_ptr<devices::TraceSink>> sinks;
-    if (!a.trace.empty()) sinks.push_back(std::make_shared<devices::FileTrace>(a.trace));
+    std::vector<std::shared_ptr<devices::AptLogSink>> sinks;
+    if (!a.trace.empty()) sinks.push_back(std::make_shared<devices::AptFileLog>(a.trace));
     if (!a.transcript.empty()) {
       devices::Transport* link = transport.get();
       sinks.push_back(std::make_shared<devices::TranscriptRecorder>(a.transcript, [link] { return link->now(); }));

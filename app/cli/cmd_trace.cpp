@@ -1,4 +1,4 @@
-// fovea-cli trace SCENE: projector -> recorded HOE stack -> eye; retinal FOV (issue 4 contract).
+// fovea-cli trace SCENE: projector -> recorded HOE stack -> eye; retinal FOV (contract: docs/physics.md).
 // --gaze-deg may repeat: one memoised pipeline (model/physics/trace_pipeline.h) serves every
 // gaze and the output is a JSON list, one result per gaze; --stats adds
 // "stats":{"stages_recomputed":[...],"evaluations":N} to each result. Options: the "trace"

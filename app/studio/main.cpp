@@ -18,11 +18,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/studio/analysis_features.h"
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_mode.h"
-#include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
-#include "app/studio/workbench.h"
 #include "fovea/version.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  fovea::studio::TraceWorkbench* bench = window.traceWorkbench();
+  fovea::studio::LiveTraceFeatures* bench = window.liveTraceFeatures();
   if (parser.isSet(gazeOpt) && !report) bench->setStartGaze(gazeYaw, gazePitch);
   if (parser.isSet(followOpt)) bench->gazePanel()->setFollowGaze(true);
   if (parser.isSet(raysOpt)) bench->displayPanel()->setTraceRays(rays);
@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
   if (report) return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays);
   if (!screenshot) {
     window.show();
-    window.workbench()->startSession();  // preferences, autosave, recovery offer after a crash
+    window.analysisFeatures()->startSession();  // preferences, autosave, recovery offer after a crash
     return QApplication::exec();
   }
 

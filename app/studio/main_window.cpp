@@ -18,11 +18,11 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
+#include "app/studio/analysis_features.h"
 #include "app/studio/dock_layout.h"
+#include "app/studio/live_trace_features.h"
 #include "app/studio/undo_shortcuts.h"
-#include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
-#include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
 #include "widgets/bench/devices_panel.h"
@@ -58,7 +58,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setCentralWidget(view_);
   createDocks();
   createMenus();
-  workbench_ = new Workbench(this);
+  analysisFeatures_ = new AnalysisFeatures(this);
   statusBar()->showMessage(tr("Drag: orbit · Shift+drag or middle: pan · wheel or right-drag: zoom · click: select"));
 
   connect(document_, &widgets::SceneDocument::sceneChanged, this, [this] { view_->setScene(document_->scene()); });
@@ -78,7 +78,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   });
   resize(initialWindowSize());
   openEmbeddedDefault();
-  traceWorkbench_ = new TraceWorkbench(this);
+  liveTraceFeatures_ = new LiveTraceFeatures(this);
   applyDefaultDockLayout(this);
   // Ctrl+Z / Ctrl+Y reach the document's undo stack from any focus, property fields included.
   qApp->installEventFilter(new DocumentUndoShortcuts(this));

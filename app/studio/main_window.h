@@ -27,8 +27,8 @@ class DevicesPanel;
 
 namespace fovea::studio {
 
-class Workbench;
-class TraceWorkbench;
+class AnalysisFeatures;
+class LiveTraceFeatures;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -72,10 +72,10 @@ class MainWindow : public QMainWindow {
   // not exercise the bench and the report mode turn it off).
   static void setBenchAutoStart(bool on);
   QStringList recentFiles() const { return recent_; }
-  // Analyses, plots, preferences, report export, autosave and recovery (workbench.h).
-  Workbench* workbench() const { return workbench_; }
-  // Live trace, ray fans, retina and grating-vector views, gaze, handles (trace_workbench.h).
-  TraceWorkbench* traceWorkbench() const { return traceWorkbench_; }
+  // Analyses, plots, preferences, report export, autosave and recovery (analysis_features.h).
+  AnalysisFeatures* analysisFeatures() const { return analysisFeatures_; }
+  // Live trace, ray fans, retina and grating-vector views, gaze, handles (live_trace_features.h).
+  LiveTraceFeatures* liveTraceFeatures() const { return liveTraceFeatures_; }
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -111,8 +111,8 @@ class MainWindow : public QMainWindow {
   QString selected_;
   QStringList recent_;
   bool persistSettings_ = false;
-  Workbench* workbench_ = nullptr;
-  TraceWorkbench* traceWorkbench_ = nullptr;
+  AnalysisFeatures* analysisFeatures_ = nullptr;
+  LiveTraceFeatures* liveTraceFeatures_ = nullptr;
 };
 
 }  // namespace fovea::studio

@@ -19,9 +19,10 @@
 #include <cmath>
 #include <memory>
 
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
-#include "app/studio/trace_workbench.h"
 #include "fovea/version.h"
+#include "model/json_numbers.h"
 #include "model/scene/scene_geometry.h"
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
@@ -48,18 +49,6 @@ QString g(double v, int significant = 4) {
 }
 QString pct(double v) {
   return std::isfinite(v) ? QString::number(100.0 * v, 'f', 1) + " %" : QStringLiteral("—");
-}
-double num(const nlohmann::json& j, std::initializer_list<const char*> path) {
-  const nlohmann::json* p = &j;
-  for (const char* k : path) {
-    if (!p->is_object() || !p->contains(k)) return NAN;
-    p = &p->at(k);
-  }
-  return p->is_number() ? p->get<double>() : NAN;
-}
-double at(const nlohmann::json& j, const char* key, std::size_t i) {
-  if (!j.is_object() || !j.contains(key) || !j.at(key).is_array() || j.at(key).size() <= i) return NAN;
-  return j.at(key)[i].is_number() ? j.at(key)[i].get<double>() : NAN;
 }
 
 QString vec(const std::array<double, 3>& v, const DisplayUnits& u) {
@@ -89,37 +78,39 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
     const auto& f = t.json.value("fov_deg", nlohmann::json::object());
     h += row3("Retinal FOV at gaze " + gazeText(t.gaze_deg, u),
               QString("%1 × %2 %3")
-                      .arg(g(u.angleFromDeg(num(f, {"horizontal"}))), g(u.angleFromDeg(num(f, {"vertical"}))),
-                           u.angleSymbol()) +
-                  QString(" (diag. %1)").arg(g(u.angleFromDeg(num(f, {"diagonal"})))),
+                      .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))),
+                           g(u.angleFromDeg(jsonNumber(f, {"vertical"}))), u.angleSymbol()) +
+                  QString(" (diag. %1)").arg(g(u.angleFromDeg(jsonNumber(f, {"diagonal"})))),
               QString("trace, %1 rays/λ").arg(d.options.rays));
     QStringList per;
     for (const auto& w : t.json.value("per_wavelength", nlohmann::json::array()))
-      per << QString("%1 nm: %2").arg(g(num(w, {"wavelength_nm"}))).arg(pct(num(w, {"mean_efficiency"})));
-    h += row3("Mean efficiency in the pupil at gaze " + gazeText(t.gaze_deg, u), pct(num(t.json, {"mean_efficiency"})),
-              per.join(", "));
+      per << QString("%1 nm: %2").arg(g(jsonNumber(w, {"wavelength_nm"}))).arg(pct(jsonNumber(w, {"mean_efficiency"})));
+    h += row3("Mean efficiency in the pupil at gaze " + gazeText(t.gaze_deg, u),
+              pct(jsonNumber(t.json, {"mean_efficiency"})), per.join(", "));
   }
   if (d.sweep.is_object()) {
     const auto& eb = d.sweep.value("eyebox", nlohmann::json::object());
     h += row3(
-        "Eye box", u.length(num(d.sweep, {"eyebox_mm"})),
+        "Eye box", u.length(jsonNumber(d.sweep, {"eyebox_mm"})),
         QString("sweep %1 … %2 %3, FOV within %4 %3 of the zero-gaze %5 %3")
-            .arg(g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN : num(d.sweep["samples"].front(), {"gaze_deg"}))),
-                 g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN : num(d.sweep["samples"].back(), {"gaze_deg"}))),
-                 u.angleSymbol(), g(u.angleFromDeg(1.0)), g(u.angleFromDeg(num(eb, {"reference_fov_deg"})))));
+            .arg(g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN
+                                                             : jsonNumber(d.sweep["samples"].front(), {"gaze_deg"}))),
+                 g(u.angleFromDeg(d.sweep["samples"].empty() ? NAN
+                                                             : jsonNumber(d.sweep["samples"].back(), {"gaze_deg"}))),
+                 u.angleSymbol(), g(u.angleFromDeg(1.0)), g(u.angleFromDeg(jsonNumber(eb, {"reference_fov_deg"})))));
     h += row3("Gaze range of the eye box",
               QString("%1 … %2 %3")
-                  .arg(g(u.angleFromDeg(at(eb, "gaze_range_deg", 0))), g(u.angleFromDeg(at(eb, "gaze_range_deg", 1))),
-                       u.angleSymbol()),
+                  .arg(g(u.angleFromDeg(jsonNumberAt(eb, "gaze_range_deg", 0))),
+                       g(u.angleFromDeg(jsonNumberAt(eb, "gaze_range_deg", 1))), u.angleSymbol()),
               "sweep (borders bisected)");
     h += row3("HOE travel at the eye-box borders",
               QString("%1 … %2 %3")
-                  .arg(g(u.lengthFromMm(at(eb, "travel_mm", 0))), g(u.lengthFromMm(at(eb, "travel_mm", 1))),
-                       u.lengthSymbol()),
+                  .arg(g(u.lengthFromMm(jsonNumberAt(eb, "travel_mm", 0))),
+                       g(u.lengthFromMm(jsonNumberAt(eb, "travel_mm", 1))), u.lengthSymbol()),
               "sweep: FOV-maximising HOE shift");
     double lo = INFINITY, hi = -INFINITY;
     for (const auto& s : d.sweep.value("samples", nlohmann::json::array())) {
-      const double e = num(s, {"mean_efficiency"});
+      const double e = jsonNumber(s, {"mean_efficiency"});
       if (std::isfinite(e)) lo = std::min(lo, e), hi = std::max(hi, e);
     }
     h += row3("Mean efficiency over the sweep", pct(lo) + " … " + pct(hi), "sweep, with the optimal HOE shift");
@@ -127,25 +118,25 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
   if (d.resolution.is_object()) {
     double best = NAN, nearest = INFINITY;
     for (const auto& s : d.resolution.value("samples", nlohmann::json::array())) {
-      const double e = std::abs(num(s, {"eccentricity_deg"}));
-      if (e < nearest) nearest = e, best = num(s, {"perceived_cpd"});
+      const double e = std::abs(jsonNumber(s, {"eccentricity_deg"}));
+      if (e < nearest) nearest = e, best = jsonNumber(s, {"perceived_cpd"});
     }
     h += row3("Perceived resolution at the gaze", g(best) + " cpd", "resolution");
-    h += row3(
-        "Peripheral field",
-        QString("%1 … %2 %3")
-            .arg(g(u.angleFromDeg(at(d.resolution, "peripheral_field_deg", 0))),
-                 g(u.angleFromDeg(at(d.resolution, "peripheral_field_deg", 1))), u.angleSymbol()),
-        QString("%1 of %2 projector columns reach the eye")
-            .arg(g(num(d.resolution, {"peripheral_pixel_integral"})), g(num(d.resolution, {"pixels_horizontal"}), 6)));
+    h += row3("Peripheral field",
+              QString("%1 … %2 %3")
+                  .arg(g(u.angleFromDeg(jsonNumberAt(d.resolution, "peripheral_field_deg", 0))),
+                       g(u.angleFromDeg(jsonNumberAt(d.resolution, "peripheral_field_deg", 1))), u.angleSymbol()),
+              QString("%1 of %2 projector columns reach the eye")
+                  .arg(g(jsonNumber(d.resolution, {"peripheral_pixel_integral"})),
+                       g(jsonNumber(d.resolution, {"pixels_horizontal"}), 6)));
   }
   if (d.selectivity.is_object())
     for (const auto& l : d.selectivity.value("layers", nlohmann::json::array()))
       h += row3(QString("HOE layer %1 at the plate centre").arg(esc(l.value("name", std::string()))),
-                pct(num(l, {"nominal_efficiency"})),
+                pct(jsonNumber(l, {"nominal_efficiency"})),
                 QString("%1 nm probe; angular FWHM %2, spectral FWHM %3 nm")
-                    .arg(g(num(l, {"probe_wavelength_nm"})), u.angle(num(l, {"angular_fwhm_deg"}), 3),
-                         g(num(l, {"spectral_fwhm_nm"}), 3)));
+                    .arg(g(jsonNumber(l, {"probe_wavelength_nm"})), u.angle(jsonNumber(l, {"angular_fwhm_deg"}), 3),
+                         g(jsonNumber(l, {"spectral_fwhm_nm"}), 3)));
   return h + "</table>";
 }
 
@@ -259,7 +250,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   const Eigen::Vector3d shownShift = view->hoeDisplayShift();
   // The gaze figures borrow the live overlay (its layers are the view's "rays", "eye_marks"
   // and "effmap"); without a live trace part a temporary one draws them.
-  TraceWorkbench* live = window.traceWorkbench();
+  LiveTraceFeatures* live = window.liveTraceFeatures();
   std::unique_ptr<viz::TraceOverlay> own;
   viz::TraceOverlay* overlay = live ? live->overlay() : nullptr;
   if (!overlay) overlay = (own = std::make_unique<viz::TraceOverlay>(view)).get();

@@ -9,9 +9,9 @@
 #include <QJsonObject>
 #include <QTextStream>
 
+#include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_data.h"
-#include "app/studio/workbench.h"
 #include "widgets/message_log.h"
 
 namespace fovea::studio {
@@ -44,7 +44,7 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
   QString error;
   int pages = 0, figures = 0;
   QList<GazeFigureStats> gazeFigures;
-  if (!window.workbench()->exportReport(out, options, &error, &pages, &figures, &gazeFigures)) {
+  if (!window.analysisFeatures()->exportReport(out, options, &error, &pages, &figures, &gazeFigures)) {
     err << "fovea-studio: the report was not written: " << error << "\n";
     return 1;
   }

@@ -1,7 +1,7 @@
 #pragma once
 // Thorlabs APT host–controller protocol: messages as plain structs and their exact bytes.
 // A pure codec: no I/O. Source: "Thorlabs APT Controllers Host-Controller Communications
-// Protocol" (issues 15–37 agree on everything used here), section "Message structure":
+// Protocol" (its revisions 15–37 agree on everything used here), section "Message structure":
 //
 //   header-only message (6 bytes):  id_lo id_hi param1 param2 dest        source
 //   message with data (6 + N):      id_lo id_hi len_lo len_hi dest|0x80   source  data[N]

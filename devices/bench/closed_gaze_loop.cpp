@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <stdexcept>
 
@@ -11,12 +10,12 @@
 #include "devices/virtual/motion_profile.h"
 #include "model/gaze/pupil_detector.h"
 #include "model/gaze/tracked_calibration.h"
-#include "model/physics/eye_camera.h"
+#include "model/physics/display_camera_map.h"
+#include "model/units.h"
 
 namespace fovea::devices {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
 
 // Minimum-jerk position fraction s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5 (Flash & Hogan 1985).
 double minimumJerk(double tau) {

@@ -1,7 +1,7 @@
 #pragma once
 // The closed gaze loop on the virtual bench: eye camera (rendered IR frames,
 // model/gaze/eye_image_renderer.h) -> pupil detector -> C.4 gaze map -> stage targets (HOE
-// to the pupil-following x_p, micro-OLED to x_f, model/physics/eye_camera.h) -> stage
+// to the pupil-following x_p, micro-OLED to x_f, model/physics/display_camera_map.h) -> stage
 // motion (trapezoidal profiles of the scene's stage models, coalesced like
 // TargetFollower: while a move runs only the latest target is kept).
 //

@@ -23,7 +23,7 @@ namespace fovea::devices {
 struct LiveBenchOptions {
   bool allow_hardware = true;
   std::shared_ptr<Clock> clock;  // virtual bench clock; default steady (real time)
-  EyeCameraModel camera_model;
+  EyeViewCamera camera_model;
   double camera_fps = 30.0;
   unsigned camera_seed = 1;
   double camera_noise_dn = 2.0;

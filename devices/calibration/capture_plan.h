@@ -21,7 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/image/display_pattern.h"
-#include "model/physics/eye_camera.h"
+#include "model/physics/display_camera_map.h"
 #include "model/scene/scene.h"
 
 namespace fovea::devices {

@@ -78,7 +78,7 @@ std::vector<TranscriptEntry> readTranscriptFile(const std::string& path) {
 std::string transcriptLine(double t_s, bool transmitted, std::span<const std::uint8_t> raw) {
   char stamp[32];
   std::snprintf(stamp, sizeof stamp, "%.6f ", t_s);
-  return stamp + traceLine(transmitted, raw);
+  return stamp + aptLogLine(transmitted, raw);
 }
 
 TranscriptRecorder::TranscriptRecorder(const std::string& path, std::function<double()> clock)

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "devices/stage/trace.h"
+#include "devices/stage/apt_log.h"
 
 namespace fovea::devices {
 
@@ -38,8 +38,8 @@ std::vector<TranscriptEntry> parseTranscript(const std::string& text, const std:
 std::vector<TranscriptEntry> readTranscriptFile(const std::string& path);  // also throws for an unreadable file
 std::string transcriptLine(double t_s, bool transmitted, std::span<const std::uint8_t> raw);
 
-// A TraceSink that writes transcript lines, stamped by the link's clock.
-class TranscriptRecorder : public TraceSink {
+// A AptLogSink that writes transcript lines, stamped by the link's clock.
+class TranscriptRecorder : public AptLogSink {
  public:
   // Throws std::runtime_error naming the path.
   TranscriptRecorder(const std::string& path, std::function<double()> clock);
@@ -53,15 +53,15 @@ class TranscriptRecorder : public TraceSink {
 };
 
 // Several sinks at once (a --trace file and a transcript).
-class TraceFanout : public TraceSink {
+class TraceFanout : public AptLogSink {
  public:
-  explicit TraceFanout(std::vector<std::shared_ptr<TraceSink>> sinks) : sinks_(std::move(sinks)) {}
+  explicit TraceFanout(std::vector<std::shared_ptr<AptLogSink>> sinks) : sinks_(std::move(sinks)) {}
   void message(bool transmitted, std::span<const std::uint8_t> raw) override {
     for (auto& s : sinks_) s->message(transmitted, raw);
   }
 
  private:
-  std::vector<std::shared_ptr<TraceSink>> sinks_;
+  std::vector<std::shared_ptr<AptLogSink>> sinks_;
 };
 
 }  // namespace fovea::devices

@@ -65,7 +65,7 @@ StageConfig defaultStageConfig(const apt::ControllerModel& controller, const apt
   return c;
 }
 
-Stage::Stage(std::unique_ptr<Transport> transport, StageConfig config, std::shared_ptr<TraceSink> trace)
+Stage::Stage(std::unique_ptr<Transport> transport, StageConfig config, std::shared_ptr<AptLogSink> trace)
     : transport_(std::move(transport)),
       config_(std::move(config)),
       trace_(std::move(trace)),

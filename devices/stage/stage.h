@@ -19,7 +19,7 @@
 #include "devices/apt/apt_decoder.h"
 #include "devices/apt/apt_message.h"
 #include "devices/apt/stage_models.h"
-#include "devices/stage/trace.h"
+#include "devices/stage/apt_log.h"
 #include "devices/transport/device_error.h"
 #include "devices/transport/transport.h"
 
@@ -91,7 +91,7 @@ void checkEncodable(const StageConfig& config, double distance, const std::strin
 
 class Stage {
  public:
-  Stage(std::unique_ptr<Transport> transport, StageConfig config, std::shared_ptr<TraceSink> trace = {});
+  Stage(std::unique_ptr<Transport> transport, StageConfig config, std::shared_ptr<AptLogSink> trace = {});
   ~Stage();
 
   void connect();  // open, read HW info, enable state, velocity parameters, status
@@ -155,7 +155,7 @@ class Stage {
 
   std::unique_ptr<Transport> transport_;
   StageConfig config_;
-  std::shared_ptr<TraceSink> trace_;
+  std::shared_ptr<AptLogSink> trace_;
   apt::UnitConverter units_;
   apt::StreamDecoder decoder_;
   apt::HwInfo info_;

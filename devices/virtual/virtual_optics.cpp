@@ -11,7 +11,7 @@ namespace {
 constexpr std::size_t kCacheSize = 6;
 }
 
-VirtualOptics::VirtualOptics(const Scene& scene, EyeCameraModel camera, PoseSource pose)
+VirtualOptics::VirtualOptics(const Scene& scene, EyeViewCamera camera, PoseSource pose)
     : scene_(scene), camera_(camera), pose_(std::move(pose)) {
   if (!pose_) pose_ = [](double) { return BenchPose{}; };
 }

@@ -3,7 +3,7 @@
 // projector through the HOE, the micro-OLED through its combiner) each show a pattern; the
 // bench pose (HOE, micro-OLED and camera stages) is read from the emulated controllers at
 // the frame's exposure time; the ground-truth display -> camera maps of that pose
-// (model/physics/eye_camera.h) carry the patterns into the camera image, anti-aliased, then
+// (model/physics/display_camera_map.h) carry the patterns into the camera image, anti-aliased, then
 // the camera lens blurs it a little. VirtualCamera adds exposure, gain and noise.
 //
 // Maps are cached per display for the last poses, so a still bench renders fast; a moving
@@ -19,7 +19,7 @@
 
 #include "devices/camera/virtual_camera.h"
 #include "model/image/display_pattern.h"
-#include "model/physics/eye_camera.h"
+#include "model/physics/display_camera_map.h"
 #include "model/scene/scene.h"
 
 namespace fovea::devices {
@@ -29,10 +29,10 @@ class Bench;
 class VirtualOptics {
  public:
   using PoseSource = std::function<BenchPose(double t_s)>;
-  VirtualOptics(const Scene& scene, EyeCameraModel camera, PoseSource pose);
+  VirtualOptics(const Scene& scene, EyeViewCamera camera, PoseSource pose);
 
   void setScene(const Scene& scene);
-  const EyeCameraModel& cameraModel() const { return camera_; }
+  const EyeViewCamera& cameraModel() const { return camera_; }
   void show(BenchDisplay display, const image::DisplayPattern& pattern);
   image::DisplayPattern shown(BenchDisplay display) const;
   void setBlurSigma(double px) { blur_sigma_px_ = px; }
@@ -58,7 +58,7 @@ class VirtualOptics {
 
   mutable std::mutex mutex_;
   Scene scene_;
-  EyeCameraModel camera_;
+  EyeViewCamera camera_;
   PoseSource pose_;
   image::DisplayPattern peripheral_, foveal_;
   std::deque<std::shared_ptr<const Cached>> cache_;

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Frame shiftedHoeFrame(const Scene& scene, const std::array<double, 2>& shift_mm) {
   Frame f = frameOf(scene.hoe.pose);
@@ -23,7 +22,9 @@ template <class Valid>
 std::optional<std::array<double, 2>> validInterval(Valid&& valid) {
   constexpr double kStep = 0.25;
   std::optional<double> first, last;
-  for (double e = -89.0; e <= 89.0 + 1e-9; e += kStep) {
+  const int steps = static_cast<int>(std::lround(178.0 / kStep));
+  for (int i = 0; i <= steps; ++i) {
+    const double e = -89.0 + kStep * i;  // exact in binary, as the running sum was
     if (valid(e)) {
       if (!first) first = e;
       last = e;

@@ -10,11 +10,11 @@
 #include <nlopt.hpp>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kFwhmPerW = 1.1774100225154747;  // sqrt(2 ln 2): FWHM / (1/e^2 radius)
 constexpr double kClearApertureFraction = 0.9;
 using cd = std::complex<double>;
@@ -65,6 +65,15 @@ struct RealLens {
   double r1 = 0, r2 = 0, clear_radius_mm = 0;
 };
 
+}  // namespace
+
+double biconvexRadiusMm(double focal_length_mm, double index, double center_thickness_mm) {
+  const double n = index, f = focal_length_mm, t = center_thickness_mm;
+  return (n - 1) * f * (1 + std::sqrt(std::max(0.0, 1 - t / (n * f))));
+}
+
+namespace {
+
 RealLens realLens(const LensGeometry& g, const StockLens& stock) {
   RealLens l;
   l.axis = g.normal;
@@ -73,8 +82,7 @@ RealLens realLens(const LensGeometry& g, const StockLens& stock) {
   l.clear_radius_mm = g.clear_radius_mm;
   const double n = g.index_d, f = g.focal_d_mm, t = stock.center_thickness_mm;
   if (stock.shape == "bi-convex") {
-    // Symmetric thick lens: 1/f = (n-1)(2/R - (n-1) t/(n R^2)), the larger root.
-    const double r = (n - 1) * f * (1 + std::sqrt(std::max(0.0, 1 - t / (n * f))));
+    const double r = biconvexRadiusMm(f, n, t);
     l.r1 = r;
     l.r2 = -r;
   } else {
@@ -284,7 +292,7 @@ double distanceOutsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Ei
   bool inside = false;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Eigen::Vector2d a = poly[j], b = poly[i];
+    const Eigen::Vector2d &a = poly[j], &b = poly[i];
     if ((b.y() > p.y()) != (a.y() > p.y()) && p.x() < (a.x() - b.x()) * (p.y() - b.y()) / (a.y() - b.y()) + b.x())
       inside = !inside;
     const Eigen::Vector2d ab = a - b;

@@ -73,6 +73,12 @@ struct SpotReport {
 
 SpotReport evaluateSpots(const Scene& scene, const std::optional<PlacedLens>& lens, const SpotOptions& options = {});
 
+// Radius R of both surfaces (R1 = R, R2 = -R) of a symmetric bi-convex lens of focal length f,
+// index n and centre thickness t: the thick-lens equation 1/f = (n-1)(2/R - (n-1) t/(n R^2)),
+// its larger root R = (n-1) f (1 + sqrt(1 - t/(n f))), which tends to the thin lens' 2 (n-1) f
+// as t -> 0 (Hecht, "Optics", 5th ed., Eq. 6.2). The spot model and the 3D view both use it.
+double biconvexRadiusMm(double focal_length_mm, double index, double center_thickness_mm);
+
 // The lens pose in the bench frame for a placement (position, yaw/pitch/roll degrees).
 Pose lensPose(const Scene& scene, const LensPlacement& placement);
 

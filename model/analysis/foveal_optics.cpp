@@ -8,11 +8,11 @@
 #include <Eigen/Core>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kWavelengthNm = 550.0;
 
 double diffractionMtf(double nu_cpd, double cutoff_cpd) {
@@ -43,6 +43,15 @@ std::optional<Eigen::Vector2d> traceCombinerToDisplay(const CombinerPrescription
   if (s <= 0) return std::nullopt;
   const Eigen::Vector3d h = x + s * r;
   return Eigen::Vector2d(h.x(), h.y());
+}
+
+std::array<double, 2> fovealFovDeg(const Scene& scene) {
+  const FovealDisplay& f = scene.foveal_display;
+  const ImageCombiner& c = f.combiner;
+  std::array<double, 2> fov{};
+  for (int k = 0; k < 2; ++k)
+    fov[k] = radToDeg(2.0 * std::atan(c.magnification * f.size_mm[k] / (2.0 * c.image_distance_mm)));
+  return fov;
 }
 
 CombinerPrescription combinerPrescription(const Scene& scene) {

@@ -14,6 +14,7 @@
 // scale (chief rays at neighbouring fields). MTF(nu) = MTF_diffraction(nu; pupil, 550 nm)
 // * exp(-2 pi^2 sigma^2 nu^2) (Gaussian blur); the MTF30 frequency solves MTF = 0.3.
 
+#include <array>
 #include <optional>
 
 #include <Eigen/Core>
@@ -29,6 +30,11 @@ struct CombinerPrescription {
 };
 
 CombinerPrescription combinerPrescription(const Scene& scene);
+
+// Full field of view of the foveal display's virtual image (horizontal, vertical) in degrees:
+// 2 atan(M w / (2 d_f)) per axis, micro-OLED size w, magnification M, image distance d_f
+// (seed A.4). The foveated renderer, the 3D view's combiner aperture and the reports use it.
+std::array<double, 2> fovealFovDeg(const Scene& scene);
 
 // One backward ray of the unfolded combiner: from point `p` (the frame above: zero-gaze pupil
 // at the origin, +z along bench +z) aimed at `q`, reflected by the spherical mirror, to the

@@ -2,19 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Geometry>
 
 #include "model/physics/hoe_recording.h"
 #include "model/physics/projector_rays.h"
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 double closestWavelength(const std::vector<double>& available, double target) {
   double best = target, dist = INFINITY;

@@ -3,18 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <utility>
 #include <vector>
 
 #include "model/physics/trace.h"
 #include "model/physics/trace_pipeline.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Unit arrival direction of a field angle (yaw = atan2(x, z), pitch = asin(y); fieldAngleDeg()).
 Eigen::Vector3d fieldDirection(double yaw_deg, double pitch_deg) {
@@ -89,6 +87,7 @@ ContinuousFov continuousFovOf(const std::vector<const Ray*>& rays, double effici
     Span h, v;
     if (centre != nullptr) {
       std::vector<const Ray*> line;
+      line.reserve(std::max(nx, ny));
       for (int i = 0; i < nx; ++i) line.push_back(at(i, centre->pixel[1]));
       h = widestRun(line, efficiency_threshold, 0);
       line.clear();

@@ -1,7 +1,9 @@
 #include "model/color/colorimetry.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "model/color/srgb.h"
+#include "model/units.h"
 
 namespace fovea::color {
 
@@ -17,9 +19,7 @@ Xy xyzToXy(const Eigen::Vector3d& xyz) {
 }
 
 Eigen::Vector3d xyzToLab(const Eigen::Vector3d& xyz, const Eigen::Vector3d& white_xyz) {
-  // f(t) = t^(1/3) above (6/29)^3, linear below (CIE 15:2004 8.2.1).
-  constexpr double d = 6.0 / 29.0;
-  auto f = [](double t) { return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0; };
+  const auto f = labCompand<double>;  // CIE 15:2004 8.2.1
   const double fx = f(xyz.x() / white_xyz.x());
   const double fy = f(xyz.y() / white_xyz.y());
   const double fz = f(xyz.z() / white_xyz.z());
@@ -27,13 +27,6 @@ Eigen::Vector3d xyzToLab(const Eigen::Vector3d& xyz, const Eigen::Vector3d& whit
 }
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-double deg(double rad) {
-  return rad * 180.0 / kPi;
-}
-double rad(double degrees) {
-  return degrees * kPi / 180.0;
-}
 double pow7(double v) {
   const double v2 = v * v;
   return v2 * v2 * v2 * v;
@@ -52,7 +45,7 @@ double deltaE2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2) {
   const double C1p = std::hypot(a1p, b1), C2p = std::hypot(a2p, b2);
   auto hue = [](double b, double ap) {
     if (b == 0.0 && ap == 0.0) return 0.0;
-    double h = deg(std::atan2(b, ap));
+    double h = radToDeg(std::atan2(b, ap));
     return h < 0.0 ? h + 360.0 : h;
   };
   const double h1p = hue(b1, a1p), h2p = hue(b2, a2p);
@@ -66,7 +59,7 @@ double deltaE2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2) {
     if (dhp > 180.0) dhp -= 360.0;
     if (dhp < -180.0) dhp += 360.0;
   }
-  const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(rad(dhp / 2.0));
+  const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(degToRad(dhp / 2.0));
   // (12)-(14): means; the mean hue wraps around 360.
   const double Lbarp = 0.5 * (L1 + L2);
   const double Cbarp = 0.5 * (C1p + C2p);
@@ -80,15 +73,15 @@ double deltaE2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2) {
       hbarp = (h1p + h2p - 360.0) / 2.0;
   }
   // (15)-(21): weighting functions and the rotation term.
-  const double T = 1.0 - 0.17 * std::cos(rad(hbarp - 30.0)) + 0.24 * std::cos(rad(2.0 * hbarp)) +
-                   0.32 * std::cos(rad(3.0 * hbarp + 6.0)) - 0.20 * std::cos(rad(4.0 * hbarp - 63.0));
+  const double T = 1.0 - 0.17 * std::cos(degToRad(hbarp - 30.0)) + 0.24 * std::cos(degToRad(2.0 * hbarp)) +
+                   0.32 * std::cos(degToRad(3.0 * hbarp + 6.0)) - 0.20 * std::cos(degToRad(4.0 * hbarp - 63.0));
   const double dTheta = 30.0 * std::exp(-std::pow((hbarp - 275.0) / 25.0, 2.0));
   const double RC = 2.0 * std::sqrt(pow7(Cbarp) / (pow7(Cbarp) + twentyFive7));
   const double Lm50sq = (Lbarp - 50.0) * (Lbarp - 50.0);
   const double SL = 1.0 + 0.015 * Lm50sq / std::sqrt(20.0 + Lm50sq);
   const double SC = 1.0 + 0.045 * Cbarp;
   const double SH = 1.0 + 0.015 * Cbarp * T;
-  const double RT = -std::sin(rad(2.0 * dTheta)) * RC;
+  const double RT = -std::sin(degToRad(2.0 * dTheta)) * RC;
   const double tL = dLp / SL, tC = dCp / SC, tH = dHp / SH;
   return std::sqrt(tL * tL + tC * tC + tH * tH + RT * tC * tH);
 }

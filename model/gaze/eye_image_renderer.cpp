@@ -3,17 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <random>
 
 #include <opencv2/imgproc.hpp>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea::gaze {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kOutlinePoints = 64;
 
 struct CameraFrame {

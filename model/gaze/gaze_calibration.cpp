@@ -2,17 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <Eigen/QR>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea::gaze {
 
 namespace {
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 Eigen::RowVectorXd terms(GazeModel m, double u, double v) {
   Eigen::RowVectorXd t(termCount(m));
@@ -49,7 +48,7 @@ std::pair<double, double> precision(const std::vector<std::array<double, 2>>& g)
   double sd = 0;
   for (const auto& e : g) {
     const double c = std::clamp(mean.dot(gazeDirection(e[0], e[1])), -1.0, 1.0);
-    sd += std::pow(std::acos(c) * kRadToDeg, 2);
+    sd += std::pow(radToDeg(std::acos(c)), 2);
   }
   return {std::sqrt(s2s / static_cast<double>(g.size() - 1)), std::sqrt(sd / static_cast<double>(g.size()))};
 }
@@ -201,7 +200,7 @@ GazeMap fitGazeMap(const std::vector<Eigen::Vector2d>& pupil, const std::vector<
 double angleBetweenDeg(const std::array<double, 2>& a, const std::array<double, 2>& b) {
   // atan2(|a x b|, a.b): accurate for small angles, unlike acos.
   const Eigen::Vector3d u = gazeDirection(a[0], a[1]), v = gazeDirection(b[0], b[1]);
-  return std::atan2(u.cross(v).norm(), u.dot(v)) * kRadToDeg;
+  return radToDeg(std::atan2(u.cross(v).norm(), u.dot(v)));
 }
 
 GazeCalibrationResult calibrateGaze(const std::vector<GazeTarget>& targets, const GazeCalibrationOptions& o) {

@@ -1,9 +1,9 @@
 #include "model/gaze/pupil_detector.h"
+#include "model/units.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <random>
 
 #include <opencv2/imgproc.hpp>
@@ -11,7 +11,6 @@
 namespace fovea::gaze {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kGlintLevel = 235;  // 8-bit: a corneal reflection saturates the sensor
 constexpr int kSupportBins = 72;
 

@@ -16,7 +16,10 @@ struct ChessboardCorners {
   int columns = 0, rows = 0;              // inner corners
   std::vector<Eigen::Vector2d> image_px;  // row-major: index = row * columns + column
   // Ideal board position of each corner, in squares: (column, row).
-  Eigen::Vector2d boardPosition(int index) const { return {double(index % columns), double(index / columns)}; }
+  Eigen::Vector2d boardPosition(int index) const {
+    const int row = index / columns, column = index % columns;
+    return {double(column), double(row)};
+  }
 };
 
 // `image` 8-bit grey or BGR. nullopt when the full pattern is not found.

@@ -2,19 +2,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/color/srgb.h"
 #include "model/image/image_io.h"
+#include "model/units.h"
 
 namespace fovea::image {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 // sRGB (D65) linear RGB <-> XYZ, white Y = 1.
-const cv::Matx33f kRgbToXyz(0.4124f, 0.3576f, 0.1805f, 0.2126f, 0.7152f, 0.0722f, 0.0193f, 0.1192f, 0.9505f);
-const cv::Vec3f kWhite(0.9505f, 1.0f, 1.0889f);
+cv::Matx33f rgbToXyzMatrix() {
+  cv::Matx33f m;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m(r, c) = static_cast<float>(color::kLinearSrgbToXyz[r][c]);
+  return m;
+}
+const cv::Matx33f kRgbToXyz = rgbToXyzMatrix();
+const cv::Vec3f kWhite(static_cast<float>(color::kSrgbWhiteXyz[0]), static_cast<float>(color::kSrgbWhiteXyz[1]),
+                       static_cast<float>(color::kSrgbWhiteXyz[2]));
 
 cv::Vec3f xyzToYcxcz(const cv::Vec3f& xyz) {
   const float yr = xyz[1] / kWhite[1];
@@ -25,10 +32,7 @@ cv::Vec3f ycxczToXyz(const cv::Vec3f& v) {
   return {kWhite[0] * (v[1] / 500.0f + yr), kWhite[1] * yr, kWhite[2] * (yr - v[2] / 200.0f)};
 }
 cv::Vec3f xyzToLab(const cv::Vec3f& xyz) {
-  auto f = [](float t) {
-    constexpr float d = 6.0f / 29.0f;
-    return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0f / 29.0f;
-  };
+  const auto f = color::labCompand<float>;
   const float fx = f(xyz[0] / kWhite[0]), fy = f(xyz[1] / kWhite[1]), fz = f(xyz[2] / kWhite[2]);
   return {116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
 }
@@ -67,7 +71,7 @@ cv::Mat filteredHuntLab(const cv::Mat& srgb, double ppd) {
   for (int y = 0; y < srgb.rows; ++y)
     for (int x = 0; x < srgb.cols; ++x) {
       const cv::Vec3f s = srgb.at<cv::Vec3f>(y, x);
-      const cv::Vec3f lin(srgbToLinear(s[0]), srgbToLinear(s[1]), srgbToLinear(s[2]));
+      const cv::Vec3f lin(color::srgbToLinear(s[0]), color::srgbToLinear(s[1]), color::srgbToLinear(s[2]));
       opp.at<cv::Vec3f>(y, x) = xyzToYcxcz(kRgbToXyz * lin);
     }
   std::vector<cv::Mat> ch;
@@ -93,7 +97,7 @@ void features(const cv::Mat& srgb, double ppd, cv::Mat& edge, cv::Mat& point) {
   for (int y = 0; y < srgb.rows; ++y)
     for (int x = 0; x < srgb.cols; ++x) {
       const cv::Vec3f s = srgb.at<cv::Vec3f>(y, x);
-      const cv::Vec3f lin(srgbToLinear(s[0]), srgbToLinear(s[1]), srgbToLinear(s[2]));
+      const cv::Vec3f lin(color::srgbToLinear(s[0]), color::srgbToLinear(s[1]), color::srgbToLinear(s[2]));
       yn.at<float>(y, x) = (xyzToYcxcz(kRgbToXyz * lin)[0] + 16.0f) / 116.0f;
     }
   const double sigma = 0.5 * 0.082 * ppd;

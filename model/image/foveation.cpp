@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/analysis/foveal_optics.h"
+#include "model/color/srgb.h"
 #include "model/image/flip.h"
 #include "model/image/image_io.h"
 
@@ -46,10 +47,7 @@ DisplayAngles displayAngles(const Scene& s) {
   DisplayAngles a;
   a.peripheral_fov_deg = s.projector.fov_deg;
   a.peripheral_px = s.projector.pixels;
-  const auto& c = s.foveal_display.combiner;
-  for (int k = 0; k < 2; ++k)
-    a.foveal_fov_deg[k] = 2.0 * std::atan(c.magnification * s.foveal_display.size_mm[k] / (2.0 * c.image_distance_mm)) *
-                          180.0 / std::numbers::pi;
+  a.foveal_fov_deg = fovealFovDeg(s);
   a.foveal_px = s.foveal_display.pixels;
   return a;
 }
@@ -286,7 +284,7 @@ FoveatedCompositor::Seam FoveatedCompositor::seamMetric() const {
   cv::Mat ref = target_(rect).clone(), test = perceived_(rect).clone();
   for (cv::Mat* m : {&ref, &test})
     m->forEach<cv::Vec3f>([](cv::Vec3f& p, const int*) {
-      for (int c = 0; c < 3; ++c) p[c] = linearToSrgb(p[c]);
+      for (int c = 0; c < 3; ++c) p[c] = color::linearToSrgb(p[c]);
     });
   const cv::Mat err = flipErrorMap(ref, test, ppd);
   std::vector<float> values;

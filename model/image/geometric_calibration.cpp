@@ -35,7 +35,7 @@ std::optional<BoardObservation> observeBoard(const cv::Mat& image, const Display
     grey = image;
   // Refine on the saddle points: the sector detector's own estimate carries a bias of a few
   // tenths of a pixel under strong perspective; cornerSubPix with a window inside one square
-  // brings it to a few hundredths (tests/model/tst_eye_camera).
+  // brings it to a few hundredths (tests/model/tst_display_camera_map).
   std::vector<cv::Point2f> pts;
   for (const auto& p : found->image_px) pts.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
   double spacing = 1e9;

@@ -6,15 +6,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-namespace fovea::image {
+#include "model/color/srgb.h"
 
-float srgbToLinear(float v) {  // IEC 61966-2-1
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-float linearToSrgb(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+namespace fovea::image {
 
 cv::Mat readLinearRgb(const std::string& path) {
   if (!std::filesystem::exists(path)) throw ImageIoError(path + ": no such file");
@@ -37,7 +31,7 @@ cv::Mat readLinearRgb(const std::string& path) {
       const float* p = &pixels[(static_cast<std::size_t>(y) * w + x) * nc];
       cv::Vec3f v = nc >= 3 ? cv::Vec3f(p[0], p[1], p[2]) : cv::Vec3f(p[0], p[0], p[0]);
       if (!isFloat)
-        for (int c = 0; c < 3; ++c) v[c] = srgbToLinear(v[c]);
+        for (int c = 0; c < 3; ++c) v[c] = color::srgbToLinear(v[c]);
       for (int c = 0; c < 3; ++c)
         if (!std::isfinite(v[c])) throw ImageIoError(path + ": image holds non-finite pixel values");
       row[x] = v;
@@ -62,7 +56,7 @@ void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bi
     for (int x = 0; x < img.cols; ++x)
       for (int c = 0; c < 3; ++c) {
         const float v = row[x][c];
-        data[(static_cast<std::size_t>(y) * img.cols + x) * 3 + c] = isFloat ? v : linearToSrgb(v);
+        data[(static_cast<std::size_t>(y) * img.cols + x) * 3 + c] = isFloat ? v : color::linearToSrgb(v);
       }
   }
   if (!out->open(path, spec)) throw ImageIoError(path + ": cannot open for writing: " + out->geterror());

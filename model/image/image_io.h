@@ -23,7 +23,4 @@ cv::Mat readLinearRgb(const std::string& path);
 // `sixteen_bit`), or as float for .exr. Throws ImageIoError.
 void writeLinearRgb(const std::string& path, const cv::Mat& linear_rgb, bool sixteen_bit = false);
 
-float srgbToLinear(float v);
-float linearToSrgb(float v);
-
 }  // namespace fovea::image

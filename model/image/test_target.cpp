@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "model/color/srgb.h"
 #include "model/image/image_io.h"
 
 namespace fovea::image {
@@ -25,7 +26,7 @@ cv::Mat makeTestTarget(cv::Size size, std::array<double, 2> fov, double max_cpd)
       cv::Vec3f c;
       for (int ch = 0; ch < 3; ++ch) {
         const double tint = 1.0 + 0.5 * std::cos(hue - ch * 2.0 * pi / 3.0) * std::min(1.0, std::sqrt(r2) / 4.0);
-        c[ch] = srgbToLinear(static_cast<float>(std::clamp(lum * tint / 1.5, 0.0, 1.0)));
+        c[ch] = color::srgbToLinear(static_cast<float>(std::clamp(lum * tint / 1.5, 0.0, 1.0)));
       }
       const bool line =
           std::abs(std::remainder(yaw, 5.0)) < 0.5 * degPerPx || std::abs(std::remainder(pitch, 5.0)) < 0.5 * degPerPx;

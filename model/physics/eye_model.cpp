@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "model/units.h"
 
 namespace fovea {
 
@@ -19,7 +20,6 @@ PupilCrossing crossPupil(const EyePlacement& eye, const Eigen::Vector3d& origin,
 }
 
 std::array<double, 2> fieldAngleDeg(const Eigen::Matrix3d& eye_axes, const Eigen::Vector3d& dir) {
-  constexpr double kDeg = std::numbers::pi / 180.0;
   const Eigen::Vector3d v = eye_axes.transpose() * (-dir.normalized());
   return {std::atan2(v.x(), v.z()) / kDeg, std::asin(std::clamp(v.y(), -1.0, 1.0)) / kDeg};
 }

@@ -5,7 +5,7 @@
 // Conventions (docs/physics.md):
 //  - film frame: the film normal is +z; inside the film everything is in rad/µm;
 //  - Kogelnik's sign: the diffracted wave is sigma = rho - K. A recorded HOE stores
-//    K_rec = k_signal - k_reference (issue 4 / seed A.1); its Kogelnik vector is -K_rec;
+//    K_rec = k_signal - k_reference (seed A.1); its Kogelnik vector is -K_rec;
 //  - polarisation: s is normal to the plane of rho and sigma; p lies in it. The coupling
 //    constant is kappa (e_R . e_S): 1 for s, rho_hat . sigma_hat for p (= -cos 2(theta - phi)
 //    on Bragg, Kogelnik's p factor); unpolarised light averages the s and p efficiencies;

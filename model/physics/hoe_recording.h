@@ -7,7 +7,7 @@
 // (cover on the eye side, local z < 0; substrate on the world side): its tangential wave vector
 // k0 n_outside u_t is conserved, its normal component inside the film follows from the film's
 // index *during recording*, n_rec = n0 - recording_n0_delta. The recorded fringes are
-//     K_rec = k_signal - k_reference                      (issue 4; Kogelnik's K is -K_rec)
+//     K_rec = k_signal - k_reference                      (seed A.1; Kogelnik's K is -K_rec)
 // Phase-conjugate recording (B.1.2) exposes the film to the time-reversed pair (a wave
 // diverging from F and one converging to P); their fringes are the same set, shown in
 // recordAt() by building those beams explicitly (and checked in tests/model/tst_hoe_trace).

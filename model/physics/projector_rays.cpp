@@ -2,15 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
-namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-}
+namespace {}
 
 std::array<int, 2> projectorGrid(const Projector& p, int rays) {
   const double th = std::tan(0.5 * p.fov_deg[0] * kDeg), tv = std::tan(0.5 * p.fov_deg[1] * kDeg);

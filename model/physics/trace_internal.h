@@ -5,13 +5,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "model/physics/trace.h"
+#include "model/units.h"
 
 namespace fovea::detail {
 
@@ -36,7 +36,7 @@ struct FovAccumulator {
     if (d < diff_min) diff_min = d, d_diff_min = arrival_from;
   }
   static double angleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
+    return radToDeg(std::atan2(a.cross(b).norm(), a.dot(b)));
   }
   FovDeg result() const {
     if (count == 0) return {};

@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <sstream>
+
+#include "model/units.h"
 
 namespace fovea::rigorous {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -53,7 +53,7 @@ std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, cons
   std::vector<KogelnikRcwaPoint> out;
   for (const GratingGeometry& geo : grid.geometries) {
     const double period_nm =
-        grid.wavelength_nm / (2.0 * grid.n0 * std::cos((geo.slant_deg - geo.bragg_probe_deg) * kPi / 180.0));
+        grid.wavelength_nm / (2.0 * grid.n0 * std::cos(degToRad(geo.slant_deg - geo.bragg_probe_deg)));
     for (double d : grid.thickness_um)
       for (double n1 : grid.n1)
         for (double xi : grid.detuning_xi) {
@@ -93,7 +93,7 @@ std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, cons
           conv.tolerance = grid.rcwa_tolerance;
           conv.target_order = ko.order;
           conv.target_reflected = ko.reflected;
-          const double cos_slant = std::abs(std::cos(c.slant_deg * kPi / 180.0));
+          const double cos_slant = std::abs(std::cos(degToRad(c.slant_deg)));
           const double periods_z = d * 1e3 * cos_slant / period_nm;
           conv.min_slices = std::max(8, int(std::ceil(16.0 * periods_z)));
           conv.max_slices = std::max(conv.min_slices, conv.max_slices);

@@ -2,7 +2,7 @@
 // Where is Kogelnik good enough, and what does it save? An error map of Kogelnik's two-wave
 // theory against converged RCWA over thickness, n1, detuning and geometry (slant + Bragg
 // angle), with the validity parameter ρ = λ²/(Λ² n0 n1) and the time of each model
-// (issue 6, "Run time against error" item 1). Used by bench/bench_rcwa.cpp and docs/benchmarks.md.
+// (docs/benchmarks.md, "Run time against error"). Used by benchmarks/bench_rcwa.cpp and docs/benchmarks.md.
 
 #include <functional>
 #include <string>

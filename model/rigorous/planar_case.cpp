@@ -1,12 +1,12 @@
 #include "model/rigorous/planar_case.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "model/units.h"
 
 namespace fovea::rigorous {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 struct Geometry {
   double cr, cs, vartheta, p_factor;
 };

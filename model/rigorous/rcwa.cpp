@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
 #include "model/rigorous/smatrix.h"
+#include "model/units.h"
 
 namespace fovea::rigorous {
 
@@ -18,7 +18,6 @@ using cd = std::complex<double>;
 using Eigen::Index;
 using Eigen::MatrixXcd;
 using Eigen::VectorXcd;
-constexpr double kPi = std::numbers::pi;
 
 // z-wavenumber (/k0) of a mode with γ² = g2: the root that decays or propagates towards +z
 // (Im γ > 0, or Im γ = 0 and Re γ ≥ 0). A root at exactly zero (an order grazing inside a layer,
@@ -250,10 +249,10 @@ void validate(const RcwaProblem& p, const RcwaOptions& o) {
 }  // namespace
 
 void RcwaProblem::setCoverAngleDeg(double deg) {
-  kx_over_k0 = n_cover * std::sin(deg * kPi / 180.0);
+  kx_over_k0 = n_cover * std::sin(degToRad(deg));
 }
 void RcwaProblem::setFilmAngleDeg(double deg) {
-  kx_over_k0 = n0.real() * std::sin(deg * kPi / 180.0);
+  kx_over_k0 = n0.real() * std::sin(degToRad(deg));
 }
 
 const RcwaOrder* RcwaResult::find(int m, bool reflected_side) const {
@@ -343,7 +342,7 @@ RcwaResult solveRcwa(const RcwaProblem& p, const RcwaOptions& o) {
   res.slices_used = slices;
   res.z_invariant = invariant_z;
   res.laterally_uniform = uniform_x;
-  auto angle = [](double kx, double kz) { return std::atan2(kx, kz) * 180.0 / kPi; };
+  auto angle = [](double kx, double kz) { return radToDeg(std::atan2(kx, kz)); };
   for (Index i = 0; i < s.size; ++i) {
     const double kx = s.kx(i).real();
     if (kx * kx < eps_c) {

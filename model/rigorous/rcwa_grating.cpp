@@ -1,14 +1,14 @@
 #include "model/rigorous/rcwa_grating.h"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "model/units.h"
 
 namespace fovea::rigorous {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 RcwaConvergedResult solveOne(const RcwaGratingRequest& q, RcwaPolarization pol) {
   RcwaProblem p;
@@ -52,7 +52,7 @@ RcwaConvergedResult solveOne(const RcwaGratingRequest& q, RcwaPolarization pol) 
   c.target_order = ko.order;
   c.target_reflected = ko.reflected;
   // Start the staircase at 16 slices per fringe period along z (no convergence by aliasing).
-  const double periods_z = q.thickness_um * 1e3 * std::abs(std::cos(q.slant_deg * kPi / 180.0)) / q.period_nm;
+  const double periods_z = q.thickness_um * 1e3 * std::abs(std::cos(degToRad(q.slant_deg))) / q.period_nm;
   c.min_slices = int(std::min(double(1 << 18), std::max(8.0, std::ceil(16.0 * periods_z))));
   c.max_slices = std::max(c.min_slices, c.max_slices);
   if (q.orders) c.min_orders = c.max_orders = *q.orders;

@@ -1,6 +1,6 @@
 #pragma once
-// RCWA answering the planar-grating question of `fovea-cli grating` (issue 4 contract, issue 6
-// `--model rcwa`): Kogelnik's inputs (probe angle INSIDE the film, slant of K from the normal),
+// RCWA answering the planar-grating question of `fovea-cli grating` (`--model
+// rcwa`): Kogelnik's inputs (probe angle INSIDE the film, slant of K from the normal),
 // plus the two outer media. Defaults: cover and substrate of index Re n0 (index-matched faces),
 // so the inside angle is the outside angle and only the grating diffracts — the situation
 // Kogelnik's theory describes. Give n_cover/n_substrate to include the film's faces.

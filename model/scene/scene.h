@@ -151,7 +151,7 @@ struct StageControllerSetup {
   bool operator==(const StageControllerSetup&) const = default;
 };
 
-// Which motorised axis drives which element coordinate (issue: live bench).
+// Which motorised axis drives which element coordinate (the live bench, docs/bench.md).
 struct StageBinding {
   std::string element;            // "hoe", "foveal_display", "projector", "lens", "camera"
   std::string axis;               // "x", "y", "z" (translation, mm) or "yaw" (rotation, deg)

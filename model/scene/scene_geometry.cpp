@@ -1,13 +1,12 @@
 #include "model/scene/scene_geometry.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "model/units.h"
 
 namespace fovea {
 
-namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-}
+namespace {}
 
 Eigen::Matrix3d rotationFromDeg(const std::array<double, 3>& ypr) {
   // Pitch > 0 must lift +z towards +y: a rotation about +x by -pitch (right-hand rule).

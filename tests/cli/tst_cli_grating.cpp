@@ -1,4 +1,4 @@
-// fovea-cli grating: the issue-4 JSON contract, batch mode and exit codes.
+// fovea-cli grating: the JSON contract (docs/physics.md), batch mode and exit codes.
 #include <QtTest>
 
 #include <cmath>

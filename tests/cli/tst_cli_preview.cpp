@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "model/color/color_calibration.h"
-#include "model/gaze/eye_camera.h"
 #include "model/gaze/gaze_calibration.h"
+#include "model/gaze/pupil_camera.h"
 #include "model/image/image_io.h"
 
 #include "tests/cli/cli_process.h"
@@ -241,7 +241,7 @@ class TestCliPreview : public QObject {
   }
   void gazeFit() {
     // 9 targets + 4 held out, 12 samples each (the first two off target: saccade landing).
-    const fovea::gaze::EyeCamera cam;
+    const fovea::gaze::PupilCamera cam;
     auto samplesFile = [&](bool nine) {
       std::vector<fovea::gaze::GazeTarget> t;
       auto add = [&](double yaw, double pitch, bool holdout) {

@@ -1,4 +1,4 @@
-// fovea-cli trace: the issue-4 JSON contract and exit codes.
+// fovea-cli trace: the JSON contract (docs/physics.md) and exit codes.
 #include <QtTest>
 
 #include <algorithm>
@@ -80,7 +80,7 @@ class TestCliTrace : public QObject {
     QCOMPARE(j[1]["stats"]["evaluations"].get<long long>(), 0LL);
     QCOMPARE(j[1]["gaze_deg"][0].get<double>(), 10.0);
     QCOMPARE(j[1]["gaze_deg"][1].get<double>(), 2.0);
-    for (int i = 0; i < 3; ++i)  // the issue-4 keys in every element
+    for (int i = 0; i < 3; ++i)  // the contract keys in every element
       for (const char* k : {"fov_deg", "rays", "rays_in_pupil", "rays_efficient", "mean_efficiency"})
         QVERIFY2(j[i].contains(k), k);
     QCOMPARE(j[2]["fov_deg"], j[0]["fov_deg"]);

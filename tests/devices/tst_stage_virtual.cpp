@@ -17,7 +17,7 @@ struct Rig {
   std::shared_ptr<SimulatedClock> clock = std::make_shared<SimulatedClock>();
   std::shared_ptr<VirtualAptController> controller;
   VirtualTransport* link = nullptr;  // owned by the stage
-  std::shared_ptr<MemoryTrace> trace = std::make_shared<MemoryTrace>();
+  std::shared_ptr<AptMemoryLog> trace = std::make_shared<AptMemoryLog>();
   std::unique_ptr<Stage> stage;
 
   explicit Rig(const std::string& model = "MTS25-Z8", std::function<void(VirtualControllerConfig&)> tweak = {},
@@ -491,7 +491,7 @@ class TestStageVirtual : public QObject {
     bits.channel_bit_mask = true;
     StageConfig c = defaultStageConfig(bits, ctrl->config().stage);
     c.channel = 3;
-    auto trace = std::make_shared<MemoryTrace>();
+    auto trace = std::make_shared<AptMemoryLog>();
     Stage s(std::make_unique<VirtualTransport>(ctrl, clock), c, trace);
     s.connect();
     QVERIFY(trace->lines().size() > 2);

@@ -15,6 +15,8 @@
 
 #include <cmath>
 
+#include "model/color/srgb.h"
+
 namespace fovea::test {
 
 struct ImageDifference {
@@ -25,16 +27,8 @@ struct ImageDifference {
 };
 
 inline std::array<double, 3> toLab(QRgb c) {
-  auto lin = [](double v) {
-    v /= 255.0;
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-  };
-  const double r = lin(qRed(c)), g = lin(qGreen(c)), b = lin(qBlue(c));
-  const double x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
-  const double y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-  const double z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
-  auto f = [](double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0; };
-  return {116.0 * f(y) - 16.0, 500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
+  const Eigen::Vector3d lab = color::srgbToLab(Eigen::Vector3d(qRed(c), qGreen(c), qBlue(c)) / 255.0);
+  return {lab[0], lab[1], lab[2]};
 }
 
 inline QImage boxDown(const QImage& in, int k) {

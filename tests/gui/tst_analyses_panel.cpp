@@ -14,8 +14,8 @@
 #include <cmath>
 
 #include "app/embedded_scene.h"
+#include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
-#include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"
@@ -209,13 +209,13 @@ class TestAnalysesPanel : public QObject {
     }
   }
 
-  void workbenchFeedsThePlots() {
+  void analysisFeaturesFeedThePlots() {
     studio::MainWindow window;
     window.resize(1600, 1000);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    AnalysesPanel* panel = window.workbench()->analysesPanel();
-    PlotsPanel* plots = window.workbench()->plotsPanel();
+    AnalysesPanel* panel = window.analysisFeatures()->analysesPanel();
+    PlotsPanel* plots = window.analysisFeatures()->plotsPanel();
     panel->selectAnalysis("sweep");
     panel->setParameter("gaze-from", -20.0);
     panel->setParameter("gaze-to", 20.0);

@@ -19,8 +19,8 @@
 #include <QUndoStack>
 
 #include "app/embedded_scene.h"
+#include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
-#include "app/studio/workbench.h"
 #include "model/scene/scene_io.h"
 #include "widgets/autosave.h"
 #include "widgets/preferences.h"
@@ -157,7 +157,7 @@ class TestRecovery : public QObject {
 
     studio::MainWindow window;
     answerRecoveryWith("recover");
-    window.workbench()->startSession(dir);
+    window.analysisFeatures()->startSession(dir);
     const Scene& now = window.document()->scene();
     QCOMPARE(now.eye.relief_mm, 27.0);
     QCOMPARE(now.hoe_layers[1].n1, 0.021);
@@ -165,7 +165,7 @@ class TestRecovery : public QObject {
     QCOMPARE(window.document()->filePath(), QFileInfo(saved).absoluteFilePath());
     // The crashed session's files are gone; this session autosaved the recovered scene.
     QVERIFY(!QFile::exists(dir + "/session-424242-1.json"));
-    QVERIFY(window.workbench()->autosaver()->hasRecoveryFile());
+    QVERIFY(window.analysisFeatures()->autosaver()->hasRecoveryFile());
     // Undo goes back to the file on disk.
     window.document()->undoStack()->undo();
     QCOMPARE(window.document()->scene().eye.relief_mm, prototype().eye.relief_mm);
@@ -181,7 +181,7 @@ class TestRecovery : public QObject {
     studio::MainWindow window;
     const double before = window.document()->scene().eye.relief_mm;
     answerRecoveryWith("discard");
-    window.workbench()->startSession(dir);
+    window.analysisFeatures()->startSession(dir);
     QCOMPARE(window.document()->scene().eye.relief_mm, before);
     QVERIFY(!window.document()->isModified());
     QVERIFY(!QFile::exists(dir + "/session-424242-1.json"));
@@ -193,7 +193,7 @@ class TestRecovery : public QObject {
     writeCrashLeftovers(dir, prototype(), {}, true);
     studio::MainWindow window;
     answerRecoveryWith("later");
-    window.workbench()->startSession(dir);
+    window.analysisFeatures()->startSession(dir);
     QVERIFY(QFile::exists(dir + "/session-424242-1.json"));
     QCOMPARE(Autosaver::findOrphans(dir).size(), 1);
   }

@@ -12,9 +12,9 @@
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_document.h"
-#include "app/studio/trace_workbench.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "viz/scene_view.h"
@@ -58,7 +58,7 @@ class TestReportFigures : public QObject {
     w.resize(1400, 900);
     w.show();
     QVERIFY(QTest::qWaitForWindowExposed(&w));
-    studio::TraceWorkbench* bench = w.traceWorkbench();
+    studio::LiveTraceFeatures* bench = w.liveTraceFeatures();
     // The live view: HOE follows a 6 deg gaze, so the plate is drawn shifted.
     bench->gazePanel()->setFollowGaze(true);
     bench->setStartGaze(6.0, 0.0);
@@ -131,7 +131,7 @@ class TestReportFigures : public QObject {
     w.resize(1400, 900);
     w.show();
     QVERIFY(QTest::qWaitForWindowExposed(&w));
-    QVERIFY(w.traceWorkbench()->waitForTrace());
+    QVERIFY(w.liveTraceFeatures()->waitForTrace());
     viz::SceneView* view = w.sceneView();
     studio::ReportData d;
     d.scene = w.document()->scene();

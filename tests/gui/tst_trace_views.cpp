@@ -15,8 +15,8 @@
 #include <vtkProp.h>
 #include <vtkScalarBarActor.h>
 
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
-#include "app/studio/trace_workbench.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
 #include "viz/element_handles.h"
@@ -38,7 +38,7 @@ class TestTraceViews : public QObject {
   Q_OBJECT
  private:
   std::unique_ptr<studio::MainWindow> w;
-  studio::TraceWorkbench* bench() { return w->traceWorkbench(); }
+  studio::LiveTraceFeatures* bench() { return w->liveTraceFeatures(); }
 
  private slots:
   void init() {

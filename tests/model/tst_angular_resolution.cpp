@@ -2,11 +2,11 @@
 #include <QtTest>
 
 #include <cmath>
-#include <numbers>
 
 #include "app/embedded_scene.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/scene/scene_io.h"
+#include "model/units.h"
 
 using namespace fovea;
 
@@ -14,7 +14,6 @@ namespace {
 Scene prototype() {
   return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
 }
-constexpr double kDeg = std::numbers::pi / 180.0;
 }  // namespace
 
 class TestAngularResolution : public QObject {

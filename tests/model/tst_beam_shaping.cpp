@@ -148,6 +148,18 @@ class TestBeamShaping : public QObject {
     QVERIFY_THROWS_EXCEPTION(LensCatalogError, parseLensCatalog("{not json", "x.json"));
   }
 
+  void biconvexRadiusSolvesTheThickLensEquation() {
+    // The radius puts the thick-lens power back: 1/f = (n-1)(2/R - (n-1) t/(n R^2)); as the
+    // lens thins it tends to the lensmaker's thin-lens 2 (n-1) f.
+    const double n = 1.517, f = 50.0;
+    for (double t : {0.5, 3.0, 8.0}) {
+      const double R = biconvexRadiusMm(f, n, t);
+      const double power = (n - 1) * (2 / R - (n - 1) * t / (n * R * R));
+      QVERIFY2(std::abs(1 / power - f) < 1e-9, qPrintable(QString::number(t)));
+      QVERIFY(R < 2 * (n - 1) * f);  // thickness costs power: the surfaces curve more than thin
+    }
+    QVERIFY(std::abs(biconvexRadiusMm(f, n, 1e-9) - 2 * (n - 1) * f) < 1e-6);
+  }
   void bk7IndexAtTheDLine() { QVERIFY(std::abs(glassIndex("N-BK7", 587.6) - 1.5168) < 2e-4); }
 };
 

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "app/embedded_scene.h"
+#include "model/color/srgb.h"
 #include "model/image/flip.h"
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
@@ -174,7 +175,7 @@ class TestFoveation : public QObject {
     writeLinearRgb(dir + "/io.png", img, true);
     const cv::Mat back = readLinearRgb(dir + "/io.png");
     QVERIFY(maxAbsDiff(back, img) < 1e-3);
-    QVERIFY(std::abs(srgbToLinear(linearToSrgb(0.18f)) - 0.18f) < 1e-6);
+    QVERIFY(std::abs(fovea::color::srgbToLinear(fovea::color::linearToSrgb(0.18f)) - 0.18f) < 1e-6);
     try {
       readLinearRgb(dir + "/missing.png");
       QFAIL("missing file read");

@@ -7,13 +7,13 @@
 #include <numbers>
 #include <random>
 
-#include "model/gaze/eye_camera.h"
 #include "model/gaze/gaze_calibration.h"
+#include "model/gaze/pupil_camera.h"
 
 using namespace fovea::gaze;
 
 namespace {
-GazeTarget target(const EyeCamera& cam, double yaw, double pitch, bool holdout, int samples = 10, double noise_px = 0,
+GazeTarget target(const PupilCamera& cam, double yaw, double pitch, bool holdout, int samples = 10, double noise_px = 0,
                   unsigned seed = 1) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, noise_px);
@@ -28,7 +28,7 @@ GazeTarget target(const EyeCamera& cam, double yaw, double pitch, bool holdout, 
 }
 // Calibration grid: 5 points (centre + corners) or 9 points (3 x 3), +-15 x +-10 deg;
 // held out: the four points halfway to the corners and the four edge midpoints of the 5-point case.
-std::vector<GazeTarget> session(const EyeCamera& cam, int points) {
+std::vector<GazeTarget> session(const PupilCamera& cam, int points) {
   std::vector<GazeTarget> t;
   for (double p : {-10.0, 0.0, 10.0})
     for (double y : {-15.0, 0.0, 15.0}) {
@@ -81,7 +81,7 @@ class TestGazeCalibration : public QObject {
   }
 
   void physicalEyeFiveAndNinePoints() {
-    const EyeCamera cam;
+    const PupilCamera cam;
     const GazeCalibrationResult nine = calibrateGaze(session(cam, 9));
     const GazeCalibrationResult five = calibrateGaze(session(cam, 5));
     qInfo(
@@ -121,7 +121,7 @@ class TestGazeCalibration : public QObject {
   }
 
   void temporalAveraging() {
-    const EyeCamera cam;
+    const PupilCamera cam;
     GazeTarget t = target(cam, 5, 3, false, 10);
     // Five samples of the saccade landing first: the average of the last 10 ignores them.
     for (int i = 0; i < 5; ++i) t.pupil_px.insert(t.pupil_px.begin(), Eigen::Vector2d(0, 0));
@@ -134,7 +134,7 @@ class TestGazeCalibration : public QObject {
     // Isotropic pupil noise sigma_px maps through the local derivative of the camera model
     // at zero gaze: d(x)/d(yaw) = f r / (D - r) per radian, so sigma_deg = sigma_px (D - r) /
     // (f r) * 180/pi per axis. For iid 2-D noise: SD = sqrt(2) sigma_deg, RMS-S2S = 2 sigma_deg.
-    const EyeCamera cam;
+    const PupilCamera cam;
     std::vector<GazeTarget> t = session(cam, 9);
     const double sigmaPx = 0.4;
     t.push_back(target(cam, 0, 0, true, 4000, sigmaPx, 7));
@@ -152,7 +152,7 @@ class TestGazeCalibration : public QObject {
   }
 
   void degenerateInput() {
-    const EyeCamera cam;
+    const PupilCamera cam;
     auto throwsWith = [](auto f, const char* text) {
       try {
         f();

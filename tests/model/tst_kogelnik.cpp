@@ -2,19 +2,17 @@
 #include <QtTest>
 
 #include <cmath>
-#include <numbers>
 #include <random>
 
 #include <Eigen/Geometry>
 
 #include "model/physics/grating.h"
 #include "model/physics/grating_request.h"
+#include "model/units.h"
 
 using namespace fovea;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 PlanarGrating planar(double n0, double n1, double d_um, double period_nm, double slant_deg, double probe_deg,
                      double lambda_nm, Polarization pol = Polarization::S) {

@@ -1,4 +1,4 @@
-// Numerical stability of the coupled-wave core and of the 3-D trace (issue 6): a property-based
+// Numerical stability of the coupled-wave core and of the 3-D trace: a property-based
 // suite over random gratings and random scenes with a fixed seed, including the extremes.
 //
 // Properties, for every sample:

@@ -4,19 +4,17 @@
 
 #include <cmath>
 #include <complex>
-#include <numbers>
 #include <random>
 
 #include "model/rigorous/rcwa.h"
+#include "model/units.h"
 
 using namespace fovea::rigorous;
+using fovea::degToRad;
+using fovea::kPi;
 using cd = std::complex<double>;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-double rad(double deg) {
-  return deg * kPi / 180.0;
-}
 
 // Generic two-interface (Airy) film for the amplitude u (E_y for TE, Z0 H_y for TM):
 // continuity of u and of its partner v = ±Y u gives r_ij = (Y_i − Y_j)/(Y_i + Y_j),
@@ -81,7 +79,7 @@ class TestRcwa : public QObject {
       p.polarization = te ? RcwaPolarization::TE : RcwaPolarization::TM;
       p.setCoverAngleDeg(deg);
       const RcwaResult r = solveRcwa(p, {3, 4, false});
-      const double ti = rad(deg), tt = std::asin(std::sin(ti) / 1.5);
+      const double ti = degToRad(deg), tt = std::asin(std::sin(ti) / 1.5);
       const double rs = (std::cos(ti) - 1.5 * std::cos(tt)) / (std::cos(ti) + 1.5 * std::cos(tt));
       const double rp = (1.5 * std::cos(ti) - std::cos(tt)) / (1.5 * std::cos(ti) + std::cos(tt));
       const double R = te ? rs * rs : rp * rp;
@@ -216,7 +214,7 @@ class TestRcwa : public QObject {
     p.n0 = cd(1.5, 2e-3);
     const RcwaOptions opt{7, 24, false};
     const RcwaResult fwd = solveRcwa(p, opt);
-    const double kx_grating = p.wavelength_nm / p.period_nm * std::sin(rad(p.slant_deg));
+    const double kx_grating = p.wavelength_nm / p.period_nm * std::sin(degToRad(p.slant_deg));
     int checked = 0;
     for (const RcwaOrder& o : fwd.orders) {
       const double kxm = p.kx_over_k0 - o.order * kx_grating;

@@ -3,14 +3,14 @@
 #include <QtTest>
 
 #include <cmath>
-#include <numbers>
 
 #include "model/rigorous/rcwa_grating.h"
+#include "model/units.h"
 
 using namespace fovea::rigorous;
+using fovea::kPi;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 RcwaGratingRequest transmissionOnBragg() {
   RcwaGratingRequest q;
   q.n0 = 1.5;

@@ -4,17 +4,15 @@
 #include <QtTest>
 
 #include <cmath>
-#include <numbers>
 
 #include "model/rigorous/rcwa.h"
+#include "model/units.h"
 
 using namespace fovea::rigorous;
+using fovea::degToRad;
+using fovea::kPi;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-double rad(double deg) {
-  return deg * kPi / 180.0;
-}
 
 // Kogelnik (Bell Syst. Tech. J. 48, 2909 (1969)), lossless, s polarisation (p: κ → κ ρ̂·σ̂):
 //   c_R = cos θ, c_S = cos θ − (λ/(n0 Λ)) cos φ, ϑ = K cos(φ − θ) − K² λ/(4π n0),
@@ -28,7 +26,7 @@ struct Kog {
 Kog kogelnik(double n0, double n1, double d_um, double period_nm, double slant_deg, double theta_deg, double lambda_nm,
              bool te) {
   const double lam = lambda_nm * 1e-3, L = period_nm * 1e-3, K = 2 * kPi / L;
-  const double th = rad(theta_deg), ph = rad(slant_deg);
+  const double th = degToRad(theta_deg), ph = degToRad(slant_deg);
   const double cr = std::cos(th), cs = std::cos(th) - lam / (n0 * L) * std::cos(ph);
   const double vt = K * std::cos(ph - th) - K * K * lam / (4 * kPi * n0);
   // p: coupling reduced by ρ̂·σ̂ (σ = ρ − K direction).
@@ -71,7 +69,7 @@ RcwaProblem matched(double n0, double n1, double d, double period, double slant,
 }
 // Slices for ~64 per fringe period along z (staircase error well below 1e-3 here).
 int slicesFor(const RcwaProblem& p) {
-  const double lz = p.period_nm * 1e-3 / std::max(1e-9, std::abs(std::cos(rad(p.slant_deg))));
+  const double lz = p.period_nm * 1e-3 / std::max(1e-9, std::abs(std::cos(degToRad(p.slant_deg))));
   return std::max(1, int(std::ceil(64.0 * p.thickness_um / lz)));
 }
 // Kogelnik's diffracted wave in RCWA: order +1 (order 0 reflected when K_x = 0).
@@ -99,7 +97,7 @@ class TestRcwaKogelnik : public QObject {
                qPrintable(QString("te %1: rcwa %2 kogelnik %3").arg(te).arg(eta).arg(closed)));
     }
     // ν = π/2: full conversion (Kogelnik 100 %), RCWA within 1e-2.
-    const double cosB = std::cos(rad(thetaB));
+    const double cosB = std::cos(degToRad(thetaB));
     const double d_full = 0.5 * lam * 1e-3 * cosB / 0.005;  // ν = π n1 d/(λ cos θ) = π/2
     const double eta = rcwaDiffracted(matched(n0, 0.005, d_full, L, 90, thetaB, lam, true), false);
     QVERIFY2(std::abs(eta - 1.0) < 1e-2, qPrintable(QString::number(eta)));
@@ -135,7 +133,7 @@ class TestRcwaKogelnik : public QObject {
     QFETCH(bool, te);
     QFETCH(double, d);
     const double n0 = 1.5, n1 = 0.005, lam = 532;
-    const double L = lam / (2 * n0 * std::cos(rad(slant - thetaB)));  // Bragg at θ_B
+    const double L = lam / (2 * n0 * std::cos(degToRad(slant - thetaB)));  // Bragg at θ_B
     double worst = 0, peak = 0;
     for (double dth : {-0.6, -0.3, -0.1, 0.0, 0.1, 0.3, 0.6}) {
       const Kog k = kogelnik(n0, n1, d, L, slant, thetaB + dth, lam, te);

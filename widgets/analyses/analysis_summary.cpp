@@ -4,23 +4,12 @@
 
 #include <cmath>
 
+#include "model/json_numbers.h"
+
 namespace fovea::widgets {
 
 namespace {
 
-double num(const nlohmann::json& j, std::initializer_list<const char*> path) {
-  const nlohmann::json* p = &j;
-  for (const char* k : path) {
-    if (!p->is_object() || !p->contains(k)) return NAN;
-    p = &p->at(k);
-  }
-  return p->is_number() ? p->get<double>() : NAN;
-}
-double at(const nlohmann::json& j, const char* key, std::size_t i) {
-  if (!j.is_object() || !j.contains(key) || !j.at(key).is_array() || j.at(key).size() <= i) return NAN;
-  const auto& v = j.at(key)[i];
-  return v.is_number() ? v.get<double>() : NAN;
-}
 QString g(double v, int significant = 4) {
   return std::isfinite(v) ? QString::number(v, 'g', significant) : QStringLiteral("—");
 }
@@ -36,12 +25,12 @@ struct Table {
 
 QString fovText(const nlohmann::json& f, const DisplayUnits& u) {
   return QString("%1 × %2 %3 (diagonal %4)")
-      .arg(g(u.angleFromDeg(num(f, {"horizontal"}))), g(u.angleFromDeg(num(f, {"vertical"}))), u.angleSymbol(),
-           g(u.angleFromDeg(num(f, {"diagonal"}))));
+      .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))), g(u.angleFromDeg(jsonNumber(f, {"vertical"}))),
+           u.angleSymbol(), g(u.angleFromDeg(jsonNumber(f, {"diagonal"}))));
 }
 
 QString range(const nlohmann::json& j, const char* key, bool length, const DisplayUnits& u) {
-  const double a = at(j, key, 0), b = at(j, key, 1);
+  const double a = jsonNumberAt(j, key, 0), b = jsonNumberAt(j, key, 1);
   if (length) return g(u.lengthFromMm(a)) + " … " + g(u.lengthFromMm(b)) + " " + u.lengthSymbol();
   return g(u.angleFromDeg(a)) + " … " + g(u.angleFromDeg(b)) + " " + u.angleSymbol();
 }
@@ -57,20 +46,22 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
     t.add("Gaze", range(r, "gaze_deg", false, u).replace(" … ", ", "));
     t.add("Rays in the pupil / efficient / traced",
           QString("%1 / %2 / %3")
-              .arg(g(num(r, {"rays_in_pupil"}), 8), g(num(r, {"rays_efficient"}), 8), g(num(r, {"rays"}), 8)));
-    t.add("Mean efficiency in the pupil", pct(num(r, {"mean_efficiency"})));
-    t.add("Mean efficiency on the HOE", pct(num(r, {"mean_efficiency_on_hoe"})));
+              .arg(g(jsonNumber(r, {"rays_in_pupil"}), 8), g(jsonNumber(r, {"rays_efficient"}), 8),
+                   g(jsonNumber(r, {"rays"}), 8)));
+    t.add("Mean efficiency in the pupil", pct(jsonNumber(r, {"mean_efficiency"})));
+    t.add("Mean efficiency on the HOE", pct(jsonNumber(r, {"mean_efficiency_on_hoe"})));
     if (r.contains("per_wavelength"))
       for (const auto& w : r["per_wavelength"])
-        t.add(QString("%1 nm").arg(g(num(w, {"wavelength_nm"}))),
-              fovText(w.value("fov_deg", nlohmann::json::object()), u) + ", η " + pct(num(w, {"mean_efficiency"})));
+        t.add(QString("%1 nm").arg(g(jsonNumber(w, {"wavelength_nm"}))),
+              fovText(w.value("fov_deg", nlohmann::json::object()), u) + ", η " +
+                  pct(jsonNumber(w, {"mean_efficiency"})));
   } else if (id == "sweep") {
     const auto& eb = r.value("eyebox", nlohmann::json::object());
-    t.add("Eye box", u.length(num(r, {"eyebox_mm"})));
+    t.add("Eye box", u.length(jsonNumber(r, {"eyebox_mm"})));
     t.add("Gaze range of the eye box", range(eb, "gaze_range_deg", false, u));
     t.add("Pupil range", range(eb, "pupil_range_mm", true, u));
     t.add("HOE travel at the borders", range(eb, "travel_mm", true, u));
-    t.add("Zero-gaze FOV (reference)", u.angle(num(eb, {"reference_fov_deg"})));
+    t.add("Zero-gaze FOV (reference)", u.angle(jsonNumber(eb, {"reference_fov_deg"})));
     if (eb.value("lower_border_found", true) == false || eb.value("upper_border_found", true) == false)
       extra = "<p><i>A border of the eye box lies outside the studied gaze range: the width is a lower bound.</i></p>";
   } else if (id == "compare-shift") {
@@ -78,16 +69,16 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
       const auto& m = r.value(k, nlohmann::json::object());
       t.add(QString(k) == "hoe_shift" ? "Moving the HOE" : "Moving the point source",
             QString("eye box %1, gaze %2, travel %3")
-                .arg(u.length(num(m, {"eyebox_mm"})), range(m, "gaze_range_deg", false, u),
+                .arg(u.length(jsonNumber(m, {"eyebox_mm"})), range(m, "gaze_range_deg", false, u),
                      range(m, "travel_mm", true, u)));
     }
-    t.add("Eye-box ratio (HOE / source)", g(num(r, {"eyebox_ratio"})));
+    t.add("Eye-box ratio (HOE / source)", g(jsonNumber(r, {"eyebox_ratio"})));
   } else if (id == "sensitivity") {
     t.add("Parameter", QString::fromStdString(r.value("parameter", std::string())));
-    t.add("Nominal value", g(num(r, {"nominal_value"}), 6));
+    t.add("Nominal value", g(jsonNumber(r, {"nominal_value"}), 6));
     double fmin = INFINITY, fmax = -INFINITY, emin = INFINITY, emax = -INFINITY;
     for (const auto& s : r.value("samples", nlohmann::json::array())) {
-      const double f = num(s, {"fov_deg", "horizontal"}), e = num(s, {"mean_efficiency"});
+      const double f = jsonNumber(s, {"fov_deg", "horizontal"}), e = jsonNumber(s, {"mean_efficiency"});
       if (std::isfinite(f)) fmin = std::min(fmin, f), fmax = std::max(fmax, f);
       if (std::isfinite(e)) emin = std::min(emin, e), emax = std::max(emax, e);
     }
@@ -98,43 +89,45 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
     t.add("Peripheral field", range(r, "peripheral_field_deg", false, u));
     t.add("Foveal field", range(r, "foveal_field_deg", false, u));
     t.add("Peripheral pixels along the gaze row",
-          g(num(r, {"peripheral_pixel_integral"})) + " of " + g(num(r, {"pixels_horizontal"}), 6));
-    t.add("Projector pixels per degree", g(num(r, {"projector_pixels_per_deg"})));
+          g(jsonNumber(r, {"peripheral_pixel_integral"})) + " of " + g(jsonNumber(r, {"pixels_horizontal"}), 6));
+    t.add("Projector pixels per degree", g(jsonNumber(r, {"projector_pixels_per_deg"})));
     double best = NAN, nearest = INFINITY;
     for (const auto& s : r.value("samples", nlohmann::json::array())) {
-      const double e = std::abs(num(s, {"eccentricity_deg"}));
-      if (e < nearest) nearest = e, best = num(s, {"perceived_cpd"});
+      const double e = std::abs(jsonNumber(s, {"eccentricity_deg"}));
+      if (e < nearest) nearest = e, best = jsonNumber(s, {"perceived_cpd"});
     }
     t.add("Perceived resolution at the gaze", g(best) + " cpd");
   } else if (id == "optimize-lens") {
     t.add("Best lens", QString::fromStdString(r.value("vendor", std::string()) + " " + r.value("part", std::string())) +
-                           QString(" (f = %1)").arg(u.length(num(r, {"focal_length_mm"}))));
-    t.add("Distance / decentre / tilt", QString("%1 / %2 / %3")
-                                            .arg(u.length(num(r, {"distance_mm"})), u.length(num(r, {"decenter_mm"})),
-                                                 u.angle(num(r, {"tilt_deg"}))));
-    t.add("RMS spot on the HOE", QString("%1 µm → %2 µm (%3 % sharper)")
-                                     .arg(g(num(r, {"rms_spot_um", "before"})), g(num(r, {"rms_spot_um", "after"})),
-                                          g(num(r, {"improvement_percent"}), 3)));
+                           QString(" (f = %1)").arg(u.length(jsonNumber(r, {"focal_length_mm"}))));
+    t.add("Distance / decentre / tilt",
+          QString("%1 / %2 / %3")
+              .arg(u.length(jsonNumber(r, {"distance_mm"})), u.length(jsonNumber(r, {"decenter_mm"})),
+                   u.angle(jsonNumber(r, {"tilt_deg"}))));
+    t.add("RMS spot on the HOE",
+          QString("%1 µm → %2 µm (%3 % sharper)")
+              .arg(g(jsonNumber(r, {"rms_spot_um", "before"})), g(jsonNumber(r, {"rms_spot_um", "after"})),
+                   g(jsonNumber(r, {"improvement_percent"}), 3)));
   } else if (id == "selectivity") {
     for (const auto& l : r.value("layers", nlohmann::json::array()))
       t.add(QString::fromStdString(l.value("name", std::string())) +
-                QString(" (%1 nm)").arg(g(num(l, {"probe_wavelength_nm"}))),
+                QString(" (%1 nm)").arg(g(jsonNumber(l, {"probe_wavelength_nm"}))),
             QString("η %1 nominal, peak %2 at %3; FWHM %4, %5 nm")
-                .arg(pct(num(l, {"nominal_efficiency"})), pct(num(l, {"peak_angle_efficiency"})),
-                     u.angle(num(l, {"peak_detuning_deg"}), 3), u.angle(num(l, {"angular_fwhm_deg"}), 3),
-                     g(num(l, {"spectral_fwhm_nm"}), 3)));
+                .arg(pct(jsonNumber(l, {"nominal_efficiency"})), pct(jsonNumber(l, {"peak_angle_efficiency"})),
+                     u.angle(jsonNumber(l, {"peak_detuning_deg"}), 3), u.angle(jsonNumber(l, {"angular_fwhm_deg"}), 3),
+                     g(jsonNumber(l, {"spectral_fwhm_nm"}), 3)));
   } else if (id == "grating") {
     const auto& c = r.value("center", nlohmann::json::object());
     t.add("Type", QString::fromStdString(c.value("type", std::string())));
-    t.add("Efficiency at the probe", g(num(c, {"efficiency"}), 5));
-    t.add("ν, ξ", g(num(c, {"nu"})) + ", " + g(num(c, {"xi"})));
+    t.add("Efficiency at the probe", g(jsonNumber(c, {"efficiency"}), 5));
+    t.add("ν, ξ", g(jsonNumber(c, {"nu"})) + ", " + g(jsonNumber(c, {"xi"})));
   } else if (id == "kogelnik-vs-rcwa") {
     const auto& pts = r.value("points", nlohmann::json::array());
     double worst = 0, sk = 0, sr = 0;
     for (const auto& p : pts) {
-      worst = std::max(worst, num(p, {"abs_error"}));
-      sk += num(p, {"kogelnik_ns"});
-      sr += num(p, {"rcwa_ms"});
+      worst = std::max(worst, jsonNumber(p, {"abs_error"}));
+      sk += jsonNumber(p, {"kogelnik_ns"});
+      sr += jsonNumber(p, {"rcwa_ms"});
     }
     t.add("Grid points", g(double(pts.size()), 6));
     t.add("Largest |Δη|", QString::number(worst, 'e', 2));

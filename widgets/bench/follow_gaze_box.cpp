@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "model/physics/eye_camera.h"
+#include "model/physics/display_camera_map.h"
 
 namespace fovea::widgets {
 

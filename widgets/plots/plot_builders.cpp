@@ -6,22 +6,19 @@
 #include <cmath>
 #include <map>
 
+#include "model/color/srgb.h"
+#include "model/json_numbers.h"
+
 namespace fovea::widgets {
 
 namespace {
 
 using Style = PlotSeries::Style;
 
-// A number of a JSON object, or NaN when absent / null / not a number.
-double num(const nlohmann::json& j, const char* key) {
-  if (!j.is_object()) return NAN;
-  const auto it = j.find(key);
-  if (it == j.end() || !it->is_number()) return NAN;
-  return it->get<double>();
-}
-double num(const nlohmann::json& j, const char* a, const char* b) {
-  if (!j.is_object() || !j.contains(a)) return NAN;
-  return num(j.at(a), b);
+// The colour the 3D view draws a wavelength in (model/color/srgb.h).
+QColor wavelengthQColor(double nm) {
+  const auto c = color::wavelengthColor(nm);
+  return QColor::fromRgbF(float(c[0]), float(c[1]), float(c[2]));
 }
 QVariant cell(double v) {
   return std::isfinite(v) ? QVariant(v) : QVariant();
@@ -61,7 +58,7 @@ QList<PlotData> fromSweep(const nlohmann::json& r, const DisplayUnits& u, const 
   const QString axis = str(r, "axis").isEmpty() ? QStringLiteral("yaw") : str(r, "axis");
   const QString gazeCol = withUnit("gaze " + axis, u.angleSymbol());
   const nlohmann::json eb = r.contains("eyebox") ? r["eyebox"] : nlohmann::json::object();
-  const double eyebox = num(r, "eyebox_mm");
+  const double eyebox = jsonNumber(r, {"eyebox_mm"});
   const auto gr = eb.contains("gaze_range_deg") ? eb["gaze_range_deg"] : nlohmann::json::array();
   const auto tr = eb.contains("travel_mm") ? eb["travel_mm"] : nlohmann::json::array();
   const QString eyeboxText = QString("Eye box %1 over gaze %2 .. %3 %4 (FOV within the tolerance of the zero-gaze FOV)")
@@ -94,15 +91,17 @@ QList<PlotData> fromSweep(const nlohmann::json& r, const DisplayUnits& u, const 
                  "efficiency uniformity"};
   travel.columns = {gazeCol, withUnit("HOE shift", u.lengthSymbol()), withUnit("pupil position", u.lengthSymbol())};
   for (const auto& s : arr(r, "samples")) {
-    const double g = u.angleFromDeg(num(s, "gaze_deg"));
-    const double fh = u.angleFromDeg(num(s, "fov_deg", "horizontal")),
-                 fv = u.angleFromDeg(num(s, "fov_deg", "vertical")), fd = u.angleFromDeg(num(s, "fov_deg", "diagonal"));
+    const double g = u.angleFromDeg(jsonNumber(s, {"gaze_deg"}));
+    const double fh = u.angleFromDeg(jsonNumber(s, {"fov_deg", "horizontal"})),
+                 fv = u.angleFromDeg(jsonNumber(s, {"fov_deg", "vertical"})),
+                 fd = u.angleFromDeg(jsonNumber(s, {"fov_deg", "diagonal"}));
     addPoint(h, g, fh);
     addPoint(v, g, fv);
     addPoint(d, g, fd);
-    fov.rows.append({cell(g), cell(fh), cell(fv), cell(fd), cell(num(s, "mean_efficiency")),
-                     cell(num(s, "efficiency_uniformity"))});
-    const double sh = u.lengthFromMm(num(s, "hoe_shift_mm")), pp = u.lengthFromMm(num(s, "pupil_position_mm"));
+    fov.rows.append({cell(g), cell(fh), cell(fv), cell(fd), cell(jsonNumber(s, {"mean_efficiency"})),
+                     cell(jsonNumber(s, {"efficiency_uniformity"}))});
+    const double sh = u.lengthFromMm(jsonNumber(s, {"hoe_shift_mm"})),
+                 pp = u.lengthFromMm(jsonNumber(s, {"pupil_position_mm"}));
     addPoint(shift, g, sh);
     addPoint(pupil, g, pp);
     travel.rows.append({cell(g), cell(sh), cell(pp)});
@@ -144,29 +143,32 @@ QList<PlotData> fromSelectivity(const nlohmann::json& r, const DisplayUnits& u, 
   QStringList summary;
   for (const auto& l : layers) {
     const QString name = str(l, "name");
-    const double probe = num(l, "probe_wavelength_nm");
+    const double probe = jsonNumber(l, {"probe_wavelength_nm"});
     const QString label = QString("%1 layer (%2 nm)").arg(name, fmt(probe));
-    PlotSeries a = series(label, Style::Line, wavelengthColor(probe));
-    for (const auto& s : arr(l, "angle")) addPoint(a, u.angleFromDeg(num(s, "detuning_deg")), num(s, "efficiency"));
-    PlotSeries w = series(label, Style::Line, wavelengthColor(probe));
+    PlotSeries a = series(label, Style::Line, wavelengthQColor(probe));
+    for (const auto& s : arr(l, "angle"))
+      addPoint(a, u.angleFromDeg(jsonNumber(s, {"detuning_deg"})), jsonNumber(s, {"efficiency"}));
+    PlotSeries w = series(label, Style::Line, wavelengthQColor(probe));
     for (const auto& s : arr(l, "spectrum")) {
-      addPoint(w, num(s, "wavelength_nm"), num(s, "efficiency"));
-      spec.rows.append({name, cell(num(s, "wavelength_nm")), cell(num(s, "efficiency")), cell(num(s, "xi"))});
+      addPoint(w, jsonNumber(s, {"wavelength_nm"}), jsonNumber(s, {"efficiency"}));
+      spec.rows.append({name, cell(jsonNumber(s, {"wavelength_nm"})), cell(jsonNumber(s, {"efficiency"})),
+                        cell(jsonNumber(s, {"xi"}))});
     }
     ang.series.append(a);
     spec.series.append(w);
     ang.columns << withUnit(name + " efficiency", {});
     angleCurves.push_back(&arr(l, "angle"));
     summary << QString("%1: η %2 at the nominal probe, peak %3 at %4, FWHM %5 / %6 nm")
-                   .arg(name, fmt(num(l, "nominal_efficiency"), 3), fmt(num(l, "peak_angle_efficiency"), 3),
-                        u.angle(num(l, "peak_detuning_deg"), 3), u.angle(num(l, "angular_fwhm_deg"), 3),
-                        fmt(num(l, "spectral_fwhm_nm"), 3));
+                   .arg(name, fmt(jsonNumber(l, {"nominal_efficiency"}), 3),
+                        fmt(jsonNumber(l, {"peak_angle_efficiency"}), 3),
+                        u.angle(jsonNumber(l, {"peak_detuning_deg"}), 3),
+                        u.angle(jsonNumber(l, {"angular_fwhm_deg"}), 3), fmt(jsonNumber(l, {"spectral_fwhm_nm"}), 3));
   }
   // Wide table: the layers share the detuning samples.
   const std::size_t n = angleCurves.empty() ? 0 : angleCurves.front()->size();
   for (std::size_t i = 0; i < n; ++i) {
-    QVariantList row{cell(u.angleFromDeg(num((*angleCurves.front())[i], "detuning_deg")))};
-    for (const auto* c : angleCurves) row << (i < c->size() ? cell(num((*c)[i], "efficiency")) : QVariant());
+    QVariantList row{cell(u.angleFromDeg(jsonNumber((*angleCurves.front())[i], {"detuning_deg"})))};
+    for (const auto* c : angleCurves) row << (i < c->size() ? cell(jsonNumber((*c)[i], {"efficiency"})) : QVariant());
     ang.rows.append(row);
   }
   const auto pt = r.contains("point_mm") ? r["point_mm"] : nlohmann::json::array();
@@ -200,12 +202,13 @@ QList<PlotData> fromGrating(const nlohmann::json& r, const DisplayUnits& u, cons
   p.columns = {withUnit("probe angle", u.angleSymbol()), withUnit("detuning", u.angleSymbol()), "Kogelnik efficiency"};
   if (rcwa) p.columns << "RCWA efficiency";
   for (const auto& s : arr(r, "samples")) {
-    const double x = u.angleFromDeg(num(s, "detuning_deg"));
-    addPoint(k, x, num(s, "kogelnik_efficiency"));
-    QVariantList row{cell(u.angleFromDeg(num(s, "probe_deg"))), cell(x), cell(num(s, "kogelnik_efficiency"))};
+    const double x = u.angleFromDeg(jsonNumber(s, {"detuning_deg"}));
+    addPoint(k, x, jsonNumber(s, {"kogelnik_efficiency"}));
+    QVariantList row{cell(u.angleFromDeg(jsonNumber(s, {"probe_deg"}))), cell(x),
+                     cell(jsonNumber(s, {"kogelnik_efficiency"}))};
     if (rcwa) {
-      addPoint(w, x, num(s, "rcwa_efficiency"));
-      row << cell(num(s, "rcwa_efficiency"));
+      addPoint(w, x, jsonNumber(s, {"rcwa_efficiency"}));
+      row << cell(jsonNumber(s, {"rcwa_efficiency"}));
     }
     p.rows.append(row);
   }
@@ -215,8 +218,8 @@ QList<PlotData> fromGrating(const nlohmann::json& r, const DisplayUnits& u, cons
   p.caption = QString(
                   "Planar %1 grating: efficiency vs probe angle around the request's probe (η %2, ν %3, "
                   "ξ %4 there)%5.")
-                  .arg(str(c, "type"), fmt(num(c, "efficiency"), 4), fmt(num(c, "nu"), 4), fmt(num(c, "xi"), 4),
-                       rcwa ? ", Kogelnik against converged RCWA" : "");
+                  .arg(str(c, "type"), fmt(jsonNumber(c, {"efficiency"}), 4), fmt(jsonNumber(c, {"nu"}), 4),
+                       fmt(jsonNumber(c, {"xi"}), 4), rcwa ? ", Kogelnik against converged RCWA" : "");
   p.source = source;
   return {p};
 }
@@ -241,20 +244,21 @@ QList<PlotData> fromResolution(const nlohmann::json& r, const DisplayUnits& u, c
                "optical limit model (cpd)",
                "perceived (cpd)",
                "foveal shown"};
-  const double eyeLimit = num(r, "eye_limit_cpd");
+  const double eyeLimit = jsonNumber(r, {"eye_limit_cpd"});
   double xmin = INFINITY, xmax = -INFINITY;
   for (const auto& s : arr(r, "samples")) {
-    const double e = u.angleFromDeg(num(s, "eccentricity_deg"));
-    addPoint(perceived, e, num(s, "perceived_cpd"));
-    addPoint(foveal, e, num(s, "foveal_cpd"));
-    addPoint(peripheral, e, num(s, "peripheral_cpd"));
-    addPoint(optical, e, num(s, "optical_limit_cpd"));
+    const double e = u.angleFromDeg(jsonNumber(s, {"eccentricity_deg"}));
+    addPoint(perceived, e, jsonNumber(s, {"perceived_cpd"}));
+    addPoint(foveal, e, jsonNumber(s, {"foveal_cpd"}));
+    addPoint(peripheral, e, jsonNumber(s, {"peripheral_cpd"}));
+    addPoint(optical, e, jsonNumber(s, {"optical_limit_cpd"}));
     if (std::isfinite(e)) xmin = std::min(xmin, e), xmax = std::max(xmax, e);
-    p.rows.append(
-        {cell(e), cell(num(s, "foveal_cpd")), cell(num(s, "peripheral_cpd")), cell(num(s, "optical_limit_cpd")),
-         cell(num(s, "optical_limit_model_cpd")), cell(num(s, "perceived_cpd")),
-         s.contains("foveal_shown") && s["foveal_shown"].is_boolean() ? QVariant(s["foveal_shown"].get<bool>())
-                                                                      : QVariant()});
+    p.rows.append({cell(e), cell(jsonNumber(s, {"foveal_cpd"})), cell(jsonNumber(s, {"peripheral_cpd"})),
+                   cell(jsonNumber(s, {"optical_limit_cpd"})), cell(jsonNumber(s, {"optical_limit_model_cpd"})),
+                   cell(jsonNumber(s, {"perceived_cpd"})),
+                   s.contains("foveal_shown") && s["foveal_shown"].is_boolean()
+                       ? QVariant(s["foveal_shown"].get<bool>())
+                       : QVariant()});
   }
   if (std::isfinite(eyeLimit) && xmin < xmax) eye.points = {QPointF(xmin, eyeLimit), QPointF(xmax, eyeLimit)};
   perceived.markerSize = 0;
@@ -267,8 +271,8 @@ QList<PlotData> fromResolution(const nlohmann::json& r, const DisplayUnits& u, c
                   .arg(g.size() == 2 ? fmt(u.angleFromDeg(g[0].get<double>())) : "—")
                   .arg(g.size() == 2 ? fmt(u.angleFromDeg(g[1].get<double>())) : "—")
                   .arg(u.angleSymbol())
-                  .arg(fmt(num(r, "peripheral_pixel_integral"), 4))
-                  .arg(fmt(num(r, "pixels_horizontal"), 5));
+                  .arg(fmt(jsonNumber(r, {"peripheral_pixel_integral"}), 4))
+                  .arg(fmt(jsonNumber(r, {"pixels_horizontal"}), 5));
   p.source = source;
   return {p};
 }
@@ -305,11 +309,12 @@ QList<PlotData> fromKogelnikVsRcwa(const nlohmann::json& r, const DisplayUnits&,
       byGeometry[g] = series(QString::fromStdString(g), Style::Scatter, palette[order.size() % 7]);
       order.push_back(g);
     }
-    addPoint(byGeometry[g], num(s, "rho"), std::max(kFloor, num(s, "abs_error")));
-    p.rows.append({QString::fromStdString(g), cell(num(s, "thickness_um")), cell(num(s, "n1")),
-                   cell(num(s, "xi_target")), cell(num(s, "rho")), cell(num(s, "klein_q")),
-                   cell(num(s, "kogelnik_efficiency")), cell(num(s, "rcwa_efficiency")), cell(num(s, "abs_error")),
-                   cell(num(s, "kogelnik_ns")), cell(num(s, "rcwa_ms"))});
+    addPoint(byGeometry[g], jsonNumber(s, {"rho"}), std::max(kFloor, jsonNumber(s, {"abs_error"})));
+    p.rows.append({QString::fromStdString(g), cell(jsonNumber(s, {"thickness_um"})), cell(jsonNumber(s, {"n1"})),
+                   cell(jsonNumber(s, {"xi_target"})), cell(jsonNumber(s, {"rho"})), cell(jsonNumber(s, {"klein_q"})),
+                   cell(jsonNumber(s, {"kogelnik_efficiency"})), cell(jsonNumber(s, {"rcwa_efficiency"})),
+                   cell(jsonNumber(s, {"abs_error"})), cell(jsonNumber(s, {"kogelnik_ns"})),
+                   cell(jsonNumber(s, {"rcwa_ms"}))});
   }
   for (const auto& g : order) p.series.append(byGeometry[g]);
   QString html =
@@ -317,16 +322,17 @@ QList<PlotData> fromKogelnikVsRcwa(const nlohmann::json& r, const DisplayUnits&,
       "<th>median |Δη|</th><th>max |Δη| at ν ≤ π/2</th><th>Kogelnik (ns)</th><th>RCWA (ms)</th>"
       "<th>RCWA / Kogelnik time</th></tr>";
   for (const auto& b : arr(r, "by_rho")) {
-    const double hi = num(b, "rho_max");
-    const double ratio = num(b, "mean_rcwa_ms") * 1e6 / num(b, "mean_kogelnik_ns");
+    const double hi = jsonNumber(b, {"rho_max"});
+    const double ratio = jsonNumber(b, {"mean_rcwa_ms"}) * 1e6 / jsonNumber(b, {"mean_kogelnik_ns"});
     html += QString(
                 "<tr><td>%1 – %2</td><td align='right'>%3</td><td align='right'>%4</td><td align='right'>%5</td>"
                 "<td align='right'>%6</td><td align='right'>%7</td><td align='right'>%8</td>"
                 "<td align='right'>%9</td></tr>")
-                .arg(fmt(num(b, "rho_min")), std::isfinite(hi) ? fmt(hi) : QStringLiteral("∞"), fmt(num(b, "points")),
-                     QString::number(num(b, "max_error"), 'e', 2), QString::number(num(b, "median_error"), 'e', 2),
-                     QString::number(num(b, "max_error_weak"), 'e', 2), fmt(num(b, "mean_kogelnik_ns"), 3),
-                     fmt(num(b, "mean_rcwa_ms"), 3),
+                .arg(fmt(jsonNumber(b, {"rho_min"})), std::isfinite(hi) ? fmt(hi) : QStringLiteral("∞"),
+                     fmt(jsonNumber(b, {"points"})), QString::number(jsonNumber(b, {"max_error"}), 'e', 2),
+                     QString::number(jsonNumber(b, {"median_error"}), 'e', 2),
+                     QString::number(jsonNumber(b, {"max_error_weak"}), 'e', 2),
+                     fmt(jsonNumber(b, {"mean_kogelnik_ns"}), 3), fmt(jsonNumber(b, {"mean_rcwa_ms"}), 3),
                      std::isfinite(ratio) ? QString::number(ratio, 'e', 1) : QStringLiteral("—"));
   }
   p.summaryHtml = html + "</table>";
@@ -364,22 +370,22 @@ QList<PlotData> fromSensitivity(const nlohmann::json& r, const DisplayUnits& u, 
                "efficiency uniformity",
                "rays in pupil"};
   for (const auto& s : arr(r, "samples")) {
-    const double x = num(s, "value");
-    const double fh = u.angleFromDeg(num(s, "fov_deg", "horizontal")),
-                 fv = u.angleFromDeg(num(s, "fov_deg", "vertical"));
+    const double x = jsonNumber(s, {"value"});
+    const double fh = u.angleFromDeg(jsonNumber(s, {"fov_deg", "horizontal"})),
+                 fv = u.angleFromDeg(jsonNumber(s, {"fov_deg", "vertical"}));
     addPoint(h, x, fh);
     addPoint(v, x, fv);
-    addPoint(e, x, num(s, "mean_efficiency"));
-    addPoint(un, x, num(s, "efficiency_uniformity"));
-    p.rows.append({cell(x), cell(fh), cell(fv), cell(u.angleFromDeg(num(s, "fov_deg", "diagonal"))),
-                   cell(num(s, "mean_efficiency")), cell(num(s, "efficiency_uniformity")),
-                   cell(num(s, "rays_in_pupil"))});
+    addPoint(e, x, jsonNumber(s, {"mean_efficiency"}));
+    addPoint(un, x, jsonNumber(s, {"efficiency_uniformity"}));
+    p.rows.append({cell(x), cell(fh), cell(fv), cell(u.angleFromDeg(jsonNumber(s, {"fov_deg", "diagonal"}))),
+                   cell(jsonNumber(s, {"mean_efficiency"})), cell(jsonNumber(s, {"efficiency_uniformity"})),
+                   cell(jsonNumber(s, {"rays_in_pupil"}))});
   }
   p.series = {h, v, e, un};
   p.caption = QString(
                   "Sensitivity of the retinal FOV (left axis), the mean efficiency and its uniformity (right "
                   "axis) to %1 (nominal %2), at the scene's gaze.")
-                  .arg(param, fmt(num(r, "nominal_value"), 5));
+                  .arg(param, fmt(jsonNumber(r, {"nominal_value"}), 5));
   p.source = source;
   return {p};
 }
@@ -403,18 +409,20 @@ QList<PlotData> fromLens(const nlohmann::json& r, const DisplayUnits& u, const Q
                "evaluations"};
   double fmin = INFINITY, fmax = -INFINITY;
   for (const auto& c : arr(r, "candidates")) {
-    const double dia = num(c, "diameter_mm"), f = u.lengthFromMm(num(c, "focal_length_mm"));
+    const double dia = jsonNumber(c, {"diameter_mm"}), f = u.lengthFromMm(jsonNumber(c, {"focal_length_mm"}));
     if (!byDiameter.count(dia))
       byDiameter[dia] = series(QString("Ø %1 stock lenses").arg(u.length(dia, 3)), Style::Scatter,
                                byDiameter.empty() ? kBlue : kOrange);
-    addPoint(byDiameter[dia], f, num(c, "rms_spot_um"));
+    addPoint(byDiameter[dia], f, jsonNumber(c, {"rms_spot_um"}));
     if (std::isfinite(f)) fmin = std::min(fmin, f), fmax = std::max(fmax, f);
     p.rows.append({QString::fromStdString(c.value("part", std::string())), cell(f), cell(u.lengthFromMm(dia)),
-                   cell(u.lengthFromMm(num(c, "distance_mm"))), cell(u.lengthFromMm(num(c, "decenter_mm"))),
-                   cell(u.angleFromDeg(num(c, "tilt_deg"))), cell(num(c, "rms_spot_um")), cell(num(c, "evaluations"))});
+                   cell(u.lengthFromMm(jsonNumber(c, {"distance_mm"}))),
+                   cell(u.lengthFromMm(jsonNumber(c, {"decenter_mm"}))),
+                   cell(u.angleFromDeg(jsonNumber(c, {"tilt_deg"}))), cell(jsonNumber(c, {"rms_spot_um"})),
+                   cell(jsonNumber(c, {"evaluations"}))});
   }
   for (auto& [d, s] : byDiameter) p.series.append(s);
-  const double before = num(r, "rms_spot_um", "before");
+  const double before = jsonNumber(r, {"rms_spot_um", "before"});
   if (std::isfinite(before) && fmin < fmax) {
     PlotSeries b = series("no lens", Style::Dashed, kGray);
     b.points = {QPointF(fmin, before), QPointF(fmax, before)};
@@ -423,8 +431,8 @@ QList<PlotData> fromLens(const nlohmann::json& r, const DisplayUnits& u, const Q
   p.caption = QString(
                   "Beam-shaping lens candidates (optimize-lens): the best placement of each stock lens. Best: "
                   "%1, RMS spot %2 µm → %3 µm (%4 % sharper).")
-                  .arg(str(r, "vendor") + " " + str(r, "part"), fmt(before), fmt(num(r, "rms_spot_um", "after")),
-                       fmt(num(r, "improvement_percent"), 3));
+                  .arg(str(r, "vendor") + " " + str(r, "part"), fmt(before),
+                       fmt(jsonNumber(r, {"rms_spot_um", "after"})), fmt(jsonNumber(r, {"improvement_percent"}), 3));
   p.source = source;
   return {p};
 }
@@ -539,28 +547,6 @@ PlotData retinaMapPlot(const TraceResult& trace, double threshold, const Display
                        fmt(u.angleFromDeg(trace.fov_deg.vertical)), fmt(u.angleFromDeg(trace.fov_deg.diagonal)),
                        fmt(trace.mean_efficiency, 3));
   return p;
-}
-
-QColor wavelengthColor(double nm) {
-  // Piecewise-linear approximation of the spectral locus in sRGB (Bruton), darkened a little
-  // so that lines stay visible on white.
-  double r = 0, g = 0, b = 0;
-  if (nm >= 380 && nm < 440)
-    r = (440 - nm) / 60, b = 1;
-  else if (nm >= 440 && nm < 490)
-    g = (nm - 440) / 50, b = 1;
-  else if (nm >= 490 && nm < 510)
-    g = 1, b = (510 - nm) / 20;
-  else if (nm >= 510 && nm < 580)
-    r = (nm - 510) / 70, g = 1;
-  else if (nm >= 580 && nm < 645)
-    r = 1, g = (645 - nm) / 65;
-  else if (nm >= 645 && nm <= 780)
-    r = 1;
-  else
-    return QColor(90, 90, 90);
-  const double k = 0.85;
-  return QColor::fromRgbF(float(k * r), float(k * g), float(k * b));
 }
 
 }  // namespace fovea::widgets

@@ -39,7 +39,4 @@ QList<PlotData> plotsFromResult(const QString& analysisId, const nlohmann::json&
 // of the rays that count. Needs a trace with keep_rays.
 PlotData retinaMapPlot(const TraceResult& trace, double threshold, const DisplayUnits& units);
 
-// An approximate sRGB colour of a visible wavelength (for per-wavelength series).
-QColor wavelengthColor(double nm);
-
 }  // namespace fovea::widgets

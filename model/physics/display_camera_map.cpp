@@ -1,9 +1,8 @@
-#include "model/physics/eye_camera.h"
+#include "model/physics/display_camera_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -15,11 +14,11 @@
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
 
 namespace fovea {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double smoothstep(double x) {
@@ -52,7 +51,7 @@ std::vector<image::PointPair> thin(std::vector<image::PointPair> pairs, std::siz
 // Peripheral display: the traced grid, interpolated.
 class PeripheralMap final : public DisplayCameraMap {
  public:
-  PeripheralMap(const Scene& scene, const EyeCameraModel& cam, const BenchPose& pose, const PeripheralMapOptions& o)
+  PeripheralMap(const Scene& scene, const EyeViewCamera& cam, const BenchPose& pose, const PeripheralMapOptions& o)
       : DisplayCameraMap(BenchDisplay::Peripheral, scene.projector.pixels, cam, pose) {
     TraceOptions t;
     t.hoe_shift_mm = pose.hoe_shift_mm;
@@ -79,7 +78,7 @@ class PeripheralMap final : public DisplayCameraMap {
     const double half_w = 0.5 * scene.hoe.size_mm[0], half_h = 0.5 * scene.hoe.size_mm[1];
     const double edge = std::max(1e-6, o.plate_edge_mm);
 
-    const EyeCameraPlacement place = placeEyeCamera(scene, pose);
+    const EyeViewPlacement place = placeEyeViewCamera(scene, pose);
     EyePlacement eye = placeEye(scene, pose.camera_gaze_deg[0], pose.camera_gaze_deg[1]);
     const double R = eye.pupil_radius_mm, rim = std::max(1e-6, o.pupil_rim_mm);
     eye.pupil_radius_mm = R + 0.5 * rim;  // crossPupil then reports radii across the soft rim
@@ -239,10 +238,10 @@ class PeripheralMap final : public DisplayCameraMap {
 // Foveal display: exact backward trace through the unfolded magnifier.
 class FovealMap final : public DisplayCameraMap {
  public:
-  FovealMap(const Scene& scene, const EyeCameraModel& cam, const BenchPose& pose)
+  FovealMap(const Scene& scene, const EyeViewCamera& cam, const BenchPose& pose)
       : DisplayCameraMap(BenchDisplay::Foveal, scene.foveal_display.pixels, cam, pose),
         combiner_(combinerPrescription(scene)),
-        place_(placeEyeCamera(scene, pose)),
+        place_(placeEyeViewCamera(scene, pose)),
         origin_(placeEye(scene, 0.0, 0.0).pupil_center) {
     pitch_ = {scene.foveal_display.size_mm[0] / display_pixels_[0],
               scene.foveal_display.size_mm[1] / display_pixels_[1]};
@@ -332,7 +331,7 @@ class FovealMap final : public DisplayCameraMap {
   }
 
   CombinerPrescription combiner_;
-  EyeCameraPlacement place_;
+  EyeViewPlacement place_;
   Eigen::Vector3d origin_;
   std::array<double, 2> pitch_{0.008, 0.008};
   image::Warp2d guess_;
@@ -342,7 +341,7 @@ class FovealMap final : public DisplayCameraMap {
 
 }  // namespace
 
-double EyeCameraModel::focalPx() const {
+double EyeViewCamera::focalPx() const {
   return 0.5 * pixels[0] / std::tan(0.5 * hfov_deg * kDeg);
 }
 
@@ -350,16 +349,16 @@ const char* toString(BenchDisplay d) {
   return d == BenchDisplay::Peripheral ? "peripheral" : "foveal";
 }
 
-EyeCameraPlacement placeEyeCamera(const Scene& scene, const BenchPose& pose) {
+EyeViewPlacement placeEyeViewCamera(const Scene& scene, const BenchPose& pose) {
   const EyePlacement e = placeEye(scene, pose.camera_gaze_deg[0], pose.camera_gaze_deg[1]);
-  EyeCameraPlacement p;
+  EyeViewPlacement p;
   p.pupil = e.pupil_center;
   p.axes = rotationFromDeg({pose.camera_gaze_deg[0], pose.camera_gaze_deg[1], 0.0});
   p.pupil_radius_mm = e.pupil_radius_mm;
   return p;
 }
 
-std::optional<Eigen::Vector2d> projectDirection(const EyeCameraModel& cam, const EyeCameraPlacement& place,
+std::optional<Eigen::Vector2d> projectDirection(const EyeViewCamera& cam, const EyeViewPlacement& place,
                                                 const Eigen::Vector3d& from_dir) {
   const Eigen::Vector3d X = place.axes.transpose() * from_dir;
   if (!(X.z() > 1e-6)) return std::nullopt;
@@ -372,7 +371,7 @@ std::optional<Eigen::Vector2d> projectDirection(const EyeCameraModel& cam, const
   return Eigen::Vector2d(cx + f * x * k, cy + f * y * k);
 }
 
-Eigen::Vector3d pixelDirection(const EyeCameraModel& cam, const EyeCameraPlacement& place, const Eigen::Vector2d& px) {
+Eigen::Vector3d pixelDirection(const EyeViewCamera& cam, const EyeViewPlacement& place, const Eigen::Vector2d& px) {
   const double f = cam.focalPx();
   const double cx = 0.5 * (cam.pixels[0] - 1), cy = 0.5 * (cam.pixels[1] - 1);
   const double xd = (px[0] - cx) / f, yd = (px[1] - cy) / f;
@@ -452,17 +451,17 @@ void DisplayCameraMap::cameraMaps(cv::Mat& map_x, cv::Mat& map_y, cv::Mat& brigh
   });
 }
 
-std::unique_ptr<DisplayCameraMap> makePeripheralMap(const Scene& scene, const EyeCameraModel& camera,
+std::unique_ptr<DisplayCameraMap> makePeripheralMap(const Scene& scene, const EyeViewCamera& camera,
                                                     const BenchPose& pose, const PeripheralMapOptions& options) {
   return std::make_unique<PeripheralMap>(scene, camera, pose, options);
 }
 
-std::unique_ptr<DisplayCameraMap> makeFovealMap(const Scene& scene, const EyeCameraModel& camera,
+std::unique_ptr<DisplayCameraMap> makeFovealMap(const Scene& scene, const EyeViewCamera& camera,
                                                 const BenchPose& pose) {
   return std::make_unique<FovealMap>(scene, camera, pose);
 }
 
-std::unique_ptr<DisplayCameraMap> makeDisplayMap(BenchDisplay display, const Scene& scene, const EyeCameraModel& camera,
+std::unique_ptr<DisplayCameraMap> makeDisplayMap(BenchDisplay display, const Scene& scene, const EyeViewCamera& camera,
                                                  const BenchPose& pose) {
   if (display == BenchDisplay::Peripheral) return makePeripheralMap(scene, camera, pose);
   return makeFovealMap(scene, camera, pose);

@@ -1,5 +1,5 @@
 #pragma once
-// A pinhole eye camera on the visual axis facing the eye (the seed's on-axis pupil
+// A pinhole pupil camera on the visual axis facing the eye (the seed's on-axis pupil
 // tracking, Fig. S23): where the pupil centre appears in the camera image for a gaze.
 // Used to synthesise calibration samples (tests, demos); real samples come from the
 // pupil detector.
@@ -13,7 +13,7 @@
 
 namespace fovea::gaze {
 
-struct EyeCamera {
+struct PupilCamera {
   double focal_px = 600;                       // focal length in pixels
   Eigen::Vector2d principal_px{320.0, 240.0};  // principal point
   double camera_distance_mm = 35;              // rotation centre to pinhole
@@ -22,6 +22,6 @@ struct EyeCamera {
 
 // Perspective projection of the pupil centre: x = c_x + f X/Z, y = c_y - f Y/Z with
 // (X, Y) the lateral pupil offset and Z its distance from the pinhole along the axis.
-Eigen::Vector2d pupilCentrePx(const EyeCamera& camera, double yaw_deg, double pitch_deg);
+Eigen::Vector2d pupilCentrePx(const PupilCamera& camera, double yaw_deg, double pitch_deg);
 
 }  // namespace fovea::gaze

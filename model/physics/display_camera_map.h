@@ -48,7 +48,7 @@
 
 namespace fovea {
 
-struct EyeCameraModel {
+struct EyeViewCamera {
   std::array<int, 2> pixels{800, 600};
   double hfov_deg = 90.0;         // full horizontal field of view of the distortion-free projection
   double k1 = -0.06, k2 = 0.004;  // radial (Brown) distortion of the lens
@@ -67,19 +67,19 @@ enum class BenchDisplay { Peripheral, Foveal };
 const char* toString(BenchDisplay d);
 
 // The camera's pupil centre, axes (columns: local x, y, z in bench) and pupil radius.
-struct EyeCameraPlacement {
+struct EyeViewPlacement {
   Eigen::Vector3d pupil = Eigen::Vector3d::Zero();
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   double pupil_radius_mm = 2.5;
 };
-EyeCameraPlacement placeEyeCamera(const Scene& scene, const BenchPose& pose);
+EyeViewPlacement placeEyeViewCamera(const Scene& scene, const BenchPose& pose);
 
 // Camera pixel of light arriving from `from_dir` (unit, pointing away from the camera);
 // nullopt behind the camera.
-std::optional<Eigen::Vector2d> projectDirection(const EyeCameraModel& cam, const EyeCameraPlacement& place,
+std::optional<Eigen::Vector2d> projectDirection(const EyeViewCamera& cam, const EyeViewPlacement& place,
                                                 const Eigen::Vector3d& from_dir);
 // Unit bench direction (away from the camera) seen at a camera pixel.
-Eigen::Vector3d pixelDirection(const EyeCameraModel& cam, const EyeCameraPlacement& place, const Eigen::Vector2d& px);
+Eigen::Vector3d pixelDirection(const EyeViewCamera& cam, const EyeViewPlacement& place, const Eigen::Vector2d& px);
 
 struct PeripheralMapOptions {
   std::optional<double> wavelength_nm;  // default: the projector wavelength nearest 532 nm
@@ -93,7 +93,7 @@ class DisplayCameraMap {
   virtual ~DisplayCameraMap() = default;
   BenchDisplay display() const { return display_; }
   std::array<int, 2> displayPixels() const { return display_pixels_; }
-  const EyeCameraModel& camera() const { return camera_; }
+  const EyeViewCamera& camera() const { return camera_; }
   const BenchPose& pose() const { return pose_; }
 
   // Camera pixel of a display pixel position; nullopt where the optics do not map it (off
@@ -112,19 +112,18 @@ class DisplayCameraMap {
   void cameraMaps(cv::Mat& map_x, cv::Mat& map_y, cv::Mat& brightness) const;
 
  protected:
-  DisplayCameraMap(BenchDisplay d, std::array<int, 2> display_pixels, EyeCameraModel cam, BenchPose pose)
+  DisplayCameraMap(BenchDisplay d, std::array<int, 2> display_pixels, EyeViewCamera cam, BenchPose pose)
       : display_(d), display_pixels_(display_pixels), camera_(cam), pose_(pose) {}
   BenchDisplay display_;
   std::array<int, 2> display_pixels_;
-  EyeCameraModel camera_;
+  EyeViewCamera camera_;
   BenchPose pose_;
 };
 
-std::unique_ptr<DisplayCameraMap> makePeripheralMap(const Scene& scene, const EyeCameraModel& camera,
+std::unique_ptr<DisplayCameraMap> makePeripheralMap(const Scene& scene, const EyeViewCamera& camera,
                                                     const BenchPose& pose, const PeripheralMapOptions& options = {});
-std::unique_ptr<DisplayCameraMap> makeFovealMap(const Scene& scene, const EyeCameraModel& camera,
-                                                const BenchPose& pose);
-std::unique_ptr<DisplayCameraMap> makeDisplayMap(BenchDisplay display, const Scene& scene, const EyeCameraModel& camera,
+std::unique_ptr<DisplayCameraMap> makeFovealMap(const Scene& scene, const EyeViewCamera& camera, const BenchPose& pose);
+std::unique_ptr<DisplayCameraMap> makeDisplayMap(BenchDisplay display, const Scene& scene, const EyeViewCamera& camera,
                                                  const BenchPose& pose);
 
 // The projector pixels that reach the HOE plate (nominal pose, plate edges pulled in by

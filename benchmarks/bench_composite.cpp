@@ -1,5 +1,5 @@
 // Gaze change at a 1920x1080 target: update of the foveal, peripheral and perceived images
-// (issue 8 budget: <= 16 ms on two cores). The target caches are built once, outside the loop.
+// (budget: <= 16 ms on two cores, one 60 Hz frame). The target caches are built once, outside the loop.
 //
 // Besides wall time, `cpu_ms_per_update` is the process CPU time (all threads) per update:
 // on two dedicated cores the wall time is at most that, and at least half of it, whatever

@@ -11,17 +11,17 @@
 
 namespace fovea::devices {
 
-class TraceSink {
+class AptLogSink {
  public:
-  virtual ~TraceSink() = default;
+  virtual ~AptLogSink() = default;
   virtual void message(bool transmitted, std::span<const std::uint8_t> raw) = 0;
 };
 
-std::string traceLine(bool transmitted, std::span<const std::uint8_t> raw);
+std::string aptLogLine(bool transmitted, std::span<const std::uint8_t> raw);
 
-class FileTrace : public TraceSink {
+class AptFileLog : public AptLogSink {
  public:
-  explicit FileTrace(const std::string& path);  // throws std::runtime_error naming the path
+  explicit AptFileLog(const std::string& path);  // throws std::runtime_error naming the path
   void message(bool transmitted, std::span<const std::uint8_t> raw) override;
 
  private:
@@ -29,7 +29,7 @@ class FileTrace : public TraceSink {
   std::ofstream out_;
 };
 
-class MemoryTrace : public TraceSink {
+class AptMemoryLog : public AptLogSink {
  public:
   void message(bool transmitted, std::span<const std::uint8_t> raw) override;
   std::vector<std::string> lines() const;

@@ -1,5 +1,5 @@
 #pragma once
-// The studio's workbench features around the main window, kept out of main_window.cpp: the
+// The studio's analysis features around the main window, kept out of main_window.cpp: the
 // Analyses and Plots docks, the Analyses menu, Preferences, File ▸ Export Report…, autosave
 // and crash recovery. Created by MainWindow; everything it adds goes through the window's
 // public API (addPanel, menus found by name).
@@ -27,11 +27,11 @@ namespace fovea::studio {
 
 class MainWindow;
 
-class Workbench : public QObject {
+class AnalysisFeatures : public QObject {
   Q_OBJECT
  public:
-  explicit Workbench(MainWindow* window);
-  ~Workbench() override;
+  explicit AnalysisFeatures(MainWindow* window);
+  ~AnalysisFeatures() override;
 
   widgets::AnalysesPanel* analysesPanel() const { return analyses_; }
   widgets::PlotsPanel* plotsPanel() const { return plots_; }

@@ -1,5 +1,5 @@
-// RCWA cost (orders, slices, thick films) and the Kogelnik-vs-RCWA error map (issue 6,
-// "Run time against error" 1). Set FOVEA_BENCH_OUT=<dir> to also write the map as
+// RCWA cost (orders, slices, thick films) and the Kogelnik-vs-RCWA error map
+// (docs/benchmarks.md, "Run time against error"). Set FOVEA_BENCH_OUT=<dir> to also write the map as
 // <dir>/kogelnik_vs_rcwa.md (the tables of docs/benchmarks.md).
 #include <benchmark/benchmark.h>
 

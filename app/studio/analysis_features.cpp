@@ -1,4 +1,4 @@
-#include "app/studio/workbench.h"
+#include "app/studio/analysis_features.h"
 
 #include <QAction>
 #include <QApplication>
@@ -20,9 +20,9 @@
 #include <algorithm>
 #include <atomic>
 
+#include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_document.h"
-#include "app/studio/trace_workbench.h"
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/autosave.h"
@@ -54,8 +54,8 @@ QAction* actionNamed(QMenu* menu, const QString& text) {
 
 }  // namespace
 
-Workbench::Workbench(MainWindow* window) : QObject(window), window_(window) {
-  setObjectName("Workbench");
+AnalysisFeatures::AnalysisFeatures(MainWindow* window) : QObject(window), window_(window) {
+  setObjectName("AnalysisFeatures");
   analyses_ = new widgets::AnalysesPanel(window->document(), window);
   analysesDock_ = window->addPanel(analyses_, tr("Analyses"), "AnalysesDock", Qt::RightDockWidgetArea);
   plots_ = new widgets::PlotsPanel(window);
@@ -72,7 +72,7 @@ Workbench::Workbench(MainWindow* window) : QObject(window), window_(window) {
   auto* tree = window->findChild<QDockWidget*>("SceneTreeDock");
   auto* props = window->findChild<QDockWidget*>("PropertiesDock");
   if (tree && props) window->resizeDocks({tree, props}, {300, 400}, Qt::Horizontal);
-  connect(analyses_, &widgets::AnalysesPanel::resultReady, this, &Workbench::onResult);
+  connect(analyses_, &widgets::AnalysesPanel::resultReady, this, &AnalysisFeatures::onResult);
   connect(plots_, &widgets::PlotsPanel::plotExported, this, [this](const QString& id, const QString& path) {
     window_->messageLog()->info(tr("Exported %1 to %2").arg(widgets::plotTitle(id), path));
   });
@@ -82,15 +82,15 @@ Workbench::Workbench(MainWindow* window) : QObject(window), window_(window) {
   createMenus();
 }
 
-Workbench::~Workbench() = default;
+AnalysisFeatures::~AnalysisFeatures() = default;
 
-void Workbench::createMenus() {
+void AnalysisFeatures::createMenus() {
   QMenuBar* bar = window_->menuBar();
   QMenu* file = menuNamed(bar, "File");
   auto* report = new QAction(tr("Export &Report…"), this);
   report->setObjectName("exportReport");
   report->setShortcut(QKeySequence(tr("Ctrl+Shift+R")));
-  connect(report, &QAction::triggered, this, &Workbench::exportReportDialog);
+  connect(report, &QAction::triggered, this, &AnalysisFeatures::exportReportDialog);
   if (file) file->insertAction(actionNamed(file, "Quit"), report);
   if (file) file->insertSeparator(actionNamed(file, "Quit"));
 
@@ -99,7 +99,7 @@ void Workbench::createMenus() {
   prefs->setObjectName("preferences");
   prefs->setShortcut(QKeySequence::Preferences);
   prefs->setMenuRole(QAction::PreferencesRole);
-  connect(prefs, &QAction::triggered, this, &Workbench::showPreferences);
+  connect(prefs, &QAction::triggered, this, &AnalysisFeatures::showPreferences);
   if (edit) {
     edit->addSeparator();
     edit->addAction(prefs);
@@ -131,7 +131,7 @@ void Workbench::createMenus() {
   bar->insertMenu(help ? help->menuAction() : nullptr, menu);
 }
 
-void Workbench::onResult(const widgets::AnalysisResult& r) {
+void AnalysisFeatures::onResult(const widgets::AnalysisResult& r) {
   if (!r.json) return;
   const widgets::AnalysisSpec* spec = widgets::findAnalysis(r.id);
   const QString command = spec ? widgets::cliCommandLine(*spec, r.params, window_->document()->filePath()) : QString();
@@ -146,7 +146,7 @@ void Workbench::onResult(const widgets::AnalysisResult& r) {
   window_->messageLog()->info(tr("%1 finished in %2 s").arg(spec ? spec->title : r.id).arg(r.seconds, 0, 'f', 1));
 }
 
-void Workbench::startSession(const QString& recoveryDir, bool offer) {
+void AnalysisFeatures::startSession(const QString& recoveryDir, bool offer) {
   Preferences::instance().load();
   recoveryDir_ = recoveryDir.isEmpty() ? widgets::Autosaver::defaultDirectory() : recoveryDir;
   // This session's autosaver first: its lock keeps its own files from ever looking orphaned,
@@ -160,7 +160,7 @@ void Workbench::startSession(const QString& recoveryDir, bool offer) {
   if (offer) offerRecovery(recoveryDir_);
 }
 
-int Workbench::offerRecovery(const QString& recoveryDir) {
+int AnalysisFeatures::offerRecovery(const QString& recoveryDir) {
   int recovered = 0;
   for (const widgets::RecoveryEntry& e : widgets::Autosaver::findOrphans(recoveryDir)) {
     QMessageBox box(QMessageBox::Warning, tr("Recover unsaved changes?"),
@@ -192,7 +192,7 @@ int Workbench::offerRecovery(const QString& recoveryDir) {
   return recovered;
 }
 
-bool Workbench::recover(const widgets::RecoveryEntry& e) {
+bool AnalysisFeatures::recover(const widgets::RecoveryEntry& e) {
   QString error;
   const std::optional<Scene> scene = widgets::Autosaver::loadEntry(e, &error);
   if (!scene) {
@@ -220,15 +220,16 @@ bool Workbench::recover(const widgets::RecoveryEntry& e) {
   return true;
 }
 
-void Workbench::showPreferences() {
+void AnalysisFeatures::showPreferences() {
   widgets::PreferencesDialog dialog(window_);
   dialog.exec();
 }
 
-bool Workbench::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
-                             int* figures, QList<GazeFigureStats>* gazeFigures) {
+bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
+                                    int* figures, QList<GazeFigureStats>* gazeFigures) {
   ReportOptions options = requested;
-  if (window_->traceWorkbench() && window_->traceWorkbench()->gazePanel()->followGaze()) options.follow_gaze = true;
+  if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
+    options.follow_gaze = true;
   const Scene scene = window_->document()->scene();
   const QString scenePath = window_->document()->filePath();
   auto cancel = std::make_shared<std::atomic<bool>>(false);
@@ -293,7 +294,7 @@ bool Workbench::exportReport(const QString& path, const ReportOptions& requested
   return true;
 }
 
-void Workbench::exportReportDialog() {
+void AnalysisFeatures::exportReportDialog() {
   QDialog dialog(window_);
   dialog.setWindowTitle(tr("Export Report"));
   auto* form = new QFormLayout(&dialog);

@@ -29,11 +29,11 @@ namespace fovea::studio {
 
 class MainWindow;
 
-class TraceWorkbench : public QObject {
+class LiveTraceFeatures : public QObject {
   Q_OBJECT
  public:
-  explicit TraceWorkbench(MainWindow* window);
-  ~TraceWorkbench() override;
+  explicit LiveTraceFeatures(MainWindow* window);
+  ~LiveTraceFeatures() override;
 
   widgets::LiveTrace* liveTrace() const { return trace_; }
   widgets::GazePanel* gazePanel() const { return gaze_; }

@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
 """Regenerate the tables of docs/benchmarks.md from `fovea-cli bench --json`.
 
-    python3 scripts/bench_tables.py [--quick] [--from FILE] [--cli PATH] [--rcwa-map]
+    python3 scripts/benchmark_tables.py [--quick] [--from FILE] [--cli PATH] [--rcwa-map]
 
 Runs `fovea-cli bench [--quick] --json` (or reads FILE), writes the raw JSON next to the doc
-(docs/bench/bench.json) and replaces the block between the markers
+(docs/benchmarks/bench.json) and replaces the block between the markers
 
     <!-- bench_tables.py: begin -->  ...  <!-- bench_tables.py: end -->
 
 in docs/benchmarks.md with the throughput, gaze update, sweep, ray count vs FOV error,
 precision and Kogelnik-vs-RCWA tables. --rcwa-map also reruns the Google Benchmark map
-(`FOVEA_BENCH_OUT=docs/bench fovea-bench --benchmark_filter=KogelnikVsRcwaMap/1`), which
-rewrites docs/bench/kogelnik_vs_rcwa.md (every point of the error map).
+(`FOVEA_BENCH_OUT=docs/benchmarks fovea-benchmarks --benchmark_filter=KogelnikVsRcwaMap/1`), which
+rewrites docs/benchmarks/kogelnik_vs_rcwa.md (every point of the error map).
 """
 import argparse
 import json
@@ -143,13 +143,13 @@ def main():
     else:
         cmd = [a.cli, "bench", "--json"] + (["--quick"] if a.quick else [])
         b = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
-    os.makedirs(os.path.join(ROOT, "docs", "bench"), exist_ok=True)
-    with open(os.path.join(ROOT, "docs", "bench", "bench.json"), "w") as f:
+    os.makedirs(os.path.join(ROOT, "docs", "benchmarks"), exist_ok=True)
+    with open(os.path.join(ROOT, "docs", "benchmarks", "bench.json"), "w") as f:
         json.dump(b, f, indent=1)
     if a.rcwa_map:
-        bench = os.path.join(os.path.dirname(os.path.dirname(a.cli)), "bench", "fovea-bench")
+        bench = os.path.join(os.path.dirname(os.path.dirname(a.cli)), "benchmarks", "fovea-benchmarks")
         subprocess.run([bench, "--benchmark_filter=KogelnikVsRcwaMap/1"], check=True,
-                       env=dict(os.environ, FOVEA_BENCH_OUT=os.path.join(ROOT, "docs", "bench")))
+                       env=dict(os.environ, FOVEA_BENCH_OUT=os.path.join(ROOT, "docs", "benchmarks")))
     with open(DOC) as f:
         doc = f.read()
     block = BEGIN + "\n" + tables(b) + END

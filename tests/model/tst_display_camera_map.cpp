@@ -1,4 +1,4 @@
-// The eye camera's ground truth (model/physics/eye_camera.h): what a camera at the eye sees of
+// The eye-view camera's ground truth (model/physics/display_camera_map.h): what a camera at the eye sees of
 // the projector through the traced HOE and of the micro-OLED through its combiner. The maps
 // are consistent both ways, smooth but far from a homography, move with the HOE, micro-OLED
 // and camera stages, recentre the foveal image on the gaze with x_f(alpha), and a board
@@ -14,7 +14,7 @@
 #include "model/image/display_pattern.h"
 #include "model/image/geometric_calibration.h"
 #include "model/image/warp.h"
-#include "model/physics/eye_camera.h"
+#include "model/physics/display_camera_map.h"
 #include "model/scene/scene_io.h"
 
 using namespace fovea;
@@ -55,12 +55,12 @@ cv::Mat render(const DisplayCameraMap& m, const image::DisplayPattern& p) {
 
 }  // namespace
 
-class TestEyeCamera : public QObject {
+class TestDisplayCameraMap : public QObject {
   Q_OBJECT
  private slots:
   void bothWaysAgree() {
     const Scene s = prototype();
-    const EyeCameraModel cam;
+    const EyeViewCamera cam;
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
       const auto m = makeDisplayMap(d, s, cam, BenchPose{});
       int n = 0;
@@ -88,7 +88,7 @@ class TestEyeCamera : public QObject {
     // over its small image (about 200 px wide in this camera).
     const Scene s = prototype();
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
-      const auto m = makeDisplayMap(d, s, EyeCameraModel{}, BenchPose{{2.0, 0.0}, {3.0, 0.0}, {8.0, 0.0}});
+      const auto m = makeDisplayMap(d, s, EyeViewCamera{}, BenchPose{{2.0, 0.0}, {3.0, 0.0}, {8.0, 0.0}});
       std::vector<image::PointPair> pairs;
       for (const auto& p : boardGrid(boardFor(s, d), 21))
         if (auto c = m->toCamera(p)) pairs.push_back({p, *c});
@@ -105,7 +105,7 @@ class TestEyeCamera : public QObject {
 
   void stagesMoveTheImage() {
     const Scene s = prototype();
-    const EyeCameraModel cam;
+    const EyeViewCamera cam;
     const auto pb = boardFor(s, BenchDisplay::Peripheral), fb = boardFor(s, BenchDisplay::Foveal);
     const Eigen::Vector2d pc = pb.cornerPx(4, 3), fc = fb.cornerPx(4, 3);
     const auto p0 = makePeripheralMap(s, cam, {})->toCamera(pc);
@@ -126,7 +126,7 @@ class TestEyeCamera : public QObject {
   void fovealImageFollowsTheGaze() {
     // x_f(alpha) and the camera at alpha: the micro-OLED's centre stays near the camera's centre.
     const Scene s = prototype();
-    const EyeCameraModel cam;
+    const EyeViewCamera cam;
     const Eigen::Vector2d centre(0.5 * (s.foveal_display.pixels[0] - 1), 0.5 * (s.foveal_display.pixels[1] - 1));
     for (double a : {-10.0, 0.0, 10.0}) {
       BenchPose pose;
@@ -143,7 +143,7 @@ class TestEyeCamera : public QObject {
   void renderedBoardsAreFoundWhereTheMapSays() {
     const Scene s = prototype();
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
-      const auto m = makeDisplayMap(d, s, EyeCameraModel{}, BenchPose{{1.0, 0.0}, {2.0, 0.0}, {5.0, 0.0}});
+      const auto m = makeDisplayMap(d, s, EyeViewCamera{}, BenchPose{{1.0, 0.0}, {2.0, 0.0}, {5.0, 0.0}});
       const auto board = boardFor(s, d);
       const cv::Mat img = render(*m, board);
       const auto obs = image::observeBoard(img, board);
@@ -170,5 +170,5 @@ class TestEyeCamera : public QObject {
   }
 };
 
-QTEST_GUILESS_MAIN(TestEyeCamera)
-#include "tst_eye_camera.moc"
+QTEST_GUILESS_MAIN(TestDisplayCameraMap)
+#include "tst_display_camera_map.moc"

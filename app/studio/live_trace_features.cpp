@@ -1,4 +1,4 @@
-#include "app/studio/trace_workbench.h"
+#include "app/studio/live_trace_features.h"
 
 #include <QDockWidget>
 #include <QStatusBar>
@@ -16,7 +16,7 @@
 
 namespace fovea::studio {
 
-TraceWorkbench::TraceWorkbench(MainWindow* window) : QObject(window), window_(window) {
+LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), window_(window) {
   widgets::SceneDocument* doc = window->document();
   trace_ = new widgets::LiveTrace(this);
   overlay_ = std::make_unique<viz::TraceOverlay>(window->sceneView());
@@ -41,10 +41,10 @@ TraceWorkbench::TraceWorkbench(MainWindow* window) : QObject(window), window_(wi
     display_->setWavelengths(doc->scene().projector.wavelengths_nm);
     requestTrace();
   });
-  connect(display_, &widgets::DisplayPanel::traceRaysChanged, this, &TraceWorkbench::requestTrace);
-  connect(display_, &widgets::DisplayPanel::overlayOptionsChanged, this, &TraceWorkbench::redraw);
-  connect(gaze_, &widgets::GazePanel::followGazeChanged, this, &TraceWorkbench::requestTrace);
-  connect(trace_, &widgets::LiveTrace::resultReady, this, &TraceWorkbench::showResult);
+  connect(display_, &widgets::DisplayPanel::traceRaysChanged, this, &LiveTraceFeatures::requestTrace);
+  connect(display_, &widgets::DisplayPanel::overlayOptionsChanged, this, &LiveTraceFeatures::redraw);
+  connect(gaze_, &widgets::GazePanel::followGazeChanged, this, &LiveTraceFeatures::requestTrace);
+  connect(trace_, &widgets::LiveTrace::resultReady, this, &LiveTraceFeatures::showResult);
   connect(trace_, &widgets::LiveTrace::busyChanged, this,
           [this](bool busy) { gaze_->showResult(trace_->latest(), busy); });
   connect(window->sceneView(), &viz::SceneView::selectionChanged, handles_, &widgets::HandleController::setElement);
@@ -60,21 +60,21 @@ TraceWorkbench::TraceWorkbench(MainWindow* window) : QObject(window), window_(wi
   requestTrace();
 }
 
-TraceWorkbench::~TraceWorkbench() = default;
+LiveTraceFeatures::~LiveTraceFeatures() = default;
 
-void TraceWorkbench::requestTrace() {
+void LiveTraceFeatures::requestTrace() {
   widgets::LiveTraceSettings s;
   s.rays = display_->traceRays();
   s.follow_gaze = gaze_->followGaze();
   trace_->request(window_->document()->scene(), s);
 }
 
-void TraceWorkbench::showResult(const std::shared_ptr<const widgets::LiveTraceResult>& r) {
+void LiveTraceFeatures::showResult(const std::shared_ptr<const widgets::LiveTraceResult>& r) {
   gaze_->showResult(r, trace_->isBusy());
   redraw();
 }
 
-void TraceWorkbench::redraw() {
+void LiveTraceFeatures::redraw() {
   const auto r = trace_->latest();
   const viz::TraceOverlayOptions o = display_->overlayOptions();
   if (!r || !r->error.empty()) {
@@ -86,7 +86,7 @@ void TraceWorkbench::redraw() {
   if (r) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);
 }
 
-bool TraceWorkbench::applyShowList(const QStringList& names, QString* error) {
+bool LiveTraceFeatures::applyShowList(const QStringList& names, QString* error) {
   bool rays = false, effmap = false;
   for (const QString& raw : names) {
     const QString n = raw.trimmed().toLower();
@@ -115,14 +115,14 @@ bool TraceWorkbench::applyShowList(const QStringList& names, QString* error) {
   return true;
 }
 
-void TraceWorkbench::setStartGaze(double yaw, double pitch) {
+void LiveTraceFeatures::setStartGaze(double yaw, double pitch) {
   widgets::SceneDocument* doc = window_->document();
   Scene s = doc->scene();
   s.eye.gaze_deg = {yaw, pitch};
   doc->resetTo(s, doc->filePath(), doc->displayName());
 }
 
-bool TraceWorkbench::waitForTrace(int timeout_ms) {
+bool LiveTraceFeatures::waitForTrace(int timeout_ms) {
   return trace_->waitForIdle(timeout_ms);
 }
 

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""clang-tidy over the translation units below the given folders, skipping the ones already
+found clean with exactly the same inputs.
+
+A unit's cache key is a SHA-256 over: the clang-tidy version, the repository's .clang-tidy,
+the unit's compile command (source root replaced by a placeholder, so clones elsewhere share
+the cache), and every file the compiler read for it (the source and each header, from Ninja's
+dependency log of the last build): project files by content, system headers by path, size and
+modification time (a package upgrade changes those). Only clean results are stored, so a unit
+that has findings, or one whose inputs were never checked (a fresh machine, a changed header,
+an unbuilt object without a dependency log), is always run through clang-tidy.
+
+Usage: tidy_cached.py --build build/default [--jobs N] [--cache DIR] FOLDER...
+Exit status 1 when any unit has a finding (checks are errors), 0 otherwise.
+"""
+import argparse
+import concurrent.futures
+import hashlib
+import json
+import os
+import shlex
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def ninja_deps(build, objects):
+    """{object: [input files]} from `ninja -t deps` (objects never built are absent)."""
+    out = subprocess.run(["ninja", "-C", build, "-t", "deps"] + objects, capture_output=True, text=True).stdout
+    deps, current = {}, None
+    for line in out.splitlines():
+        if line and not line.startswith(" "):
+            name = line.split(":", 1)[0]
+            current = None if "(VALID)" not in line else name
+            if current:
+                deps[current] = []
+        elif current and line.strip():
+            deps[current].append(line.strip())
+    return deps
+
+
+_file_hashes = {}
+
+
+def file_digest(path):
+    if path not in _file_hashes:
+        h = hashlib.sha256()
+        try:
+            if os.path.abspath(path).startswith(ROOT + os.sep):
+                with open(path, "rb") as f:
+                    h.update(f.read())
+            else:
+                st = os.stat(path)
+                h.update(f"{st.st_size}:{st.st_mtime_ns}".encode())
+        except OSError:
+            h.update(b"missing")
+        _file_hashes[path] = h.hexdigest()
+    return _file_hashes[path]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default="build/default")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
+    ap.add_argument("--cache", default=os.environ.get("FOVEA_TIDY_CACHE",
+                                                      os.path.expanduser("~/.cache/fovea-clang-tidy")))
+    ap.add_argument("folders", nargs="+")
+    a = ap.parse_args()
+    build = os.path.abspath(a.build)
+    with open(os.path.join(build, "compile_commands.json")) as f:
+        db = json.load(f)
+    prefixes = tuple(os.path.join(ROOT, d.strip("/")) + os.sep for d in a.folders)
+    units = [e for e in db if os.path.abspath(e["file"]).startswith(prefixes)]
+    if not units:
+        print("tidy: no translation units below " + " ".join(a.folders), file=sys.stderr)
+        return 1
+    tidy_version = subprocess.run(["clang-tidy", "--version"], capture_output=True, text=True).stdout
+    with open(os.path.join(ROOT, ".clang-tidy"), "rb") as f:
+        config = f.read()
+
+    def objects_of(e):
+        args = shlex.split(e["command"]) if "command" in e else e["arguments"]
+        return args[args.index("-o") + 1] if "-o" in args else None
+
+    deps = ninja_deps(build, [o for o in map(objects_of, units) if o])
+    os.makedirs(a.cache, exist_ok=True)
+    todo, cached = [], 0
+    for e in units:
+        obj = objects_of(e)
+        inputs = deps.get(obj)
+        key = None
+        if inputs:
+            h = hashlib.sha256()
+            h.update(tidy_version.encode())
+            h.update(config)
+            h.update(e["command"].replace(ROOT, "<src>").encode())
+            for p in sorted(set(inputs) | {e["file"]}):
+                full = p if os.path.isabs(p) else os.path.join(build, p)
+                h.update(os.path.relpath(full, ROOT).encode() if full.startswith(ROOT) else full.encode())
+                h.update(file_digest(os.path.normpath(full)).encode())
+            key = h.hexdigest()
+            if os.path.exists(os.path.join(a.cache, key)):
+                cached += 1
+                continue
+        todo.append((e["file"], key))
+
+    def run(item):
+        path, key = item
+        t0 = time.time()
+        r = subprocess.run(["clang-tidy", "-p", build, "--quiet", "--warnings-as-errors=*",
+                            "--extra-arg=-Wno-unknown-warning-option", path],
+                           capture_output=True, text=True)
+        clean = r.returncode == 0
+        if clean and key:
+            open(os.path.join(a.cache, key), "w").close()
+        return path, clean, r.stdout, time.time() - t0
+
+    start = time.time()
+    failed = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
+        for path, clean, out, secs in pool.map(run, todo):
+            rel = os.path.relpath(path, ROOT)
+            if not clean:
+                failed.append(rel)
+                sys.stdout.write(out)
+            print(f"tidy: {rel}: {'clean' if clean else 'FINDINGS'} ({secs:.1f} s)", flush=True)
+    print(f"tidy: {len(units)} units, {cached} unchanged since a clean check, {len(todo)} checked in "
+          f"{time.time() - start:.0f} s with {a.jobs} jobs, {len(failed)} with findings")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
