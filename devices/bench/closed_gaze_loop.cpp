@@ -83,7 +83,7 @@ double discOverlap(double d, double e, double p) {
   const double a1 = e * e * std::acos((d * d + e * e - p * p) / (2 * d * e));
   const double a2 = p * p * std::acos((d * d + p * p - e * e) / (2 * d * p));
   const double a3 = 0.5 * std::sqrt((-d + e + p) * (d + e - p) * (d - e + p) * (d + e + p));
-  return (a1 + a2 - a3) / (std::numbers::pi * e * e);
+  return (a1 + a2 - a3) / (kPi * e * e);
 }
 
 }  // namespace
@@ -120,7 +120,7 @@ EyeTrajectory makeSaccadeTrajectory(const Scene& scene, const ClosedLoopOptions&
     s.from_deg = g;
     for (int attempt = 0; attempt < 100; ++attempt) {
       s.amplitude_deg = in(o.amplitude_min_deg, o.amplitude_max_deg);
-      const double dir = in(0, 2 * std::numbers::pi);
+      const double dir = in(0, 2 * kPi);
       s.to_deg = {g[0] + s.amplitude_deg * std::cos(dir), g[1] + s.amplitude_deg * std::sin(dir)};
       if (s.to_deg[0] >= lo && s.to_deg[0] <= hi && s.to_deg[1] >= lo && s.to_deg[1] <= hi) break;
       s.to_deg = {0, 0};  // no valid direction: back to the centre
