@@ -16,12 +16,16 @@ void addStudyOptions(CLI::App* cmd, StudyCliOptions& options) {
   cmd->add_option("--tolerance-deg", options.tolerance_deg,
                   "eye-box criterion: FOV within this of the zero-gaze FOV (default 3 deg)")
       ->check(CLI::Range(0.0, 90.0));
+  cmd->add_option("--fov-method", options.fov_method,
+                  "edges (FOV edges root-found to 0.005 deg, default) or dense (counted on the --rays grid)")
+      ->check(CLI::IsMember({"edges", "dense"}));
   cmd->add_flag("--no-cache", options.no_cache, "recompute even when an identical study is cached");
 }
 
 FovEvaluator studyEvaluator(const StudyCliOptions& options) {
   TraceEvaluatorOptions t;
   t.rays = options.rays;
+  t.fov_method = parseFovMethod(options.fov_method).value_or(FovMethod::Edges);
   return traceEvaluator(t);
 }
 
@@ -48,6 +52,7 @@ nlohmann::json cachedStudy(const std::string& study, const nlohmann::json& param
   nlohmann::json keyed = parameters;
   keyed["rays"] = options.rays;
   keyed["tolerance_deg"] = options.tolerance_deg;
+  keyed["fov_method"] = options.fov_method;
   keyed["executable"] = executableStamp();
   const std::string key = StudyCache::makeKey(study, keyed, serializeScene(scene));
   if (!options.no_cache) {
@@ -57,6 +62,7 @@ nlohmann::json cachedStudy(const std::string& study, const nlohmann::json& param
     }
   }
   nlohmann::json result = compute();
+  result["fov_method"] = options.fov_method;
   cache.store(key, result);
   result["cached"] = false;
   return result;

@@ -16,6 +16,7 @@ namespace fovea::cli {
 struct StudyCliOptions {
   int rays = 12000;
   double tolerance_deg = 3.0;
+  std::string fov_method = "edges";  // edges (root-found field edges) or dense (the ray-count reference)
   bool no_cache = false;
 };
 
