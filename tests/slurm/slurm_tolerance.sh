@@ -41,6 +41,7 @@ su -s /bin/sh munge -c "/usr/sbin/munged --foreground --key-file=$KEY --socket=$
 PIDS+=($!)
 for _ in $(seq 50); do [ -S "$SOCK" ] && break; sleep 0.1; done
 [ -S "$SOCK" ] || { echo "slurm test: munged did not start"; cat "$WORK/munge/munged.log" || true; exit 1; }
+PIDS+=("$(cat "$WORK/munge-run/munged.pid")")  # su's child: stopped by its own PID
 
 HOST=$(hostname -s)
 PORT=$((20000 + RANDOM % 20000))
