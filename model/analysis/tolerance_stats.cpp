@@ -202,13 +202,16 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
   inv["target_yield"] = spec.target_yield;
   inv["method"] =
       "one parameter's width scaled by c, the others at spec; yield at c by likelihood-ratio reweighting of the "
-      "trials (self-normalised); the largest c reaching the target (c <= 1 bounded, <= 2 normal)";
+      "independent trials (self-normalised; with the Saltelli design its A and B rows); the largest c reaching the "
+      "target (c <= 1 bounded, <= 2 normal) while at least 20 effective trials support it";
   nlohmann::json per = nlohmann::json::array();
   for (std::size_t q = 0; q < k; ++q) {
     const ToleranceParameter& t = spec.parameters[q];
     auto yieldAt = [&](double c, double* ess) {
       double sw = 0, sw2 = 0, sp = 0;
       for (std::size_t i = 0; i < n; ++i) {
+        // Independent rows only: the A_B rows repeat the A rows' values of all but one parameter.
+        if (spec.sobol && (i % (k + 2) >= 2 || i / (k + 2) >= blocks)) continue;
         const double w = t.scaledDensityRatio(records[i].inputs[q], c);
         sw += w;
         sw2 += w * w;
@@ -219,14 +222,19 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
     };
     const double c_max = t.bounded() ? 1.0 : 2.0, c_min = 0.05;
     constexpr int kGrid = 40;
+    constexpr double kMinEffective = 20;
     double found = -1;
     for (int g = 0; g <= kGrid; ++g) {
       const double c = c_max - (c_max - c_min) * g / kGrid;
-      if (yieldAt(c, nullptr) >= spec.target_yield) {
+      double ess = 0;
+      const double y = yieldAt(c, &ess);
+      if (ess < kMinEffective) break;  // too few trials left near the mean to say more
+      if (y >= spec.target_yield) {
         double good = c, bad = g == 0 ? c : c_max - (c_max - c_min) * (g - 1) / kGrid;
         for (int it = 0; it < 30 && bad > good; ++it) {
           const double mid = 0.5 * (good + bad);
-          (yieldAt(mid, nullptr) >= spec.target_yield ? good : bad) = mid;
+          double e = 0;
+          (yieldAt(mid, &e) >= spec.target_yield && e >= kMinEffective ? good : bad) = mid;
         }
         found = good;
         break;
@@ -242,7 +250,9 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
       row["effective_samples"] = ess;
       row["at_scan_limit"] = found >= c_max;
     } else {
-      row["achievable"] = false;  // tightening this one alone down to 5 % of its width does not reach the target
+      // Tightening this one alone does not reach the target (down to 5 % of its width, or
+      // until fewer than 20 effective trials remain).
+      row["achievable"] = false;
     }
     per.push_back(row);
   }
