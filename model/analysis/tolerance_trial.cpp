@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "model/analysis/trace_evaluator.h"
+#include "model/scene/scene_parameters.h"
 
 namespace fovea {
 
@@ -31,10 +32,10 @@ CompensationTable nominalCompensation(const Scene& nominal, const ToleranceSpec&
 }
 
 Scene perturbedScene(const Scene& scene, const ToleranceSpec& spec, const std::vector<double>& x) {
-  std::vector<std::pair<std::string, double>> offsets;
+  Scene out = scene;
   for (std::size_t p = 0; p < spec.parameters.size(); ++p)
-    if (spec.parameters[p].kind == ToleranceKind::Scene) offsets.emplace_back(spec.parameters[p].path, x[p]);
-  Scene out = offsets.empty() ? scene : withParameters(scene, offsets, /*add=*/true);
+    if (spec.parameters[p].kind == ToleranceKind::Scene)
+      out = withParameter(out, spec.parameters[p].path, parameterValue(out, spec.parameters[p].path) + x[p]);
   for (std::size_t p = 0; p < spec.parameters.size(); ++p) {
     const ToleranceParameter& t = spec.parameters[p];
     if (t.kind != ToleranceKind::LaserTemperature) continue;
