@@ -12,6 +12,7 @@ PACKAGES=(
   xvfb xauth libgl1-mesa-dri x11-utils
   poppler-utils python3-numpy python3-matplotlib opencv-doc
   clang-format clang-tidy umockdev libumockdev-dev
+  slurmctld slurmd slurm-client munge
 )
 
 missing=()

@@ -14,9 +14,7 @@ double axisFov(const FovSample& f, GazeAxis axis) {
   return axis == GazeAxis::Yaw ? f.horizontal_deg : f.vertical_deg;
 }
 
-namespace {
-
-FovQuery makeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double shift_mm) {
+FovQuery gazeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double shift_mm) {
   FovQuery q;
   q.gaze_deg = axis == GazeAxis::Yaw ? std::array<double, 2>{gaze_deg, 0.0} : std::array<double, 2>{0.0, gaze_deg};
   if (method == ShiftMethod::Hoe)
@@ -27,27 +25,25 @@ FovQuery makeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double sh
   return q;
 }
 
-double pupilPosition(const Scene& scene, double gaze_deg, GazeAxis axis) {
+double pupilPositionMm(const Scene& scene, double gaze_deg, GazeAxis axis) {
   const EyePlacement e = axis == GazeAxis::Yaw ? placeEye(scene, gaze_deg, 0.0) : placeEye(scene, 0.0, gaze_deg);
   return axis == GazeAxis::Yaw ? e.pupil_center.x() : e.pupil_center.y();
 }
 
-}  // namespace
-
 GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
                          ShiftMethod method, const GazeStudyOptions& options) {
-  const double pupil = pupilPosition(scene, gaze_deg, axis);
-  const double pupil0 = pupilPosition(scene, 0.0, axis);
+  const double pupil = pupilPositionMm(scene, gaze_deg, axis);
+  const double pupil0 = pupilPositionMm(scene, 0.0, axis);
   // Geometric guess: a HOE shift moves the Maxwellian focus with it, so follow the pupil.
   // The source shift has no simple guess (it moves along z): bracket around zero, wider.
   const double guess = method == ShiftMethod::Hoe ? pupil - pupil0 : 0.0;
   const double half = method == ShiftMethod::Hoe ? options.shift_half_range_mm : 2.5 * options.shift_half_range_mm;
   const int n = std::max(3, options.bracket_points);
-  auto fovAt = [&](double s) { return axisFov(eval(scene, makeQuery(gaze_deg, axis, method, s)), axis); };
+  auto fovAt = [&](double s) { return axisFov(eval(scene, gazeQuery(gaze_deg, axis, method, s)), axis); };
   if (method == ShiftMethod::None) {
     GazeSample fixed;
     fixed.gaze_deg = gaze_deg;
-    fixed.fov = eval(scene, makeQuery(gaze_deg, axis, method, 0.0));
+    fixed.fov = eval(scene, gazeQuery(gaze_deg, axis, method, 0.0));
     fixed.pupil_position_mm = pupil;
     fixed.best_fov_deg = axisFov(fixed.fov, axis);
     return fixed;
@@ -101,7 +97,7 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
   GazeSample out;
   out.gaze_deg = gaze_deg;
   out.shift_mm = 0.5 * (lo + hi);
-  out.fov = eval(scene, makeQuery(gaze_deg, axis, method, out.shift_mm));
+  out.fov = eval(scene, gazeQuery(gaze_deg, axis, method, out.shift_mm));
   out.pupil_position_mm = pupil;
   out.plateau_mm = {lo, hi};
   out.best_fov_deg = best;

@@ -24,6 +24,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -93,6 +94,12 @@ struct GazeSweepResult {
 
 // The FOV along the axis (horizontal for yaw, vertical for pitch).
 double axisFov(const FovSample& f, GazeAxis axis);
+
+// The query of a gaze along the axis with a shift of the given method (HOE local x for yaw,
+// y for pitch; the source along bench z; nothing for None).
+FovQuery gazeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double shift_mm);
+// The pupil centre along the axis (bench x for yaw, y for pitch) at that gaze.
+double pupilPositionMm(const Scene& scene, double gaze_deg, GazeAxis axis);
 
 // Optimal shift for one gaze (see header comment).
 GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,

@@ -35,7 +35,9 @@ std::vector<ParameterSpec> studyParameters() {
   // box measures the optics, not the ray sampling; 12 000 rays per wavelength per trace.
   return {integer("rays", "Rays per wavelength", 12000, 50, 1000000, "rays per wavelength per trace"),
           number("tolerance-deg", "Eye-box tolerance", "deg", 3.0, 0.0, 90.0, 2,
-                 "eye-box criterion: FOV within this of the zero-gaze FOV")};
+                 "eye-box criterion: FOV within this of the zero-gaze FOV"),
+          choice("fov-method", "FOV estimator", {"edges", "dense"}, "edges",
+                 "edges: the field's edges root-found to 0.005 deg (fov_edges.h); dense: counted on the rays grid")};
 }
 
 std::optional<std::array<double, 2>> gazeFrom(const nlohmann::json& v) {
@@ -59,6 +61,7 @@ TraceOptions traceOptionsFrom(const nlohmann::json& v) {
 FovEvaluator evaluatorFrom(const nlohmann::json& v) {
   TraceEvaluatorOptions t;
   t.rays = integerOf(v, "rays");
+  t.fov_method = parseFovMethod(textOf(v, "fov-method")).value_or(FovMethod::Edges);
   return traceEvaluator(t);
 }
 
@@ -133,7 +136,9 @@ AnalysisDefinition sweepAnalysis() {
     const auto r = sweepGaze(scene, evaluatorFrom(v), numberOf(v, "gaze-from"), numberOf(v, "gaze-to"),
                              numberOf(v, "gaze-step"), axisFrom(v), m, gazeStudyOptionsFrom(v), control);
     if (!r.ok()) return std::nullopt;
-    return sweepResultJson(*r.value, textOf(v, "axis"));
+    nlohmann::json out = sweepResultJson(*r.value, textOf(v, "axis"));
+    out["fov_method"] = textOf(v, "fov-method");
+    return out;
   };
   return d;
 }
@@ -152,7 +157,9 @@ std::optional<nlohmann::json> compareShiftStudy(const Scene& scene, const nlohma
     if (!r.ok()) return std::nullopt;
     boxes[done++] = r.value->eyebox;
   }
-  return compareShiftJson(boxes[0], boxes[1], &boxes[2], axisFrom(v));
+  nlohmann::json out = compareShiftJson(boxes[0], boxes[1], &boxes[2], axisFrom(v));
+  out["fov_method"] = textOf(v, "fov-method");
+  return out;
 }
 
 AnalysisDefinition compareShiftAnalysis() {
@@ -199,7 +206,9 @@ AnalysisDefinition sensitivityAnalysis() {
     const auto r = sensitivitySweep(scene, evaluatorFrom(v), path, numberOf(v, "from"), numberOf(v, "to"),
                                     integerOf(v, "steps"), control);
     if (!r.ok()) return std::nullopt;
-    return sensitivityResultJson(*r.value, path, nominal);
+    nlohmann::json out = sensitivityResultJson(*r.value, path, nominal);
+    out["fov_method"] = textOf(v, "fov-method");
+    return out;
   };
   return d;
 }

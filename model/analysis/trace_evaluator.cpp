@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "model/analysis/fov_edges.h"
+#include "model/physics/ray_probe.h"
 #include "model/physics/trace.h"
 #include "model/physics/trace_pipeline.h"
 #include "model/units.h"
@@ -13,12 +15,6 @@
 namespace fovea {
 
 namespace {
-
-// Unit arrival direction of a field angle (yaw = atan2(x, z), pitch = asin(y); fieldAngleDeg()).
-Eigen::Vector3d fieldDirection(double yaw_deg, double pitch_deg) {
-  const double y = yaw_deg * kDeg, p = pitch_deg * kDeg;
-  return {std::cos(p) * std::sin(y), std::sin(p), std::cos(p) * std::cos(y)};
-}
 
 template <class Ray>
 bool isLit(const Ray& r, double threshold) {
@@ -94,10 +90,7 @@ ContinuousFov continuousFovOf(const std::vector<const Ray*>& rays, double effici
       for (int j = 0; j < ny; ++j) line.push_back(at(centre->pixel[0], j));
       v = widestRun(line, efficiency_threshold, 1);
     }
-    const double diagonal =
-        h.width() > 0 && v.width() > 0
-            ? std::acos(std::clamp(fieldDirection(h.lo, v.lo).dot(fieldDirection(h.hi, v.hi)), -1.0, 1.0)) / kDeg
-            : 0.0;
+    const double diagonal = h.width() > 0 && v.width() > 0 ? spanDiagonalDeg({h.lo, v.lo}, {h.hi, v.hi}) : 0.0;
     // The field shown in every colour: the smallest over the wavelengths.
     if (first || h.width() < out.horizontal_deg) out.horizontal_deg = h.width();
     if (first || v.width() < out.vertical_deg) out.vertical_deg = v.width();
@@ -108,6 +101,16 @@ ContinuousFov continuousFovOf(const std::vector<const Ray*>& rays, double effici
 }
 
 }  // namespace
+
+Eigen::Vector3d fieldDirection(const std::array<double, 2>& field_deg) {
+  const double y = field_deg[0] * kDeg, p = field_deg[1] * kDeg;
+  return {std::cos(p) * std::sin(y), std::sin(p), std::cos(p) * std::cos(y)};
+}
+
+double spanDiagonalDeg(const std::array<double, 2>& corner_a_deg, const std::array<double, 2>& corner_b_deg) {
+  const double c = std::clamp(fieldDirection(corner_a_deg).dot(fieldDirection(corner_b_deg)), -1.0, 1.0);
+  return std::acos(c) * 180.0 / std::numbers::pi;
+}
 
 ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficiency_threshold) {
   std::vector<const TracedRay*> on_plate;
@@ -123,10 +126,45 @@ ContinuousFov continuousFov(const std::vector<FieldRay>& rays, double efficiency
   return continuousFovOf(on_plate, efficiency_threshold);
 }
 
+const char* fovMethodName(FovMethod m) {
+  return m == FovMethod::Dense ? "dense" : "edges";
+}
+
+std::optional<FovMethod> parseFovMethod(const std::string& name) {
+  if (name == "dense") return FovMethod::Dense;
+  if (name == "edges") return FovMethod::Edges;
+  return std::nullopt;
+}
+
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
   // One memoising pipeline per concurrent caller (the gaze studies evaluate in parallel). Only
   // rays entering the pupil matter here (FOV, efficiencies, uniformity), so the others skip the
   // coupled-wave step (cull_to_pupil: exact for everything read below).
+  if (options.fov_method == FovMethod::Edges) {
+    return [options](const Scene& scene, const FovQuery& q) {
+      RayProbeSetup setup;
+      setup.gaze_deg = q.gaze_deg;
+      setup.hoe_shift_mm = q.hoe_shift_mm;
+      setup.source_shift_mm = q.source_shift_mm;
+      const RayProbe probe(scene, setup);
+      EdgeFovOptions e;
+      e.efficiency_threshold = options.efficiency_threshold;
+      e.tolerance_deg = options.edge_tolerance_deg;
+      const std::vector<double> wavelengths =
+          options.wavelength_nm ? std::vector<double>{*options.wavelength_nm} : scene.projector.wavelengths_nm;
+      const EdgeFovResult r = edgeFov(probe, wavelengths, e);
+      FovSample f;
+      f.horizontal_deg = r.fov.horizontal_deg;
+      f.vertical_deg = r.fov.vertical_deg;
+      f.diagonal_deg = r.fov.diagonal_deg;
+      f.extent_horizontal_deg = r.extent.horizontal;
+      f.extent_vertical_deg = r.extent.vertical;
+      f.mean_efficiency = r.mean_efficiency;
+      f.rays_in_pupil = r.rays_in_pupil;
+      f.efficiency_uniformity = r.efficiency_uniformity;
+      return f;
+    };
+  }
   auto pool = std::make_shared<TracePipelinePool>();
   return [options, pool](const Scene& scene, const FovQuery& q) {
     TraceOptions t;

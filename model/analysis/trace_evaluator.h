@@ -11,18 +11,31 @@
 // views); the smallest over the wavelengths is kept (the field shown in every colour).
 // Diagonal: the angle between the corners of those spans.
 
+#include <array>
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "model/analysis/gaze_studies.h"
 #include "model/physics/trace.h"
 
 namespace fovea {
 
+// How the continuous FOV is estimated: Dense counts runs of lit rays in a `rays`-dense trace
+// (its error is about a ray spacing); Edges root-finds the edges of the same runs with single
+// rays (fov_edges.h; its error is edge_tolerance_deg, whatever `rays`).
+enum class FovMethod { Dense, Edges };
+const char* fovMethodName(FovMethod m);  // "dense", "edges"
+std::optional<FovMethod> parseFovMethod(const std::string& name);
+
 struct TraceEvaluatorOptions {
-  int rays = 12000;                     // rays per wavelength over the projector field
+  int rays = 12000;                     // rays per wavelength over the projector field (Dense)
   std::optional<double> wavelength_nm;  // default: all projector wavelengths
   double efficiency_threshold = 0.1;
+  FovMethod fov_method = FovMethod::Dense;
+  double edge_tolerance_deg = 0.005;  // Edges: each edge's field angle to this
 };
 
 struct ContinuousFov {
@@ -30,6 +43,11 @@ struct ContinuousFov {
 };
 ContinuousFov continuousFov(const std::vector<TracedRay>& rays, double efficiency_threshold);
 ContinuousFov continuousFov(const std::vector<FieldRay>& rays, double efficiency_threshold);  // the same, leaner
+
+// Unit arrival direction of a field angle (yaw = atan2(x, z), pitch = asin(y); fieldAngleDeg())
+// and the angle between two such directions: the diagonal between the corners of the spans.
+Eigen::Vector3d fieldDirection(const std::array<double, 2>& field_deg);
+double spanDiagonalDeg(const std::array<double, 2>& corner_a_deg, const std::array<double, 2>& corner_b_deg);
 
 // Always true since the tracer landed (kept for callers written before it).
 inline bool traceEvaluatorAvailable() {

@@ -1,0 +1,185 @@
+#include "model/analysis/tolerance_run.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+
+#include "model/analysis/tolerance_stats.h"
+#include "model/analysis/tolerance_trial.h"
+#include "model/scene/scene_io.h"
+
+namespace fovea {
+
+TrialRange shardRange(std::uint64_t trials, int k, int n) {
+  if (n < 1 || k < 0 || k >= n) throw std::invalid_argument("shard K/N: need 0 <= K < N");
+  const auto kk = static_cast<std::uint64_t>(k), nn = static_cast<std::uint64_t>(n);
+  return {trials * kk / nn, trials * (kk + 1) / nn};
+}
+
+std::string sceneDigest(const Scene& scene) {
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a 64
+  for (const unsigned char c : serializeScene(scene)) h = (h ^ c) * 1099511628211ULL;
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::vector<double> nominalFigures(const Scene& scene, const ToleranceSpec& spec) {
+  const FovEvaluator eval = toleranceEvaluator(spec);
+  const CompensationTable table = nominalCompensation(scene, spec, eval);
+  return runToleranceTrial(scene, spec, eval, std::vector<double>(spec.parameters.size(), 0.0), table);
+}
+
+StudyOutcome<std::vector<ToleranceRecord>> runToleranceTrials(const Scene& scene, const ToleranceSpec& spec,
+                                                              std::uint64_t seed, TrialRange range,
+                                                              const StudyControl& control) {
+  const FovEvaluator eval = toleranceEvaluator(spec);
+  CompensationTable table;
+  if (spec.compensator == Compensator::Fixed) table = nominalCompensation(scene, spec, eval);
+  return runSamples<ToleranceRecord>(
+      range.end - range.begin,
+      [&](std::size_t i) {
+        ToleranceRecord r;
+        r.trial = range.begin + i;
+        r.inputs = trialInputs(spec, seed, r.trial);
+        try {
+          r.figures = runToleranceTrial(scene, spec, eval, r.inputs, table);
+        } catch (const std::invalid_argument& e) {
+          r.valid = false;
+          r.error = e.what();
+          r.figures.assign(toleranceFigureNames().size(), 0.0);
+        }
+        return r;
+      },
+      control);
+}
+
+bool tolerancePasses(const ToleranceSpec& spec, const ToleranceRecord& r) {
+  if (!r.valid) return false;
+  const auto& names = toleranceFigureNames();
+  for (const auto& [name, b] : spec.pass) {
+    const std::size_t f = static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+    const double v = r.figures.at(f);
+    if (b.min && !(v >= *b.min)) return false;
+    if (b.max && !(v <= *b.max)) return false;
+  }
+  return true;
+}
+
+namespace {
+
+nlohmann::json runHeader(const ToleranceSpec& spec, const ToleranceRunInfo& info) {
+  nlohmann::json j;
+  j["scene"] = info.scene_name;
+  j["scene_digest"] = info.scene_digest;
+  j["seed"] = info.seed;
+  j["trials"] = info.trials;
+  j["spec"] = spec.source;
+  j["parameters"] = nlohmann::json::array();
+  for (const auto& p : spec.parameters) j["parameters"].push_back(p.name);
+  j["figure_names"] = toleranceFigureNames();
+  nlohmann::json nominal = nlohmann::json::object();
+  for (std::size_t f = 0; f < info.nominal.size(); ++f) nominal[toleranceFigureNames()[f]] = info.nominal[f];
+  j["nominal"] = nominal;
+  return j;
+}
+
+nlohmann::json recordJson(const ToleranceRecord& r) {
+  nlohmann::json j{{"trial", r.trial}, {"inputs", r.inputs}, {"figures", r.figures}};
+  if (!r.valid) j["error"] = r.error;
+  return j;
+}
+
+ToleranceRecord recordFrom(const nlohmann::json& j) {
+  ToleranceRecord r;
+  r.trial = j.at("trial").get<std::uint64_t>();
+  r.inputs = j.at("inputs").get<std::vector<double>>();
+  r.figures = j.at("figures").get<std::vector<double>>();
+  if (j.contains("error")) {
+    r.valid = false;
+    r.error = j["error"].get<std::string>();
+  }
+  return r;
+}
+
+}  // namespace
+
+nlohmann::json tolerancePartJson(const ToleranceSpec& spec, const ToleranceRunInfo& info, int shard, int shards,
+                                 const std::vector<ToleranceRecord>& records) {
+  nlohmann::json j = runHeader(spec, info);
+  j["format"] = "fovea-tolerance-part";
+  j["version"] = 1;
+  j["shard"] = {shard, shards};
+  j["records"] = nlohmann::json::array();
+  for (const auto& r : records) j["records"].push_back(recordJson(r));
+  return j;
+}
+
+nlohmann::json toleranceResultJson(const ToleranceSpec& spec, const ToleranceRunInfo& info,
+                                   const std::vector<ToleranceRecord>& records) {
+  nlohmann::json j = runHeader(spec, info);
+  j["format"] = "fovea-tolerance-result";
+  j["version"] = 1;
+  j["fov_method"] = "edges";
+  j["fov_tolerance_deg"] = spec.fov_tolerance_deg;
+  const nlohmann::json stats = toleranceStatistics(spec, info.seed, records);
+  for (const auto& [k, v] : stats.items()) j[k] = v;
+  nlohmann::json invalid = nlohmann::json::array();
+  for (const auto& r : records)
+    if (!r.valid) invalid.push_back({{"trial", r.trial}, {"error", r.error}});
+  j["invalid_units"] = invalid;
+  return j;
+}
+
+nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts) {
+  if (parts.empty()) throw std::invalid_argument("merge: no parts given");
+  const char* same[] = {"scene", "scene_digest", "seed", "trials", "spec", "nominal"};
+  int shards = -1;
+  std::map<int, std::size_t> seen;
+  std::map<std::uint64_t, ToleranceRecord> records;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const nlohmann::json& p = parts[i];
+    const std::string where = "merge: part " + std::to_string(i + 1);
+    if (!p.is_object() || p.value("format", std::string()) != "fovea-tolerance-part")
+      throw std::invalid_argument(where + ": not a fovea-tolerance-part document");
+    for (const char* k : same)
+      if (!p.contains(k) || p[k] != parts[0][k])
+        throw std::invalid_argument(where + ": \"" + k + "\" differs from part 1 (not the same run)");
+    const auto sh = p.at("shard").get<std::vector<int>>();
+    if (sh.size() != 2) throw std::invalid_argument(where + ": bad \"shard\"");
+    if (shards < 0) shards = sh[1];
+    if (sh[1] != shards) throw std::invalid_argument(where + ": shard count differs from part 1");
+    if (seen.count(sh[0])) throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " given twice");
+    seen[sh[0]] = i;
+    const std::uint64_t trials = p.at("trials").get<std::uint64_t>();
+    const TrialRange range = shardRange(trials, sh[0], sh[1]);
+    if (p.at("records").size() != range.end - range.begin)
+      throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " is incomplete");
+    for (const auto& r : p["records"]) {
+      ToleranceRecord rec = recordFrom(r);
+      if (rec.trial < range.begin || rec.trial >= range.end || records.count(rec.trial))
+        throw std::invalid_argument(where + ": trial " + std::to_string(rec.trial) + " out of its shard or repeated");
+      records.emplace(rec.trial, std::move(rec));
+    }
+  }
+  std::string missing;
+  for (int k = 0; k < shards; ++k)
+    if (!seen.count(k)) missing += (missing.empty() ? "" : ",") + std::to_string(k);
+  if (!missing.empty())
+    throw std::invalid_argument("merge: missing shard(s) " + missing + " of " + std::to_string(shards));
+  const nlohmann::json& h = parts[0];
+  const ToleranceSpec spec = parseToleranceSpec(h["spec"]);
+  ToleranceRunInfo info;
+  info.scene_name = h["scene"].get<std::string>();
+  info.scene_digest = h["scene_digest"].get<std::string>();
+  info.seed = h["seed"].get<std::uint64_t>();
+  info.trials = h["trials"].get<std::uint64_t>();
+  for (const auto& name : toleranceFigureNames()) info.nominal.push_back(h["nominal"].at(name).get<double>());
+  std::vector<ToleranceRecord> all;
+  all.reserve(records.size());
+  for (auto& [t, r] : records) all.push_back(std::move(r));
+  return toleranceResultJson(spec, info, all);
+}
+
+}  // namespace fovea

@@ -1,0 +1,116 @@
+// fovea-cli tolerance and merge: the JSON contract, shards merged byte for byte equal to one
+// run, the Slurm job files, and bad input named.
+#include <QtTest>
+
+#include <QDir>
+#include <QFile>
+#include <QTemporaryDir>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_process.h"
+
+using fovea::testing::runFoveaCli;
+
+namespace {
+// Two bench tolerances, the fixed compensator and three gazes at one wavelength: cheap trials.
+const char* kSpec = R"({
+  "format": "fovea-tolerance",
+  "parameters": [
+    {"name": "HOE x", "path": "hoe.position_mm[0]", "distribution": "normal", "sigma": 0.3},
+    {"name": "gaze tracker", "kind": "gaze_tracker", "distribution": "uniform", "half_width": 1.5}
+  ],
+  "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10},
+  "compensator": "fixed",
+  "wavelength_nm": 532,
+  "pass": {"fov_min_deg": {"min": 60}, "inset_error_deg": {"max": 1.0}},
+  "target_yield": 0.9,
+  "fov_tolerance_deg": 0.05
+})";
+
+QString writeFile(const QTemporaryDir& d, const QString& name, const QByteArray& text) {
+  const QString p = d.filePath(name);
+  QFile f(p);
+  if (!f.open(QIODevice::WriteOnly)) return {};
+  f.write(text);
+  return p;
+}
+}  // namespace
+
+class TestCliTolerance : public QObject {
+  Q_OBJECT
+ private slots:
+  void contractAndShards() {
+    QTemporaryDir dir;
+    const QString spec = writeFile(dir, "tol.json", kSpec);
+    const QStringList base{"tolerance", "--spec", spec, "--trials", "16", "--seed", "5"};
+    const auto whole = runFoveaCli(base + QStringList{"--json"});
+    QCOMPARE(whole.code, 0);
+    const auto j = nlohmann::json::parse(whole.out.toStdString());
+    QCOMPARE(j["format"].get<std::string>(), std::string("fovea-tolerance-result"));
+    QCOMPARE(j["fov_method"].get<std::string>(), std::string("edges"));
+    QCOMPARE(j["trials"].get<int>(), 16);
+    QCOMPARE(j["yield"]["trials"].get<int>(), 16);
+    const double y = j["yield"]["value"].get<double>();
+    QVERIFY(y > 0 && y < 1);  // the tracker's +-1.5 deg fails the 1 deg inset bound about a third of the time
+    for (const char* f : {"fov_min_deg", "fov_zero_gaze_deg", "eyebox_mm", "inset_error_deg", "mean_efficiency"})
+      QVERIFY2(j["figures"][f]["mean"].is_number() && j["figures"][f]["histogram"]["counts"].size() == 20, f);
+    QVERIFY(j["sensitivity"]["method"].get<std::string>().find("Jansen") != std::string::npos);
+    QCOMPARE(j["sensitivity"]["base_samples"].get<int>(), 4);
+    QCOMPARE(j["sensitivity"]["ranking"][0].get<std::string>(), std::string("gaze tracker"));  // it decides the pass
+    QCOMPARE(j["inverse"]["parameters"].size(), std::size_t{2});
+    // 8 independent rows are too few to reweight (the inverse needs 20 effective trials).
+    QVERIFY(j["inverse"]["parameters"][1]["achievable"].is_boolean());
+    QCOMPARE(j["inverse"]["target_yield"].get<double>(), 0.9);
+    // Three shards, merged in another order: the same bytes.
+    QStringList parts;
+    for (const int k : {2, 0, 1}) {
+      const auto p = runFoveaCli(base + QStringList{"--shard", QString("%1/3").arg(k), "--json"});
+      QCOMPARE(p.code, 0);
+      parts << writeFile(dir, QString("part-%1.json").arg(k), p.out);
+    }
+    const auto merged = runFoveaCli(QStringList{"merge"} + parts + QStringList{"--json"});
+    QCOMPARE(merged.code, 0);
+    QCOMPARE(merged.out, whole.out);
+    // A shard missing is named.
+    const auto missing = runFoveaCli(QStringList{"merge", parts[0], parts[1], "--json"});
+    QCOMPARE(missing.code, 1);
+    QVERIFY2(missing.err.contains("missing shard(s) 1 of 3"), missing.err.constData());
+  }
+
+  void slurmJobFiles() {
+    QTemporaryDir dir;
+    const QString spec = writeFile(dir, "tol.json", kSpec);
+    const QString job = dir.filePath("job");
+    const auto r =
+        runFoveaCli({"tolerance", "--spec", spec, "--trials", "40", "--seed", "2", "--slurm", job, "--shards", "5"});
+    QCOMPARE(r.code, 0);
+    QFile f(job + "/tolerance.sbatch");
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray s = f.readAll();
+    QVERIFY(s.contains("#SBATCH --array=0-4"));
+    QVERIFY(s.contains("--shard \"$K/5\""));
+    QVERIFY(s.contains("--trials 40 --seed 2"));
+    QVERIFY(QFile::exists(job + "/merge.sh"));
+  }
+
+  void badInputIsNamed() {
+    QTemporaryDir dir;
+    QByteArray bad = kSpec;
+    bad.replace("\"normal\"", "\"gamma\"");
+    const QString spec = writeFile(dir, "bad.json", bad);
+    auto r = runFoveaCli({"tolerance", "--spec", spec, "--trials", "4", "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("parameters[0]") && r.err.contains("gamma"), r.err.constData());
+    const QString good = writeFile(dir, "tol.json", kSpec);
+    r = runFoveaCli({"tolerance", "--spec", good, "--trials", "4", "--shard", "3/3", "--json"});
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains("--shard"));
+    r = runFoveaCli({"merge", dir.filePath("nope.json"), "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("nope.json"));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliTolerance)
+#include "tst_cli_tolerance.moc"
