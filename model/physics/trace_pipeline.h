@@ -1,8 +1,9 @@
 #pragma once
-// The trace as a dependency graph of memoised stages (issue 6, "skip what a scene doesn't
-// need"). Each stage's result is stored under a 64-bit hash of exactly the inputs it reads
-// (scene fields, options, and the keys of the stages it consumes), so a run recomputes only
-// the stages whose inputs changed:
+// The trace as a dependency graph of memoised stages ("skip what a scene doesn't need"). Each
+// stage's result is stored under a 64-bit hash of exactly the inputs it reads (scene fields,
+// options, and the keys of the stages it consumes), so a run recomputes only the stages whose
+// inputs changed. The stages are one function each in trace_stages.h (the coupled wave in
+// trace_coupled_wave.cpp), the keys and memo tables in trace_memo.h; run() only chains them:
 //
 //   geometry                 projector pose/FOV/pixels, rays, source shift, HOE pose/size/shift:
 //                            the projector ray grid and where each ray meets the plate
