@@ -901,8 +901,8 @@ void DevicesPanel::setGaze(double yaw, double pitch) {
     gazeYaw_->setValue(y);
     gazePitch_->setValue(p);
   }
-  tracker_->setEyeGaze(yaw, pitch);  // the virtual eye looks where the slider says
-  if (follower_ && !tracker_->tracking()) follower_->setGaze(yaw, pitch);
+  if (tracker_) tracker_->setEyeGaze(yaw, pitch);  // the virtual eye looks where the slider says
+  if (follower_ && !(tracker_ && tracker_->tracking())) follower_->setGaze(yaw, pitch);
   refresh();
 }
 
