@@ -12,6 +12,7 @@ struct TracePipeline::State {
   std::uint64_t run = 0;
   Memo<GeometryData> geometry;
   Memo<RecordingData> recording;
+  Memo<FringeData> fringes;
   Memo<DiffractionData> diffraction;
   Memo<CoupledWaveData> coupled_wave;
   Memo<StackData> stack;
@@ -22,6 +23,7 @@ struct TracePipeline::State {
   void evict() {
     geometry.evict(run);
     recording.evict(run);
+    fringes.evict(run);
     diffraction.evict(run);
     coupled_wave.evict(run);
     stack.evict(run);
@@ -86,12 +88,24 @@ TraceResult TracePipeline::run(const Scene& scene, const TraceOptions& o, TraceS
   // diffraction per layer and wavelength
   std::vector<std::vector<std::uint64_t>> diffraction_key(nw, std::vector<std::uint64_t>(nl));
   std::vector<LayerDiffractions> dif(nw, LayerDiffractions(nl));
+  std::vector<std::shared_ptr<FringeData>> fringes(nl);  // looked up when a diffraction reruns
+  const auto fringesOf = [&](std::size_t i) -> const FringeData& {
+    if (!fringes[i]) {
+      const std::uint64_t key = fringesKey(recording_key[i], geometry_key);
+      fringes[i] = st.fringes.find(key, st.run);
+      if (!fringes[i]) {
+        fringes[i] = computeFringes(g, *rec[i]);
+        st.fringes.put(key, fringes[i], st.run);
+      }
+    }
+    return *fringes[i];
+  };
   for (std::size_t w = 0; w < nw; ++w)
     for (std::size_t i = 0; i < nl; ++i) {
       diffraction_key[w][i] = diffractionKey(scene, i, recording_key[i], geometry_key, wavelengths[w]);
       dif[w][i] = memoised(
           st.diffraction, diffraction_key[w][i], st.run, ts, [&] { return "diffraction:" + at(i, w); },
-          [&] { return computeDiffraction(scene, g, *rec[i], layers.film[i], wavelengths[w]); });
+          [&] { return computeDiffraction(scene, g, fringesOf(i), layers.film[i], wavelengths[w]); });
     }
 
   // the eye (read by the cull and by the pupil stage)

@@ -14,8 +14,9 @@
 //                            HOE shift: a rigid lateral shift carries the recorded grating with
 //                            the plate, so moving the plate never re-records
 //   diffraction:<layer>@<λ>  recording + geometry + that layer's n0 + λ + cover/substrate
-//                            indices: K_rec sampled at every plate hit, obliquities, dephasing
-//                            and the diffracted direction (no Kogelnik)
+//                            indices: K_rec sampled at every plate hit (once per layer and
+//                            geometry, shared by the wavelengths), obliquities, dephasing and
+//                            the diffracted direction (no Kogelnik)
 //   coupled_wave:<layer>@<λ> diffraction + n1, thickness, absorption, polarisation: Kogelnik
 //                            per ray; with cull_to_pupil only for the rays that some layer
 //                            sends into the pupil (the eye is then an input, evaluated rays are

@@ -124,8 +124,29 @@ std::uint64_t diffractionKey(const Scene& scene, std::size_t layer, std::uint64_
       .value();
 }
 
-std::shared_ptr<DiffractionData> computeDiffraction(const Scene& scene, const GeometryData& g, const RecordingData& r,
-                                                    const FilmGrating& film, double wavelength_nm) {
+std::uint64_t fringesKey(std::uint64_t recording_key, std::uint64_t geometry_key) {
+  return Hasher("fringes").add(recording_key).add(geometry_key).value();
+}
+
+std::shared_ptr<FringeData> computeFringes(const GeometryData& g, const RecordingData& r) {
+  const std::size_t nh = g.hits();
+  auto f = std::make_shared<FringeData>();
+  f->k_recorded.resize(nh);
+  f->valid.assign(nh, 0);
+  forRange(nh, [&](std::size_t b, std::size_t e) {
+    for (std::size_t h = b; h < e; ++h) {
+      // The recording sampled where this ray meets the plate (plate-local u, v).
+      const RecordedGrating rg = recordAt(r.model, g.hit_u[h], g.hit_v[h]);
+      f->valid[h] = rg.valid;
+      f->k_recorded[h] = rg.k_recorded;
+    }
+  });
+  return f;
+}
+
+std::shared_ptr<DiffractionData> computeDiffraction(const Scene& scene, const GeometryData& g,
+                                                    const FringeData& fringes, const FilmGrating& film,
+                                                    double wavelength_nm) {
   const std::size_t nh = g.hits();
   const double n_cover = scene.hoe.cover_index, n_sub = scene.hoe.substrate_index;
   const double n_in = incidentIndex(scene, g);
@@ -136,11 +157,9 @@ std::shared_ptr<DiffractionData> computeDiffraction(const Scene& scene, const Ge
   d->out_dir.resize(nh);
   forRange(nh, [&](std::size_t b, std::size_t e) {
     for (std::size_t h = b; h < e; ++h) {
-      // The recording sampled where this ray meets the plate (plate-local u, v).
-      const RecordedGrating rg = recordAt(r.model, g.hit_u[h], g.hit_v[h]);
-      if (!rg.valid) continue;
+      if (!fringes.valid[h]) continue;
       const LayerGeometryT<double> lg =
-          layerGeometryT<double>(film, rg.k_recorded, g.hit_dir[h], n_in, n_cover, n_sub, d->lambda_um);
+          layerGeometryT<double>(film, fringes.k_recorded[h], g.hit_dir[h], n_in, n_cover, n_sub, d->lambda_um);
       std::uint8_t f = kValid;
       if (lg.entered) f |= kEntered;
       if (lg.evanescent) f |= kEvanescent;

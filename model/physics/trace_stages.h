@@ -44,6 +44,13 @@ struct RecordingData {
   LayerModel model;
 };
 
+// A layer's recording sampled at the geometry's hits (shared by the layer's diffraction stages
+// of every wavelength: the fringes do not depend on the probe).
+struct FringeData {
+  std::vector<Eigen::Vector3d> k_recorded;  // per hit, K_rec after processing (rad/µm)
+  std::vector<std::uint8_t> valid;          // per hit: both recording beams enter the film there
+};
+
 enum : std::uint8_t { kEntered = 1, kEvanescent = 2, kExits = 4, kTir = 8, kValid = 16 };
 
 struct Obliquity {
@@ -133,11 +140,15 @@ double incidentIndex(const Scene& scene, const GeometryData& g);
 std::uint64_t recordingKey(const Scene& scene, std::size_t layer);
 std::shared_ptr<RecordingData> computeRecording(const Scene& scene, std::size_t layer);
 
-// diffraction:<layer>@<λ>
+// diffraction:<layer>@<λ>, from the layer's fringes at the hits (computed with the first of
+// its diffraction stages that reruns, memoised under the recording and geometry keys).
+std::uint64_t fringesKey(std::uint64_t recording_key, std::uint64_t geometry_key);
+std::shared_ptr<FringeData> computeFringes(const GeometryData& g, const RecordingData& r);
 std::uint64_t diffractionKey(const Scene& scene, std::size_t layer, std::uint64_t recording_key,
                              std::uint64_t geometry_key, double wavelength_nm);
-std::shared_ptr<DiffractionData> computeDiffraction(const Scene& scene, const GeometryData& g, const RecordingData& r,
-                                                    const FilmGrating& film, double wavelength_nm);
+std::shared_ptr<DiffractionData> computeDiffraction(const Scene& scene, const GeometryData& g,
+                                                    const FringeData& fringes, const FilmGrating& film,
+                                                    double wavelength_nm);
 
 // The eye the cull and the pupil stage read (its key includes the HOE pose, which places it).
 std::uint64_t eyeKey(const Scene& scene, const std::array<double, 2>& gaze);
