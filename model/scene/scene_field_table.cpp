@@ -110,7 +110,7 @@ FieldTable<HoeLayer> makeHoeLayer() {
   t.add<&L::recording, &R::phase_conjugate>("recording.phase_conjugate", "", Range::any(), kOpt,
                                             {"Phase-conjugate recording"},
                                             "recorded with the time-reversed pair (B.1.2)");
-  t.rule("recording.signal_point_mm", "!= reference", [](const L& l) {
+  t.rule("recording.signal_point_mm", "", [](const L& l) {
     return problemIf(l.recording.reference_point_mm == l.recording.signal_point_mm,
                      "must differ from reference_point_mm (no fringes otherwise)");
   });
@@ -124,7 +124,7 @@ FieldTable<Eye> makeEye() {
                                    "23 mm in the seed");
   t.add<&Eye::pupil_diameter_mm>("pupil_diameter_mm", "mm", Range::open(0, 15), kReq, {"Pupil diameter"},
                                  "5 mm in the seed");
-  t.rule("pupil_diameter_mm", "< eyeball", [](const Eye& e) {
+  t.rule("pupil_diameter_mm", "", [](const Eye& e) {
     return problemIf(e.pupil_diameter_mm >= e.eyeball_diameter_mm, "must be smaller than eyeball_diameter_mm");
   });
   t.group("Placement");
@@ -137,7 +137,7 @@ FieldTable<Eye> makeEye() {
                         "yaw (+ towards +x), pitch (+ up)");
   t.add<&Eye::gaze_range_deg>("gaze_range_deg", "deg", Range::open(-90, 90), kOpt, {"Gaze range from", "Gaze range to"},
                               "design range of gaze angles");
-  t.rule("gaze_range_deg", "low < high", [](const Eye& e) {
+  t.rule("gaze_range_deg", "", [](const Eye& e) {
     return problemIf(e.gaze_range_deg[0] >= e.gaze_range_deg[1], "lower end must be below the upper end");
   });
   t.group("Anatomy");
@@ -224,7 +224,7 @@ FieldTable<StageBinding> makeStage() {
   t.add<&S::soft_limits>("soft_limits", "", kCoord, kReq, {"Soft limit low", "Soft limit high"},
                          "allowed travel in the element coordinate")
       .axisUnit();
-  t.rule("soft_limits", "low < high", [](const S& s) {
+  t.rule("soft_limits", "", [](const S& s) {
     return problemIf(s.soft_limits[0] >= s.soft_limits[1], "lower limit must be below the upper limit");
   });
   t.add<&S::home_offset>("home_offset", "", kCoord, kOpt, {"Home offset"}, "element coordinate when the stage reads 0")
