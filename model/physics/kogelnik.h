@@ -152,8 +152,16 @@ ResultT<T> absorbingT(T c_r, T c_s, T vartheta, T kappa, T alpha, T d) {
   const C n21 = -kI * kappa / c_s;
   const C n11 = T(0.5) * (m11 - m22);
   const C p = n12 * n21;
-  C q = std::sqrt(n11 * n11 + p);
-  if (std::real(q * std::conj(n11)) < T(0)) q = -q;
+  // q = sqrt(n11^2 + p) on the branch along n11. For |n11| > 1 it is formed as
+  // n11 sqrt(1 + p/n11^2) (principal root: Re(q conj n11) >= 0 by construction), so that n11^2
+  // cannot overflow (|n11| > 1e154 in double: a thick, strongly absorbing film).
+  C q;
+  if (std::abs(n11) > T(1)) {
+    q = n11 * std::sqrt(T(1) + (p / n11) / n11);
+  } else {
+    q = std::sqrt(n11 * n11 + p);
+    if (std::real(q * std::conj(n11)) < T(0)) q = -q;
+  }
   const C qd = q * d;  // Q
   C s_out, r_out;      // transmission: S(d), R(d); reflection: S(0), R(d)
 
