@@ -67,7 +67,7 @@ class TestCliBadInput : public QObject {
   // 100 000-deep array in a scene: SIGSEGV before; now one message naming line and column.
   void deepNestingInAScene() {
     const QString path = sceneWith("deep.json", "\"deep\": " + deep(100000) + ",");
-    const QString expected = "deep.json: line 5, column 75: nesting deeper than 64";
+    const QString expected = "deep.json: line 5, column 83: nesting deeper than 64";
     for (const QStringList& args :
          {QStringList{"validate", path}, QStringList{"format", path}, QStringList{"trace", path, "--json"}}) {
       const CliOutput r = runCli(args);
@@ -212,9 +212,8 @@ class TestCliBadInput : public QObject {
     const CliOutput r = runCli({"grating", "--n0", "1.5", "--n1", "0.02", "--thickness-um", "16", "--period-nm",
                                 "1e-300", "--slant-deg", "0", "--probe-deg", "0", "--wavelength-nm", "532", "--json"});
     QCOMPARE(r.code, 2);
-    QCOMPARE(r.err.trimmed(),
-             QByteArray(
-                 "--period-nm: degenerate fringe period: must be at least 1e-6 wavelengths (got 1e-300 nm at 532 nm)"));
+    QCOMPARE(r.err.trimmed(), QByteArray("fovea-cli: --period-nm: degenerate fringe period: must be at least 1e-6 "
+                                         "wavelengths (got 1e-300 nm at 532 nm)"));
     QVERIFY(r.out.isEmpty());
   }
 };

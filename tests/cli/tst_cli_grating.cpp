@@ -114,7 +114,8 @@ this is not json
     QVERIFY(std::abs(l0["efficiency"].get<double>() - std::pow(std::tanh(nu), 2)) < 1e-9);
     QVERIFY(l1.contains("error") && l1["error"].get<std::string>().find("n1") != std::string::npos);
     QVERIFY(l2.contains("error") &&
-            l2["error"].get<std::string>().rfind("line 3: malformed JSON at column 1: ", 0) == 0);
+            l2["error"].get<std::string>().rfind(
+                "line 3: malformed JSON at column 2: syntax error while parsing value - invalid literal", 0) == 0);
     // p at normal incidence: rho_hat . sigma_hat = -1, same as s.
     QVERIFY(std::abs(l3["efficiency"].get<double>() - std::pow(std::tanh(2 * nu), 2)) < 1e-9);
     QVERIFY(l4.contains("error") && l4["error"].get<std::string>().find("polarization") != std::string::npos);

@@ -118,7 +118,11 @@ class TestCliGratingRcwa : public QObject {
   }
 
   void ordersAndSlicesFlags() {
-    QStringList args = reflection("rcwa");
+    // Slanted transmission (K_x != 0: a 2-D problem; the unslanted reflection grating is a 1-D
+    // stack that needs order 0 only).
+    QStringList args{"grating", "--model",     "rcwa",  "--n0",        "1.5", "--n1",        "0.01", "--thickness-um",
+                     "20",      "--period-nm", "276.1", "--slant-deg", "60",  "--probe-deg", "10",   "--wavelength-nm",
+                     "532",     "--json"};
     args << "--orders"
          << "2"
          << "--slices"
