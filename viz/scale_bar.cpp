@@ -72,6 +72,11 @@ ScaleBar::ScaleBar(vtkRenderer* renderer) : renderer_(renderer) {
   renderer_->AddObserver(vtkCommand::StartEvent, callback_);
 }
 
+void ScaleBar::setColor(double r, double g, double b) {
+  bar_->GetProperty()->SetColor(r, g, b);
+  label_->GetTextProperty()->SetColor(r, g, b);
+}
+
 ScaleBar::~ScaleBar() {
   renderer_->RemoveObserver(callback_);
   if (vtkRenderWindow* window = overlay_->GetRenderWindow()) window->RemoveRenderer(overlay_);

@@ -29,6 +29,8 @@ class ScaleBar {
 
   double lengthMm() const { return length_mm_; }
   void update();
+  // Bar and label colour (white on the studio's dark background, dark in print).
+  void setColor(double r, double g, double b);
 
  private:
   static void onStart(vtkObject*, unsigned long, void* clientData, void*);

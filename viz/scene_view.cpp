@@ -7,6 +7,7 @@
 #include <limits>
 
 #include <vtkActor.h>
+#include <vtkActor2DCollection.h>
 #include <vtkAxesActor.h>
 #include <vtkCamera.h>
 #include <vtkCaptionActor2D.h>
@@ -19,6 +20,7 @@
 #include <vtkProp3D.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 
 #include "model/scene/scene_geometry.h"
@@ -64,6 +66,42 @@ SceneView::SceneView(QWidget* parent) : VtkGlWidget(parent) {
   highlight_->PickableOff();
   highlight_->VisibilityOff();
   ren->AddViewProp(highlight_);
+}
+
+namespace {
+// The studio's dark gradient and the print look's light one (bottom, top).
+constexpr double kScreenBackground[2][3] = {{0.10, 0.11, 0.13}, {0.24, 0.27, 0.33}};
+constexpr double kPrintBackground[2][3] = {{1.0, 1.0, 1.0}, {0.90, 0.92, 0.95}};
+constexpr double kScreenText[3] = {0.92, 0.92, 0.92};
+constexpr double kPrintText[3] = {0.10, 0.10, 0.12};
+}  // namespace
+
+void SceneView::setPrintLook(bool on) {
+  if (on == printLook_) return;
+  printLook_ = on;
+  vtkRenderer* ren = renderer();
+  const auto& bg = on ? kPrintBackground : kScreenBackground;
+  ren->SetBackground(bg[0][0], bg[0][1], bg[0][2]);
+  ren->SetBackground2(bg[1][0], bg[1][1], bg[1][2]);
+  const double* text = on ? kPrintText : kScreenText;
+  scaleBar_->setColor(on ? text[0] : 1.0, on ? text[1] : 1.0, on ? text[2] : 1.0);
+  vtkActor2DCollection* overlays = ren->GetActors2D();
+  overlays->InitTraversal();
+  while (vtkActor2D* a = overlays->GetNextActor2D())
+    if (auto* bar = vtkScalarBarActor::SafeDownCast(a)) {
+      bar->GetTitleTextProperty()->SetColor(text[0], text[1], text[2]);
+      bar->GetLabelTextProperty()->SetColor(text[0], text[1], text[2]);
+      if (vtkTextProperty* note = bar->GetAnnotationTextProperty()) note->SetColor(text[0], text[1], text[2]);
+    }
+  SceneLayer& handles = layer(QStringLiteral("handles"));
+  if (on) {
+    handlesWereVisible_ = handles.isVisible();
+    handles.setVisible(false);
+  } else {
+    handles.setVisible(handlesWereVisible_);
+  }
+  updateHighlight();
+  requestRender();
 }
 
 SceneView::~SceneView() {
@@ -114,7 +152,7 @@ void SceneView::updateHighlight() {
       any = true;
     }
   }
-  if (!any) {
+  if (!any || printLook_) {  // printed figures carry no selection box
     highlight_->VisibilityOff();
     return;
   }

@@ -65,6 +65,10 @@ class SceneView : public VtkGlWidget {
   // Zooms the camera by `factor` (> 1 closer) about its focal point.
   void zoomCamera(double factor);
   double scaleBarLengthMm() const;
+  // The look of a printed figure: a light background, dark scale bar and colour-bar text,
+  // no selection highlight and no interaction handles. Off restores the studio's look.
+  void setPrintLook(bool on);
+  bool printLook() const { return printLook_; }
 
  signals:
   void elementPicked(const QString& id);
@@ -90,6 +94,8 @@ class SceneView : public VtkGlWidget {
   QPointF pressPos_;
   bool pressed_ = false;
   Eigen::Vector3d hoeShift_ = Eigen::Vector3d::Zero();
+  bool printLook_ = false;
+  bool handlesWereVisible_ = true;
 };
 
 }  // namespace fovea::viz

@@ -71,7 +71,15 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   };
   connect(yawSpin_, &QDoubleSpinBox::valueChanged, this, spinChanged);
   connect(pitchSpin_, &QDoubleSpinBox::valueChanged, this, spinChanged);
-  connect(follow_, &QCheckBox::toggled, this, &GazePanel::followGazeChanged);
+  // The flag lives in the scene (view.hoe_follows_gaze: it changes results and is saved with
+  // the design); toggling it is an undoable edit.
+  connect(follow_, &QCheckBox::toggled, this, [this](bool on) {
+    if (refreshing_) return;
+    if (document_->scene().view.hoe_follows_gaze != on)
+      document_->applyEdit(on ? tr("HOE follows gaze") : tr("HOE stops following gaze"),
+                           [on](Scene& s) { s.view.hoe_follows_gaze = on; });
+    emit followGazeChanged(on);
+  });
   connect(document_, &SceneDocument::sceneChanged, this, &GazePanel::refreshFromScene);
   refreshFromScene();
 }
@@ -110,6 +118,7 @@ void GazePanel::refreshFromScene() {
   if (!pitch_->isSliderDown()) pitch_->setValue(static_cast<int>(std::lround(g[1] * kStepsPerDegree)));
   yawSpin_->setValue(g[0]);
   pitchSpin_->setValue(g[1]);
+  follow_->setChecked(document_->scene().view.hoe_follows_gaze);
   refreshing_ = false;
 }
 

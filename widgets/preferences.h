@@ -22,7 +22,7 @@ enum class Theme { System, Light, Dark };
 struct PreferenceValues {
   LengthUnit length = LengthUnit::Millimetre;
   AngleUnit angle = AngleUnit::Degree;
-  int defaultRays = 1500;  // rays per wavelength of new analyses (50 .. 1e6)
+  int defaultRays = 1500;  // rays per wavelength of the report dialog (50 .. 1e6); analyses: the registry's
   Theme theme = Theme::System;
   int autosaveSeconds = 5;  // 1 .. 600
   bool operator==(const PreferenceValues&) const = default;

@@ -8,6 +8,7 @@
 #include <QScrollArea>
 #include <QVBoxLayout>
 
+#include "model/scene/scene_fields.h"
 #include "viz/scene_elements.h"
 #include "widgets/property_units.h"
 #include "widgets/scene_document.h"
@@ -92,7 +93,8 @@ void PropertyEditor::rebuild() {
       grid_->addWidget(heading, gridRow++, 0, 1, 3);
     }
     auto* label = new QLabel(spec.label, form_);
-    const QString tip = spec.key + (spec.unit.isEmpty() ? "" : " [" + spec.unit + "]") +
+    const QString tip = (spec.help.isEmpty() ? "" : spec.help + "\n") + spec.key +
+                        (spec.unit.isEmpty() ? "" : " [" + spec.unit + "]") +
                         (spec.range.isEmpty() ? "" : "\nrange: " + spec.range);
     label->setToolTip(tip);
     QWidget* field = nullptr;
@@ -202,10 +204,16 @@ void PropertyEditor::commit(int index, const QVariant& value) {
                                 shown.unit.isEmpty() ? "" : " " + shown.unit);
   const QStringList problems = document_->applyEdit(text, [&spec, &value](Scene& s) { spec.set(s, value); });
   if (problems.isEmpty()) return;
+  QStringList named;  // "hoe_layers[1].thickness_um: ..." -> "Thickness: ...": the label the user sees
+  for (const QString& p : problems) {
+    const qsizetype colon = p.indexOf(QLatin1String(": "));
+    const std::string label = colon < 0 ? std::string() : fieldLabel(document_->scene(), p.left(colon).toStdString());
+    named << (label.empty() ? p : QString::fromStdString(label) + p.mid(colon));
+  }
   // Refused: the model is unchanged; show why next to the field.
   for (auto& row : rows_) {
     if (row.spec.key != spec.key) continue;
-    const QString message = problems.join('\n');
+    const QString message = named.join('\n');
     setMessage(row, message);
     if (auto* box = qobject_cast<QCheckBox*>(row.field)) {
       QSignalBlocker block(box);

@@ -1,8 +1,9 @@
 #pragma once
-// The editable properties of each scene element: label, unit, the loader's range (shown to
-// the user; the rules themselves are applied by model validateScene), and how to read and
-// write the value in a Scene. Keys are the element's paths in the scene file, as the
-// loader's messages spell them ("hoe_layers[1].thickness_um", "projector.position_mm[0]").
+// The editable properties of each scene element, generated from the scene field table
+// (model/scene/scene_fields.h): label, group, unit, range and help as the table declares them
+// (the rules themselves are applied by model validateScene), and how to read and write the
+// value in a Scene. Keys are the paths in the scene file, as the loader's messages spell them
+// ("hoe_layers[1].thickness_um", "projector.position_mm[0]"): one property per component.
 
 #include <QString>
 #include <QStringList>
@@ -20,8 +21,9 @@ struct PropertySpec {
   QString key;
   QString group;  // heading in the editor ("Pose", "Recording", ...)
   QString label;
-  QString unit;   // "mm", "deg", "nm", "um", ...
+  QString unit;   // "mm", "deg", "nm", "µm", ...
   QString range;  // as the loader checks it: "> 0", "(5, 50)", "[1, 4]"
+  QString help;   // what the value means (tooltip)
   Kind kind = Kind::Number;
   QStringList choices;  // Kind::Choice
   std::function<QVariant(const Scene&)> get;

@@ -1,12 +1,13 @@
-// fovea-cli bench [--quick] --json: run time against error (issue 6). Throughput of the
-// Kogelnik kernel (scalar, SIMD double, SIMD float) on one core and on all cores, the gaze
-// update and cold trace of the default scene at 20 000 rays, a 41-gaze x_p sweep on two
-// cores, ray count vs FOV error, float/double/long double on efficiency and FOV, and
+// fovea-cli bench [--quick] --json: run time against error. Throughput of the Kogelnik kernel
+// (scalar, SIMD double, SIMD float) on one core and on all cores, the gaze update and cold
+// trace of the default scene at 20 000 rays, a 41-gaze x_p sweep on two cores and on one
+// (scaling), ray count vs FOV error, float/double/long double on efficiency and FOV, and
 // Kogelnik vs RCWA. scripts/bench_tables.py turns the JSON into docs/benchmarks.md tables.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -214,38 +215,52 @@ nlohmann::json throughput(const Scene& scene, bool quick) {
     j["cores"] = threads;
   }
   {
-    // 41-gaze x_p sweep (-20..20 deg by 1 deg, HOE shift optimised per gaze) on two cores.
-    tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+    // 41-gaze x_p sweep (-20..20 deg by 1 deg, HOE shift optimised per gaze) on two cores, and
+    // on one core for the scaling. Default evaluator (the CLI's and studio's ray count), then
+    // the 1 500 rays/λ of the first measurement (the evaluator's earlier default) for
+    // comparison. Fastest of `repeats`; the process CPU time is the steadier figure on a
+    // loaded machine.
     const double step = quick ? 4.0 : 1.0;
-    // Default evaluator (the CLI's and studio's ray count), then the 1 500 rays/λ of the first
-    // measurement (the evaluator's earlier default) for comparison. Fastest of `repeats`.
-    for (const int rays : {TraceEvaluatorOptions{}.rays, 1500}) {
+    struct Run {
+      int threads, rays;
+    };
+    for (const Run run : {Run{2, TraceEvaluatorOptions{}.rays}, Run{1, TraceEvaluatorOptions{}.rays}, Run{2, 1500}}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(run.threads));
       TraceEvaluatorOptions eo;
-      eo.rays = rays;
+      eo.rays = run.rays;
       std::atomic<long long> traces{0};
       const FovEvaluator traced = traceEvaluator(eo);
       const FovEvaluator eval = [&](const Scene& sc, const FovQuery& q) {
         ++traces;
         return traced(sc, q);
       };
-      double secs = 1e300;
+      double secs = 1e300, cpu = 1e300;
       std::size_t gazes = 0;
       for (int rep = 0; rep < (quick ? 1 : 2); ++rep) {
         traces = 0;
         const auto t0 = Clock::now();
+        const std::clock_t c0 = std::clock();
         const auto r = sweepGaze(scene, eval, -20, 20, step, GazeAxis::Yaw, ShiftMethod::Hoe);
+        cpu = std::min(cpu, double(std::clock() - c0) / CLOCKS_PER_SEC);
         secs = std::min(secs, std::chrono::duration<double>(Clock::now() - t0).count());
         gazes = r.ok() ? r.value->samples.size() : 0;
       }
-      if (rays == TraceEvaluatorOptions{}.rays) {
+      const std::string sweep = quick ? "sweep_s_" : "sweep_41_gaze_s_";
+      if (run.rays != TraceEvaluatorOptions{}.rays) {
+        j[sweep + "2cores_1500_rays"] = secs;
+      } else if (run.threads == 2) {
         j["sweep_gazes"] = gazes;
         j["sweep_rays_per_wavelength"] = eo.rays;
         j["sweep_traces"] = traces.load();  // x_p bracket, edge bisections and eye-box borders
-        j[quick ? "sweep_s_2cores" : "sweep_41_gaze_s_2cores"] = secs;
+        j[sweep + "2cores"] = secs;
+        j[sweep + "cpu_2cores"] = cpu;
       } else {
-        j[quick ? "sweep_s_2cores_1500_rays" : "sweep_41_gaze_s_2cores_1500_rays"] = secs;
+        j[sweep + "1core"] = secs;
+        j[sweep + "cpu_1core"] = cpu;
       }
     }
+    const std::string sweep = quick ? "sweep_s_" : "sweep_41_gaze_s_";
+    j["sweep_speedup_2cores"] = j[sweep + "1core"].get<double>() / j[sweep + "2cores"].get<double>();
   }
   return j;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
 #include "model/image/foveation.h"
 
@@ -18,8 +19,8 @@ void install(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--scene", a->scene, "scene file (default: the prototype bench)");
-  cmd->add_option("--step-deg", a->step, "eccentricity step, at most 0.25 deg (default 0.25)")
-      ->check(CLI::Range(0.001, 0.25));
+  addCheckedOption(cmd, "--step-deg", a->step,
+                   analysis::number("step-deg", "Step", "deg", 0.25, 0.001, 0.25, 3, "eccentricity step"));
   cmd->add_flag("--no-blend", a->noBlend, "profile of the hard switch");
   cmd->add_flag("--json", a->json, "print {\"samples\":[{\"eccentricity_deg\",\"foveal_weight\",\"blur_sigma_deg\"}]}");
   cmd->callback([a] {

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
 #include "devices/bench/live_bench.h"
 #include "devices/transport/device_error.h"
@@ -142,7 +143,8 @@ void install(CLI::App& app) {
       ->check(CLI::IsMember({"poly1", "poly2", "poly3", "homography"}));
   geo->add_option("--hoe-shift", a->hoe_shift, "x_p(alpha): optimal (analyses, default) or geometric")
       ->check(CLI::IsMember({"optimal", "geometric"}));
-  geo->add_option("--noise", a->noise, "camera read noise, DN (default 2)")->check(CLI::Range(0.0, 50.0));
+  addCheckedOption(geo, "--noise", a->noise,
+                   analysis::number("noise", "Read noise", "DN", 2.0, 0.0, 50.0, 2, "camera read noise"));
   geo->add_option("--seed", a->seed, "camera noise seed (default 1)");
   geo->callback([a] {
     try {

@@ -1,8 +1,11 @@
 // fovea-cli optimize-lens SCENE [--catalog FILE] [--apply OUT] --json: choose the stock
 // beam-shaping lens, position and Scheimpflug tilt minimising the RMS pixel spot on the
 // HOE (supplement A.2). NLopt BOBYQA from several starts per catalogue lens.
+// Options: the "optimize-lens" analysis of the registry (model/analysis/study_analyses.cpp)
+// plus --catalog and --apply, which only the command line has.
 #include <iostream>
 
+#include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
 #include "model/analysis/analysis_json.h"
@@ -19,16 +22,16 @@ void install(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto catalog = std::make_shared<std::string>();
   auto apply = std::make_shared<std::string>();
-  auto starts = std::make_shared<int>(5);
   auto json = std::make_shared<bool>(false);
   auto no_cache = std::make_shared<bool>(false);
   cmd->add_option("SCENE", *path, "scene file (default: the embedded prototype bench)");
   cmd->add_option("--catalog", *catalog, "lens catalogue JSON (default: the shipped resources/lenses/catalog.json)");
-  cmd->add_option("--starts", *starts, "optimiser starts per catalogue lens")->check(CLI::Range(1, 50));
+  const auto options = addAnalysisOptions(cmd, "optimize-lens");
   cmd->add_option("--apply", *apply, "write the scene with the optimised lens enabled to this file");
   cmd->add_flag("--json", *json, "print JSON");
-  cmd->add_flag("--no-cache", *no_cache, "recompute even when an identical study is cached");
-  cmd->callback([path, catalog, apply, starts, json, no_cache] {
+  addNoCacheFlag(cmd, *no_cache);
+  cmd->callback([path, catalog, apply, options, json, no_cache] {
+    const nlohmann::json values = options->values();
     const Scene scene = loadSceneOrExit(*path);
     std::vector<StockLens> lenses;
     try {
@@ -39,12 +42,11 @@ void install(CLI::App& app) {
     nlohmann::json catalog_json = nlohmann::json::array();
     for (const auto& l : lenses)
       catalog_json.push_back({l.part, l.shape, l.glass, l.focal_length_mm, l.diameter_mm, l.center_thickness_mm});
-    StudyCliOptions cache_options;  // rays/tolerance unused here; keeps the key format
-    cache_options.no_cache = *no_cache;
-    const nlohmann::json params{{"catalog", catalog_json}, {"starts", *starts}};
-    const nlohmann::json out = cachedStudy("optimize-lens", params, scene, cache_options, [&] {
+    nlohmann::json params = values;
+    params["catalog"] = catalog_json;
+    const nlohmann::json out = cachedStudy("optimize-lens", params, scene, *no_cache, [&] {
       LensOptimizationOptions opt;
-      opt.starts_per_lens = *starts;
+      opt.starts_per_lens = analysis::integerOf(values, "starts");
       Progress progress("optimize-lens");
       StudyControl control;
       control.on_progress = [&progress](double f) { progress.update(f); };

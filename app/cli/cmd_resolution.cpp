@@ -1,11 +1,14 @@
 // fovea-cli resolution SCENE [--gaze-deg A[,B]] --json: angular resolution vs eccentricity
 // (supplement A.5). foveal_cpd / optical_limit_cpd are null outside the micro-OLED field.
+// Options: the "resolution" analysis of the registry (model/analysis/study_analyses.cpp).
 #include <iomanip>
 #include <iostream>
 
+#include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
-#include "model/analysis/analysis_json.h"
+#include "app/cli/study_cli.h"
 #include "model/analysis/angular_resolution.h"
+#include "model/analysis/study_analyses.h"
 
 namespace fovea::cli {
 namespace {
@@ -15,28 +18,23 @@ void install(CLI::App& app) {
       "resolution",
       "Angular resolution (cpd) vs eccentricity for a gaze: foveal, peripheral, optical limit, perceived");
   auto path = std::make_shared<std::string>();
-  auto gaze = std::make_shared<std::string>();
-  auto samples = std::make_shared<int>(241);
   auto json = std::make_shared<bool>(false);
   cmd->add_option("SCENE", *path, "scene file (default: the embedded prototype bench)");
-  cmd->add_option("--gaze-deg", *gaze, "gaze yaw[,pitch] in degrees (default: the scene's gaze)");
-  cmd->add_option("--samples", *samples, "eccentricity samples over the peripheral field")
-      ->check(CLI::Range(3, 100000));
+  const auto options = addAnalysisOptions(cmd, "resolution");
   cmd->add_flag("--json", *json, "print JSON");
-  cmd->callback([path, gaze, samples, json] {
+  cmd->callback([path, options, json] {
+    const nlohmann::json values = options->values();
     const Scene scene = loadSceneOrExit(*path);
-    ResolutionOptions opt;
-    opt.samples = *samples;
-    if (!gaze->empty()) {
-      const auto g = parseNumberList(*gaze, "--gaze-deg", 1, 2);
-      opt.gaze_deg = std::array<double, 2>{g[0], g.size() > 1 ? g[1] : 0.0};
-    }
-    const ResolutionResult r = analyzeResolution(scene, opt);
-    if (r.samples.empty()) inputError("no line of sight reaches the HOE or the foveal image for this gaze");
     if (*json) {
-      printJson(resolutionResultJson(r, scene));
+      printJson(runStudy(options->definition(), scene, values));
       return;
     }
+    // The text table needs the model's result itself, not its JSON document.
+    ResolutionOptions opt;
+    opt.samples = analysis::integerOf(values, "samples");
+    opt.gaze_deg = analysis::gazeFrom(values);
+    const ResolutionResult r = analyzeResolution(scene, opt);
+    if (r.samples.empty()) inputError("no line of sight reaches the HOE or the foveal image for this gaze");
     std::cout << "gaze " << r.gaze_yaw_deg << "," << r.gaze_pitch_deg << " deg; peripheral field "
               << r.peripheral_field_deg[0] << ".." << r.peripheral_field_deg[1] << " deg; pixel integral "
               << r.peripheral_pixel_integral << " of " << r.pixels_horizontal << " (" << r.peripheral_pixels_on_hoe

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <cstdlib>
+#include <stdexcept>
 
 #include "app/cli/cli_common.h"
 #include "model/analysis/study_runner.h"
@@ -10,19 +11,24 @@
 
 namespace fovea::cli {
 
-void addStudyOptions(CLI::App* cmd, StudyCliOptions& options) {
-  cmd->add_option("--rays", options.rays, "rays per wavelength per trace (default 12000)")
-      ->check(CLI::Range(50, 1000000));
-  cmd->add_option("--tolerance-deg", options.tolerance_deg,
-                  "eye-box criterion: FOV within this of the zero-gaze FOV (default 3 deg)")
-      ->check(CLI::Range(0.0, 90.0));
-  cmd->add_flag("--no-cache", options.no_cache, "recompute even when an identical study is cached");
+void addNoCacheFlag(CLI::App* cmd, bool& no_cache) {
+  cmd->add_flag("--no-cache", no_cache, "recompute even when an identical study is cached");
 }
 
-FovEvaluator studyEvaluator(const StudyCliOptions& options) {
-  TraceEvaluatorOptions t;
-  t.rays = options.rays;
-  return traceEvaluator(t);
+nlohmann::json runStudy(const analysis::AnalysisDefinition& def, const Scene& scene, const nlohmann::json& values) {
+  Progress progress(def.id);
+  StudyControl control;
+  control.on_progress = [&progress](double f) { progress.update(f); };
+  std::optional<nlohmann::json> out;
+  try {
+    out = def.run(scene, values, control);
+  } catch (const std::invalid_argument& e) {
+    usageError(std::string("--") + e.what());
+  } catch (const std::runtime_error& e) {
+    inputError(e.what());
+  }
+  if (!out) inputError(def.id + " did not complete");
+  return *out;
 }
 
 namespace {
@@ -42,15 +48,13 @@ std::string executableStamp() {
 }  // namespace
 
 nlohmann::json cachedStudy(const std::string& study, const nlohmann::json& parameters, const Scene& scene,
-                           const StudyCliOptions& options, const std::function<nlohmann::json()>& compute) {
+                           bool no_cache, const std::function<nlohmann::json()>& compute) {
   StudyCache& cache = StudyCache::global();
   cache.setDirectory(cacheDirectory());
   nlohmann::json keyed = parameters;
-  keyed["rays"] = options.rays;
-  keyed["tolerance_deg"] = options.tolerance_deg;
   keyed["executable"] = executableStamp();
   const std::string key = StudyCache::makeKey(study, keyed, serializeScene(scene));
-  if (!options.no_cache) {
+  if (!no_cache) {
     if (auto hit = cache.find(key)) {
       (*hit)["cached"] = true;
       return *hit;

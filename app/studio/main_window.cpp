@@ -9,6 +9,7 @@
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QScreen>
 #include <QSettings>
 #include <QShortcut>
 #include <QStatusBar>
@@ -16,6 +17,8 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/about_text.h"
+#include "app/studio/dock_layout.h"
+#include "app/studio/undo_shortcuts.h"
 #include "app/studio/trace_workbench.h"
 #include "app/studio/window_capture.h"
 #include "app/studio/workbench.h"
@@ -37,6 +40,9 @@ namespace fovea::studio {
 
 namespace {
 constexpr int kMaxRecent = 8;
+// Saved dock states of an older arrangement are not restored (version 1 stacked three
+// groups in the right column and did not fit a 1080-line screen).
+constexpr int kDockLayoutVersion = 2;
 bool benchAutoStart = true;
 const char* kSceneFilter = "Scene files (*.json);;All files (*)";
 }  // namespace
@@ -69,9 +75,25 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     const QUndoStack* s = document_->undoStack();
     if (s->index() > 0) statusBar()->showMessage(s->text(s->index() - 1), 4000);
   });
-  resize(1400, 900);
+  resize(initialWindowSize());
   openEmbeddedDefault();
   traceWorkbench_ = new TraceWorkbench(this);
+  applyDefaultDockLayout(this);
+  // Ctrl+Z / Ctrl+Y reach the document's undo stack from any focus, property fields included.
+  qApp->installEventFilter(new DocumentUndoShortcuts(this));
+}
+
+QSize MainWindow::initialWindowSize() const {
+  // 1400 x 900 where the screen has room, else 94 % of its free area (a 1366 x 768 laptop).
+  const QScreen* s = screen() ? screen() : QGuiApplication::primaryScreen();
+  if (!s) return {1400, 900};
+  const QRect free = s->availableGeometry();
+  return {std::min(1400, free.width() * 94 / 100), std::min(900, free.height() * 90 / 100)};
+}
+
+void MainWindow::resetLayout() {
+  applyDefaultDockLayout(this);
+  view_->resetCamera();
 }
 
 MainWindow::~MainWindow() = default;
@@ -123,7 +145,7 @@ QDockWidget* MainWindow::addPanel(QWidget* panel, const QString& title, const QS
                                   Qt::DockWidgetArea area) {
   auto* dock = new QDockWidget(title, this);
   dock->setObjectName(objectName);
-  dock->setWidget(panel);
+  dock->setWidget(scrollableDockContent(panel));
   addDockWidget(area, dock);
   if (panelsMenu_) panelsMenu_->addAction(dock->toggleViewAction());
   return dock;
@@ -147,7 +169,8 @@ void MainWindow::createMenus() {
   QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
   undo->setShortcut(QKeySequence::Undo);
   QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
-  redo->setShortcut(QKeySequence::Redo);
+  // Ctrl+Shift+Z (the X11 standard) and Ctrl+Y (what users of other platforms press).
+  redo->setShortcuts({QKeySequence(QKeySequence::Redo), QKeySequence(tr("Ctrl+Y"))});
   edit->addAction(undo);
   edit->addAction(redo);
 
@@ -161,6 +184,7 @@ void MainWindow::createMenus() {
   addView(tr("&Side"), tr("Ctrl+2"), SV::Side);
   addView(tr("&Eye's View"), tr("Ctrl+3"), SV::EyeView);
   viewMenu_->addAction(tr("&Reset Camera"), QKeySequence(tr("Home")), this, [this] { view_->resetCamera(); });
+  viewMenu_->addAction(tr("Reset &Layout"), this, &MainWindow::resetLayout);
   viewMenu_->addSeparator();
   panelsMenu_ = viewMenu_->addMenu(tr("&Panels"));
   for (QDockWidget* dock : findChildren<QDockWidget*>()) panelsMenu_->addAction(dock->toggleViewAction());
@@ -317,6 +341,9 @@ void MainWindow::selectElement(const QString& id) {
   tree_->setSelectedElement(id);
   view_->setSelectedElement(id);
   properties_->showElement(id);
+  // A selection is for editing: bring the properties forward (it may be behind a tab).
+  if (!id.isEmpty())
+    if (auto* dock = findChild<QDockWidget*>("PropertiesDock"); dock && dock->isVisible()) dock->raise();
 }
 
 QImage MainWindow::captureWindow() {
@@ -349,7 +376,7 @@ void MainWindow::restoreSettings() {
   if (!persistSettings_) return;
   QSettings s;
   restoreGeometry(s.value("window/geometry").toByteArray());
-  restoreState(s.value("window/state").toByteArray());
+  restoreState(s.value("window/state").toByteArray(), kDockLayoutVersion);
   recent_ = s.value("recentFiles").toStringList();
 }
 
@@ -357,7 +384,7 @@ void MainWindow::saveSettings() {
   if (!persistSettings_) return;
   QSettings s;
   s.setValue("window/geometry", saveGeometry());
-  s.setValue("window/state", saveState());
+  s.setValue("window/state", saveState(kDockLayoutVersion));
   s.setValue("recentFiles", recent_);
 }
 

@@ -57,6 +57,8 @@ class MainWindow : public QMainWindow {
   // Off by default in tests and screenshots: whether QSettings are read and written.
   void setPersistentSettings(bool on) { persistSettings_ = on; }
   void restoreSettings();
+  // View ▸ Reset Layout: the default dock arrangement (dock_layout.h) and camera.
+  void resetLayout();
 
   widgets::SceneDocument* document() const { return document_; }
   viz::SceneView* sceneView() const { return view_; }
@@ -93,6 +95,7 @@ class MainWindow : public QMainWindow {
   void addRecent(const QString& path);
   void fillRecentMenu();
   void saveSettings();
+  QSize initialWindowSize() const;
 
   widgets::SceneDocument* document_ = nullptr;
   viz::SceneView* view_ = nullptr;

@@ -250,6 +250,9 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   c.problems = d.problems;
 
   viz::SceneView* view = window.sceneView();
+  // Printed figures: light background, no handles or selection box (restored at the end).
+  const bool wasPrintLook = view->printLook();
+  view->setPrintLook(true);
   vtkNew<vtkCamera> saved;
   saved->DeepCopy(view->renderer()->GetActiveCamera());
   const Scene shown = view->scene();
@@ -296,7 +299,8 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
                       "projector → HOE → pupil, coloured by diffraction efficiency, solid into the pupil, dashed "
                       "where they miss it, gray below 10 %; the pupil in green, the fovea in orange.",
                       {}};
-  const viz::TraceOverlayOptions fans;  // horizontal fan, every wavelength, no efficiency map
+  viz::TraceOverlayOptions fans;  // horizontal fan, every wavelength, no efficiency map
+  fans.fan_rays = 61;             // dense enough on paper to tell one gaze's fans from another's
   for (int i = 0; i < d.options.gazes_deg.size(); ++i) {
     const auto gz = d.options.gazes_deg[i];
     const GazeTrace* trace = nullptr;
@@ -360,6 +364,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
     view->setHoeDisplayShift(shownShift);
   view->renderer()->GetActiveCamera()->DeepCopy(saved);
   view->renderer()->ResetCameraClippingRange();
+  view->setPrintLook(wasPrintLook);
   view->requestRender();
   if (!gazes.figures.isEmpty()) c.sections << gazes;
 

@@ -134,7 +134,8 @@ void Workbench::createMenus() {
 void Workbench::onResult(const widgets::AnalysisResult& r) {
   if (!r.json) return;
   const widgets::AnalysisSpec* spec = widgets::findAnalysis(r.id);
-  const QString source = spec ? widgets::cliCommandLine(*spec, r.params, window_->document()->filePath()) : r.id;
+  const QString command = spec ? widgets::cliCommandLine(*spec, r.params, window_->document()->filePath()) : QString();
+  const QString source = command.isEmpty() ? r.id : command;  // no command for an unsaved scene
   plots_->showResult(r.id, *r.json, source);
   if (spec && !spec->plots.isEmpty()) {
     plotsDock_->show();

@@ -185,67 +185,6 @@ StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& 
   return out;
 }
 
-namespace {
-// Walks "a.b[2].c" through the JSON; returns the addressed value or throws naming the path.
-nlohmann::ordered_json& locate(nlohmann::ordered_json& root, const std::string& path) {
-  nlohmann::ordered_json* node = &root;
-  std::size_t i = 0;
-  auto fail = [&](const std::string& why) -> nlohmann::ordered_json& {
-    throw std::invalid_argument("parameter " + path + ": " + why);
-  };
-  if (path.empty()) return fail("empty path");
-  while (i < path.size()) {
-    if (path[i] == '[') {
-      const std::size_t close = path.find(']', i);
-      if (close == std::string::npos) return fail("missing ']'");
-      const std::string digits = path.substr(i + 1, close - i - 1);
-      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
-        return fail("bad index [" + digits + "]");
-      const std::size_t k = std::stoul(digits);
-      if (!node->is_array() || k >= node->size()) return fail("no element [" + digits + "] at " + path.substr(0, i));
-      node = &(*node)[k];
-      i = close + 1;
-    } else {
-      if (path[i] == '.') ++i;
-      const std::size_t end = path.find_first_of(".[", i);
-      const std::string key = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
-      if (key.empty()) return fail("empty name");
-      if (!node->is_object() || !node->contains(key)) return fail("no key \"" + key + "\" in the scene file format");
-      node = &(*node)[key];
-      i = end == std::string::npos ? path.size() : end;
-    }
-  }
-  return *node;
-}
-}  // namespace
-
-Scene withParameter(const Scene& scene, const std::string& path, double value) {
-  if (!std::isfinite(value)) throw std::invalid_argument("parameter " + path + ": value must be finite");
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(serializeScene(scene));
-  nlohmann::ordered_json& target = locate(j, path);
-  if (!target.is_number()) throw std::invalid_argument("parameter " + path + ": not a number (" + target.dump() + ")");
-  if (target.is_number_integer() || target.is_number_unsigned()) {
-    if (value != std::round(value)) throw std::invalid_argument("parameter " + path + ": must be an integer");
-    target = static_cast<long long>(value);
-  } else {
-    target = value;
-  }
-  SceneLoadResult r = parseScene(j.dump(), path + "=" + formatNumber(value));
-  if (!r.ok()) {
-    std::string msg;
-    for (const auto& e : r.errors) msg += (msg.empty() ? "" : "; ") + e;
-    throw std::invalid_argument(msg);
-  }
-  return *r.scene;
-}
-
-double parameterValue(const Scene& scene, const std::string& path) {
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(serializeScene(scene));
-  const nlohmann::ordered_json& target = locate(j, path);
-  if (!target.is_number()) throw std::invalid_argument("parameter " + path + ": not a number (" + target.dump() + ")");
-  return target.get<double>();
-}
-
 StudyOutcome<std::vector<SensitivitySample>> sensitivitySweep(const Scene& scene, const FovEvaluator& eval,
                                                               const std::string& path, double from, double to,
                                                               int steps, const StudyControl& control) {

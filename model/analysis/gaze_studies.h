@@ -30,6 +30,7 @@
 
 #include "model/analysis/study_runner.h"
 #include "model/scene/scene.h"
+#include "model/scene/scene_parameters.h"  // withParameter, parameterValue
 
 namespace fovea {
 
@@ -102,13 +103,6 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
 StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& eval, double from_deg, double to_deg,
                                         double step_deg, GazeAxis axis, ShiftMethod method,
                                         const GazeStudyOptions& options = {}, const StudyControl& control = {});
-
-// Sets a number in the serialized scene at a JSON path ("eye.relief_mm",
-// "hoe_layers[1].shrinkage_percent", "hoe.rotation_deg[0]") and re-parses it, so every
-// path of the file format works and validation applies. Throws std::invalid_argument
-// naming the path or the validation errors.
-Scene withParameter(const Scene& scene, const std::string& path, double value);
-double parameterValue(const Scene& scene, const std::string& path);
 
 struct SensitivitySample {
   double value = 0;

@@ -113,10 +113,15 @@ struct K<float> {
   }
 };
 
+template <class T>
+struct Element {
+  T eta, zero;  // losslessT's efficiency and zero_order
+};
+
 // One element, branch-free (selects only), so the loop vectorises. Returns NaN when the phase
 // is beyond the vector reduction's range: the caller finishes those with the scalar path.
 template <class T>
-inline T element(T c_r, T c_s, T vartheta, T kappa, T d) {
+inline Element<T> element(T c_r, T c_s, T vartheta, T kappa, T d) {
   using Kt = K<T>;
   const T acs = std::fabs(c_s);
   const bool valid = (c_r > T(0)) & (d > T(0)) & (acs >= T(kGrazingCs));
@@ -133,12 +138,14 @@ inline T element(T c_r, T c_s, T vartheta, T kappa, T d) {
   const T z = r * r;
   const T s = r + r * z * Kt::S(z);
   const T c = T(1) - T(0.5) * z + z * z * Kt::C(z);
-  // Quadrant q = k mod 4: sin for even q, cos for odd; negated for q = 2, 3 (selects on
-  // doubles only, so the vectoriser can if-convert them).
+  // Quadrant q = k mod 4: sin(r + q pi/2) is s, c, -s, -c and cos(r + q pi/2) is c, -s, -c, s
+  // for q = 0..3 (selects on doubles only, so the vectoriser can if-convert them).
   const T q = k - T(4) * std::floor(k * T(0.25));
   const T odd = q - T(2) * std::floor(q * T(0.5));
   const T sc = odd == T(0) ? s : c;
   const T sin_u = q >= T(2) ? -sc : sc;
+  const T cs = odd == T(0) ? c : s;
+  const T cos_u = (q > T(0.5)) & (q < T(2.5)) ? -cs : cs;
   // sinh(u)/u for 1 <= u <= 20 (beyond, reflection eta is 1 to rounding: g > 2e8).
   // Clamps by selects, not fmin/fmax (which GCC 12 does not vectorise); a NaN maps to 20 and 0
   // as fmin/fmax would map it, so the cast below stays defined.
@@ -151,11 +158,20 @@ inline T element(T c_r, T c_s, T vartheta, T kappa, T d) {
   const T sinh_u = T(0.5) * (e - T(1) / e);
   const T shc = aa < T(1) ? Kt::series(a) : (a < T(0) ? sin_u / u : sinh_u / uc);
   const T g = nu * shc;
-  const T eta_r = a > T(400) ? T(1) : T(1) / (T(1) + T(1) / (g * g));
+  const T g2 = g * g;
+  const bool saturated = a > T(400);  // u > 20: g^2 > 1e17 nu^2, eta = 1 and 1 / (1 + g^2) < 1e-17
+  const T eta_r = saturated ? T(1) : T(1) / (T(1) + T(1) / g2);
+  const T zero_r = saturated ? T(0) : T(1) / (T(1) + g2);
   const T eta_t = nu2 * shc * shc;
+  // Transmission (a = -(nu^2 + xi^2) <= 0, so cosh(sqrt(a)) = cos u): |R(d)|^2 = cos^2 u +
+  // xi^2 shc^2, the closed form of losslessT (kogelnik.h), clamped at 1 like it.
+  const T zero_t0 = cos_u * cos_u + xi * xi * shc * shc;
+  const T zero_t = zero_t0 < T(1) ? zero_t0 : T(1);
   const T eta = reflection ? eta_r : eta_t;
+  const T zero = reflection ? zero_r : zero_t;
   const bool out_of_range = (a < T(0)) & (u > Kt::max_phase);
-  return valid ? (out_of_range ? std::numeric_limits<T>::quiet_NaN() : eta) : T(0);
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  return {valid ? (out_of_range ? nan : eta) : T(0), valid ? (out_of_range ? nan : zero) : T(1)};
 }
 
 template <class T>
@@ -167,13 +183,24 @@ inline void finish(const T* c_r, const T* c_s, const T* vartheta, const T* kappa
 FOVEA_CLONES
 void batchDouble(const double* __restrict c_r, const double* __restrict c_s, const double* __restrict vartheta,
                  const double* __restrict kappa, const double* __restrict d, double* __restrict eta, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) eta[i] = element<double>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]);
+  for (std::size_t i = 0; i < n; ++i) eta[i] = element<double>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]).eta;
+}
+
+FOVEA_CLONES
+void batchDoubleWithZero(const double* __restrict c_r, const double* __restrict c_s, const double* __restrict vartheta,
+                         const double* __restrict kappa, const double* __restrict d, double* __restrict eta,
+                         double* __restrict zero, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const Element<double> x = element<double>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]);
+    eta[i] = x.eta;
+    zero[i] = x.zero;
+  }
 }
 
 FOVEA_CLONES
 void batchFloat(const float* __restrict c_r, const float* __restrict c_s, const float* __restrict vartheta,
                 const float* __restrict kappa, const float* __restrict d, float* __restrict eta, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) eta[i] = element<float>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]);
+  for (std::size_t i = 0; i < n; ++i) eta[i] = element<float>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]).eta;
 }
 
 }  // namespace
@@ -182,6 +209,17 @@ void losslessBatch(const double* c_r, const double* c_s, const double* vartheta,
                    double* eta, std::size_t n) {
   batchDouble(c_r, c_s, vartheta, kappa, d, eta, n);
   finish(c_r, c_s, vartheta, kappa, d, eta, n);
+}
+
+void losslessBatch(const double* c_r, const double* c_s, const double* vartheta, const double* kappa, const double* d,
+                   double* eta, double* zero_order, std::size_t n) {
+  batchDoubleWithZero(c_r, c_s, vartheta, kappa, d, eta, zero_order, n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::isnan(eta[i])) {
+      const ResultT<double> r = losslessT<double>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]);
+      eta[i] = r.efficiency;
+      zero_order[i] = r.zero_order;
+    }
 }
 
 void losslessBatch(const float* c_r, const float* c_s, const float* vartheta, const float* kappa, const float* d,

@@ -20,6 +20,10 @@ namespace fovea::kogelnik {
 // eta[i] = losslessT<T>(c_r[i], c_s[i], vartheta[i], kappa[i], d[i]).efficiency, for i < n.
 void losslessBatch(const double* c_r, const double* c_s, const double* vartheta, const double* kappa, const double* d,
                    double* eta, std::size_t n);
+// The same and zero_order[i] = losslessT<double>(...).zero_order (the power left in the probe,
+// which the layers behind this one receive): |zero - zero_scalar| <= 1e-15 like eta.
+void losslessBatch(const double* c_r, const double* c_s, const double* vartheta, const double* kappa, const double* d,
+                   double* eta, double* zero_order, std::size_t n);
 void losslessBatch(const float* c_r, const float* c_s, const float* vartheta, const float* kappa, const float* d,
                    float* eta, std::size_t n);
 

@@ -19,7 +19,8 @@ struct FovAccumulator {
   double yaw_min = std::numeric_limits<double>::infinity(), yaw_max = -yaw_min;
   double pitch_min = yaw_min, pitch_max = -yaw_min;
   double sum_max = -yaw_min, sum_min = yaw_min, diff_max = -yaw_min, diff_min = yaw_min;
-  Eigen::Vector3d d_sum_max, d_sum_min, d_diff_max, d_diff_min;
+  Eigen::Vector3d d_sum_max = Eigen::Vector3d::Zero(), d_sum_min = d_sum_max, d_diff_max = d_sum_max,
+                  d_diff_min = d_sum_max;  // set by the first add()
   int count = 0;
 
   void add(const std::array<double, 2>& f, const Eigen::Vector3d& arrival_from) {

@@ -1,8 +1,9 @@
 #pragma once
-// The trace as a dependency graph of memoised stages (issue 6, "skip what a scene doesn't
-// need"). Each stage's result is stored under a 64-bit hash of exactly the inputs it reads
-// (scene fields, options, and the keys of the stages it consumes), so a run recomputes only
-// the stages whose inputs changed:
+// The trace as a dependency graph of memoised stages ("skip what a scene doesn't need"). Each
+// stage's result is stored under a 64-bit hash of exactly the inputs it reads (scene fields,
+// options, and the keys of the stages it consumes), so a run recomputes only the stages whose
+// inputs changed. The stages are one function each in trace_stages.h (the coupled wave in
+// trace_coupled_wave.cpp), the keys and memo tables in trace_memo.h; run() only chains them:
 //
 //   geometry                 projector pose/FOV/pixels, rays, source shift, HOE pose/size/shift:
 //                            the projector ray grid and where each ray meets the plate
@@ -13,8 +14,9 @@
 //                            HOE shift: a rigid lateral shift carries the recorded grating with
 //                            the plate, so moving the plate never re-records
 //   diffraction:<layer>@<λ>  recording + geometry + that layer's n0 + λ + cover/substrate
-//                            indices: K_rec sampled at every plate hit, obliquities, dephasing
-//                            and the diffracted direction (no Kogelnik)
+//                            indices: K_rec sampled at every plate hit (once per layer and
+//                            geometry, shared by the wavelengths), obliquities, dephasing and
+//                            the diffracted direction (no Kogelnik)
 //   coupled_wave:<layer>@<λ> diffraction + n1, thickness, absorption, polarisation: Kogelnik
 //                            per ray; with cull_to_pupil only for the rays that some layer
 //                            sends into the pupil (the eye is then an input, evaluated rays are

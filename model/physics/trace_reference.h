@@ -3,8 +3,10 @@
 // pipeline (trace.h, trace_pipeline.h) written as one loop per ray. It is
 //  - the long-double reference of the stability suite (tests/model/tst_numerical_stability),
 //  - the float/double/long-double precision benchmark (`fovea-cli bench`),
-//  - with T = double, bit-identical to the pipeline (tested), so the memoised stages are
-//    checked against the straightforward loop.
+//  - with T = double, the pipeline's check (tested): bit-identical but for the efficiencies,
+//    which the pipeline takes from the SIMD Kogelnik batch (kogelnik_batch.h) and this loop
+//    from the scalar closed forms (within 1e-12), so the memoised stages are checked against
+//    the straightforward loop.
 // Scene inputs are doubles; everything computed from them (plate hits, recording, Kogelnik,
 // exit refraction, pupil crossing, field angles, FOV) is in T.
 

@@ -156,6 +156,13 @@ struct StageBinding {
   bool operator==(const StageBinding&) const = default;
 };
 
+// View state that changes results, saved with the scene (written only when not default, so
+// older files and older studios are unaffected).
+struct ViewState {
+  bool hoe_follows_gaze = false;  // the HOE travels by x_p(alpha), the FOV-maximising shift (A.4)
+  bool operator==(const ViewState&) const = default;
+};
+
 struct Scene {
   static constexpr int kFormatVersion = 1;
   std::string name = "untitled";
@@ -168,6 +175,7 @@ struct Scene {
   BeamShapingLens lens;
   Foveation foveation;
   std::vector<StageBinding> stages;
+  ViewState view;
   // Keys this version does not know, by JSON pointer of their parent object, kept so a
   // load -> save round trip loses nothing ("/" is the root, "/eye" the eye object, ...).
   nlohmann::ordered_json unknown = nlohmann::ordered_json::object();

@@ -11,12 +11,17 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
-#include <cstring>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <set>
+#include <span>
 #include <sstream>
+#include <type_traits>
+#include <variant>
+
+#include "model/scene/scene_fields.h"
 
 namespace fovea {
 
@@ -35,34 +40,6 @@ namespace {
 // ---------------------------------------------------------------------------------------
 // Reader: walks the JSON keeping the path, collects every problem, records unknown keys.
 // ---------------------------------------------------------------------------------------
-struct Range {
-  enum Kind { Any, Positive, NonNegative, Closed, OpenClosed, Open } kind = Any;
-  double lo = 0, hi = 0;
-  static Range any() { return {}; }
-  static Range positive() { return {Positive}; }
-  static Range nonNegative() { return {NonNegative}; }
-  static Range closed(double a, double b) { return {Closed, a, b}; }
-  static Range open(double a, double b) { return {Open, a, b}; }
-  // Empty when `v` fits, otherwise the problem ("must be > 0, got -5").
-  std::string check(double v) const {
-    if (!std::isfinite(v)) return "must be a finite number, got " + formatNumber(v);
-    const std::string got = ", got " + formatNumber(v);
-    switch (kind) {
-      case Any: return {};
-      case Positive: return v > 0 ? "" : "must be > 0" + got;
-      case NonNegative: return v >= 0 ? "" : "must be >= 0" + got;
-      case Closed:
-        return (v >= lo && v <= hi) ? ""
-                                    : "must be in [" + formatNumber(lo) + ", " + formatNumber(hi) + "]" + got;
-      case OpenClosed:
-      case Open:
-        return (v > lo && v < hi) ? ""
-                                  : "must be in (" + formatNumber(lo) + ", " + formatNumber(hi) + ")" + got;
-    }
-    return {};
-  }
-};
-
 class Reader {
  public:
   Reader(std::string source, SceneLoadResult& out, ojson& unknown)
@@ -98,7 +75,7 @@ class Reader {
       return &*it;
     }
 
-    void number(const std::string& key, double& out, Range range, bool required = true) {
+    void number(const std::string& key, double& out, const Range& range, bool required = true) {
       const ojson* v = get(key, required);
       if (!v) return;
       if (!v->is_number()) {
@@ -112,7 +89,7 @@ class Reader {
       }
       out = d;
     }
-    void integer(const std::string& key, int& out, int lo, int hi, bool required = true) {
+    void integer(const std::string& key, int& out, const Range& range, bool required = true) {
       const ojson* v = get(key, required);
       if (!v) return;
       if (!v->is_number_integer()) {
@@ -120,9 +97,8 @@ class Reader {
         return;
       }
       const auto i = v->get<long long>();
-      if (i < lo || i > hi) {
-        r_.error(at(key), "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                              std::to_string(i));
+      if (auto p = range.checkInteger(i); !p.empty()) {
+        r_.error(at(key), p);
         return;
       }
       out = static_cast<int>(i);
@@ -153,61 +129,20 @@ class Reader {
       }
       out = std::move(s);
     }
-    template <std::size_t N>
-    void numbers(const std::string& key, std::array<double, N>& out, Range range, bool required = true) {
+    // A fixed-length array of numbers (V = double) or integers (V = int), each in `range`.
+    template <class V>
+    void array(const std::string& key, std::span<V> out, const Range& range, bool required = true) {
       const ojson* v = get(key, required);
       if (!v) return;
-      if (!v->is_array() || v->size() != N) {
-        r_.error(at(key), "must be an array of " + std::to_string(N) + " numbers, got " + typeName(*v));
+      if (!v->is_array() || v->size() != out.size()) {
+        r_.error(at(key), "must be an array of " + std::to_string(out.size()) + " " + kindOf<V>() + "s, got " +
+                              typeName(*v));
         return;
       }
-      std::array<double, N> tmp{};
-      bool ok = true;
-      for (std::size_t i = 0; i < N; ++i) {
-        const auto& e = (*v)[i];
-        const std::string p = at(key) + "[" + std::to_string(i) + "]";
-        if (!e.is_number()) {
-          r_.error(p, "must be a number, got " + typeName(e));
-          ok = false;
-          continue;
-        }
-        tmp[i] = e.get<double>();
-        if (auto problem = range.check(tmp[i]); !problem.empty()) {
-          r_.error(p, problem);
-          ok = false;
-        }
-      }
-      if (ok) out = tmp;
+      std::vector<V> tmp;
+      if (elements(*v, at(key), range, tmp)) std::copy(tmp.begin(), tmp.end(), out.begin());
     }
-    template <std::size_t N>
-    void integers(const std::string& key, std::array<int, N>& out, int lo, int hi, bool required = true) {
-      const ojson* v = get(key, required);
-      if (!v) return;
-      if (!v->is_array() || v->size() != N) {
-        r_.error(at(key), "must be an array of " + std::to_string(N) + " integers, got " + typeName(*v));
-        return;
-      }
-      std::array<int, N> tmp{};
-      bool ok = true;
-      for (std::size_t i = 0; i < N; ++i) {
-        const auto& e = (*v)[i];
-        const std::string p = at(key) + "[" + std::to_string(i) + "]";
-        if (!e.is_number_integer()) {
-          r_.error(p, "must be an integer, got " + typeName(e));
-          ok = false;
-          continue;
-        }
-        const auto x = e.get<long long>();
-        if (x < lo || x > hi) {
-          r_.error(p, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
-          ok = false;
-          continue;
-        }
-        tmp[i] = static_cast<int>(x);
-      }
-      if (ok) out = tmp;
-    }
-    void numberList(const std::string& key, std::vector<double>& out, Range range, bool required = true) {
+    void numberList(const std::string& key, std::vector<double>& out, const Range& range, bool required = true) {
       const ojson* v = get(key, required);
       if (!v) return;
       if (!v->is_array() || v->empty()) {
@@ -215,22 +150,7 @@ class Reader {
         return;
       }
       std::vector<double> tmp;
-      bool ok = true;
-      for (std::size_t i = 0; i < v->size(); ++i) {
-        const auto& e = (*v)[i];
-        const std::string p = at(key) + "[" + std::to_string(i) + "]";
-        if (!e.is_number()) {
-          r_.error(p, "must be a number, got " + typeName(e));
-          ok = false;
-          continue;
-        }
-        tmp.push_back(e.get<double>());
-        if (auto problem = range.check(tmp.back()); !problem.empty()) {
-          r_.error(p, problem);
-          ok = false;
-        }
-      }
-      if (ok) out = std::move(tmp);
+      if (elements(*v, at(key), range, tmp)) out = std::move(tmp);
     }
 
     // Nested object; nullptr when absent (error if required) or of the wrong type.
@@ -255,6 +175,34 @@ class Reader {
     void markSeen(const std::string& key) { seen_.insert(key); }
 
    private:
+    template <class V>
+    static const char* kindOf() {
+      return std::is_same_v<V, int> ? "integer" : "number";
+    }
+    // Every element of `list` as a V in `range`, reporting each problem; true when all fit.
+    template <class V>
+    bool elements(const ojson& list, const std::string& path, const Range& range, std::vector<V>& out) {
+      bool ok = true;
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const auto& e = list[i];
+        const std::string p = path + "[" + std::to_string(i) + "]";
+        if (std::is_same_v<V, int> ? !e.is_number_integer() : !e.is_number()) {
+          r_.error(p, std::string("must be ") + (std::is_same_v<V, int> ? "an " : "a ") + kindOf<V>() + ", got " +
+                          typeName(e));
+          ok = false;
+          continue;
+        }
+        const std::string problem = std::is_same_v<V, int> ? range.checkInteger(e.get<long long>())
+                                                           : range.check(e.get<double>());
+        if (!problem.empty()) {
+          r_.error(p, problem);
+          ok = false;
+          continue;
+        }
+        out.push_back(e.get<V>());
+      }
+      return ok;
+    }
     void finish() {
       for (auto it = obj_.begin(); it != obj_.end(); ++it) {
         if (seen_.count(it.key())) continue;
@@ -271,12 +219,18 @@ class Reader {
 
   static std::string typeName(const ojson& v) {
     switch (v.type()) {
-      case ojson::value_t::null: return "null";
-      case ojson::value_t::boolean: return v.get<bool>() ? "true" : "false";
-      case ojson::value_t::string: return "a string";
-      case ojson::value_t::array: return "an array of " + std::to_string(v.size());
-      case ojson::value_t::object: return "an object";
-      default: return "a number (" + v.dump() + ")";
+      case ojson::value_t::null:
+        return "null";
+      case ojson::value_t::boolean:
+        return v.get<bool>() ? "true" : "false";
+      case ojson::value_t::string:
+        return "a string";
+      case ojson::value_t::array:
+        return "an array of " + std::to_string(v.size());
+      case ojson::value_t::object:
+        return "an object";
+      default:
+        return "a number (" + v.dump() + ")";
     }
   }
 
@@ -286,141 +240,87 @@ class Reader {
   ojson& unknown_;
 };
 
-const Range kCoord = Range::closed(-1e5, 1e5);        // mm
-const Range kAngle = Range::closed(-360.0, 360.0);    // deg
-const Range kWavelength = Range::open(200.0, 2000.0);  // nm
-const Range kIndex = Range::closed(1.0, 4.0);
-
-void readPose(Reader::Obj& o, Pose& pose) {
-  o.numbers("position_mm", pose.position_mm, kCoord);
-  o.numbers("rotation_deg", pose.rotation_deg, kAngle, false);
+bool startsWith(const std::string& s, const std::string& prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
 }
 
-void readProjector(Reader& r, const ojson& j, Projector& p) {
-  Reader::Obj o(r, j, "projector", "/projector");
-  o.string("name", p.name, false);
-  readPose(o, p.pose);
-  o.integers("pixels", p.pixels, 1, 100000);
-  o.numbers("fov_deg", p.fov_deg, Range::open(0.0, 180.0));
-  o.numberList("wavelengths_nm", p.wavelengths_nm, kWavelength);
-  o.number("exit_pupil_diameter_mm", p.exit_pupil_diameter_mm, Range::positive(), false);
-  if (const ojson* b = o.object("pixel_beam", false)) {
-    Reader::Obj ob(r, *b, o.at("pixel_beam"), "/projector/pixel_beam");
-    auto& m = p.pixel_beam;
-    ob.number("waist_distance_mm", m.waist_distance_mm, Range::positive());
-    ob.number("waist_fwhm_um", m.waist_fwhm_um, Range::positive());
-    ob.number("divergence_mrad", m.divergence_mrad, Range::nonNegative());
-    ob.number("exit_fwhm_um", m.exit_fwhm_um, Range::positive());
-    ob.number("exit_ellipticity", m.exit_ellipticity, Range::closed(1.0, 100.0));
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+void readValue(Reader::Obj& o, const std::string& key, const FieldInfo& f, const ValueRef& ref) {
+  const bool req = f.required();
+  std::visit(
+      Overloaded{[&](double* d) { o.number(key, *d, f.range, req); }, [&](int* i) { o.integer(key, *i, f.range, req); },
+                 [&](bool* b) { o.boolean(key, *b, req); }, [&](std::string* s) { o.string(key, *s, req, f.choices); },
+                 [&](std::span<double> a) { o.array(key, a, f.range, req); },
+                 [&](std::span<int> a) { o.array(key, a, f.range, req); },
+                 [&](std::vector<double>* v) { o.numberList(key, *v, f.range, req); }},
+      ref);
+}
+
+// Reads the entries of `table` under `prefix` (a nested object's "key.") from `o`, in table
+// order; returns the index after them. Rules run right after the entry before them.
+template <class T>
+std::size_t readEntries(Reader& r, Reader::Obj& o, const std::string& element_path, const FieldTable<T>& table, T& obj,
+                        std::size_t i, const std::string& prefix) {
+  const auto& entries = table.entries;
+  while (i < entries.size() && startsWith(entries[i].info.key, prefix)) {
+    const FieldEntry<T>& e = entries[i];
+    const std::string key = table.fileKey(e.info, obj).substr(prefix.size());
+    if (e.isRule()) {
+      if (const std::string problem = e.rule(obj); !problem.empty())
+        r.error(e.info.key.empty() ? element_path : element_path + "." + table.fileKey(e.info, obj), problem);
+      ++i;
+    } else if (e.info.type == FieldType::Object) {
+      const std::string inner = e.info.key + ".";
+      std::size_t end = i + 1;
+      while (end < entries.size() && startsWith(entries[end].info.key, inner)) ++end;
+      if (const ojson* j = o.object(key, e.info.required())) {
+        Reader::Obj nested(r, *j, o.at(key), o.pointer() + "/" + key);
+        readEntries(r, nested, element_path, table, obj, i + 1, inner);
+      }
+      i = end;
+    } else {
+      readValue(o, key, e.info, e.ref(obj));
+      ++i;
+    }
+  }
+  return i;
+}
+
+template <class T>
+void readElement(Reader& r, const ojson& j, const std::string& path, const std::string& pointer,
+                 const FieldTable<T>& table, T& obj) {
+  Reader::Obj o(r, j, path, pointer);
+  readEntries(r, o, path, table, obj, 0, "");
+}
+
+// An array of elements ("hoe_layers", "stages"): each must be an object.
+template <class T>
+void readElements(Reader& r, Reader::Obj& root, const std::string& key, Presence presence, const FieldTable<T>& table,
+                  std::vector<T>& out) {
+  const ojson* list = root.array(key, presence == Presence::Required);
+  if (!list) return;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const std::string path = key + "[" + std::to_string(i) + "]";
+    if (!(*list)[i].is_object()) {
+      r.error(path, "must be an object, got " + Reader::typeName((*list)[i]));
+      continue;
+    }
+    T element;
+    readElement(r, (*list)[i], path, "/" + key + "/" + std::to_string(i), table, element);
+    out.push_back(element);
   }
 }
 
-void readHoe(Reader& r, const ojson& j, Hoe& h) {
-  Reader::Obj o(r, j, "hoe", "/hoe");
-  o.string("name", h.name, false);
-  readPose(o, h.pose);
-  o.numbers("size_mm", h.size_mm, Range::open(0.0, 1e4));
-  o.number("substrate_thickness_mm", h.substrate_thickness_mm, Range::closed(0.0, 100.0), false);
-  o.number("cover_index", h.cover_index, kIndex, false);
-  o.number("substrate_index", h.substrate_index, kIndex, false);
-}
-
-void readLayer(Reader& r, const ojson& j, std::size_t i, HoeLayer& l) {
-  const std::string path = "hoe_layers[" + std::to_string(i) + "]";
-  Reader::Obj o(r, j, path, "/hoe_layers/" + std::to_string(i));
-  o.string("name", l.name, false);
-  o.number("thickness_um", l.thickness_um, Range::positive());
-  if (l.thickness_um > 10000.0) r.error(o.at("thickness_um"), "must be <= 10000, got " + formatNumber(l.thickness_um));
-  o.number("offset_um", l.offset_um, Range::closed(-1e5, 1e5), false);
-  o.number("n0", l.n0, kIndex);
-  o.number("n1", l.n1, Range::nonNegative());
-  if (l.n1 >= l.n0) r.error(o.at("n1"), "must be < n0 (" + formatNumber(l.n0) + "), got " + formatNumber(l.n1));
-  o.number("absorption_per_mm", l.absorption_per_mm, Range::nonNegative(), false);
-  o.number("shrinkage_percent", l.shrinkage_percent, Range::open(-50.0, 50.0), false);
-  o.number("recording_n0_delta", l.recording_n0_delta, Range::closed(-0.5, 0.5), false);
-  if (const ojson* rec = o.object("recording")) {
-    Reader::Obj orc(r, *rec, o.at("recording"), o.pointer() + "/recording");
-    auto& c = l.recording;
-    orc.number("wavelength_nm", c.wavelength_nm, kWavelength);
-    orc.numbers("reference_point_mm", c.reference_point_mm, kCoord);
-    orc.numbers("signal_point_mm", c.signal_point_mm, kCoord);
-    orc.boolean("phase_conjugate", c.phase_conjugate, false);
-    if (c.reference_point_mm == c.signal_point_mm)
-      r.error(orc.at("signal_point_mm"), "must differ from reference_point_mm (no fringes otherwise)");
-  }
-}
-
-void readEye(Reader& r, const ojson& j, Eye& e) {
-  Reader::Obj o(r, j, "eye", "/eye");
-  o.number("eyeball_diameter_mm", e.eyeball_diameter_mm, Range::open(5.0, 50.0));
-  o.number("pupil_diameter_mm", e.pupil_diameter_mm, Range::open(0.0, 15.0));
-  if (e.pupil_diameter_mm >= e.eyeball_diameter_mm)
-    r.error(o.at("pupil_diameter_mm"), "must be smaller than eyeball_diameter_mm");
-  o.number("relief_mm", e.relief_mm, Range::positive());
-  o.numbers("lateral_offset_mm", e.lateral_offset_mm, kCoord, false);
-  o.numbers("gaze_deg", e.gaze_deg, Range::open(-90.0, 90.0), false);
-  o.numbers("gaze_range_deg", e.gaze_range_deg, Range::open(-90.0, 90.0), false);
-  if (e.gaze_range_deg[0] >= e.gaze_range_deg[1])
-    r.error(o.at("gaze_range_deg"), "lower end must be below the upper end");
-  o.number("fovea_radius_deg", e.fovea_radius_deg, Range::open(0.0, 45.0), false);
-}
-
-void readFovealDisplay(Reader& r, const ojson& j, FovealDisplay& f) {
-  Reader::Obj o(r, j, "foveal_display", "/foveal_display");
-  o.string("name", f.name, false);
-  readPose(o, f.pose);
-  o.numbers("size_mm", f.size_mm, Range::open(0.0, 1e4));
-  o.integers("pixels", f.pixels, 1, 100000);
-  o.numberList("primaries_nm", f.primaries_nm, kWavelength, false);
-  if (const ojson* c = o.object("combiner")) {
-    Reader::Obj oc(r, *c, o.at("combiner"), "/foveal_display/combiner");
-    auto& ic = f.combiner;
-    oc.string("name", ic.name, false);
-    oc.number("magnification", ic.magnification, Range::positive());
-    oc.number("eye_distance_mm", ic.eye_distance_mm, Range::positive());
-    oc.number("image_distance_mm", ic.image_distance_mm, Range::positive());
-    oc.number("mtf30_cpd_on_axis", ic.mtf30_cpd_on_axis, Range::positive(), false);
-    oc.number("field_curvature_per_deg2", ic.field_curvature_per_deg2, Range::nonNegative(), false);
-  }
-}
-
-void readLens(Reader& r, const ojson& j, BeamShapingLens& l) {
-  Reader::Obj o(r, j, "beam_shaping_lens", "/beam_shaping_lens");
-  o.boolean("enabled", l.enabled);
-  o.string("name", l.name, false);
-  readPose(o, l.pose);
-  o.number("focal_length_mm", l.focal_length_mm, Range::closed(-1e5, 1e5));
-  if (l.focal_length_mm == 0.0) r.error(o.at("focal_length_mm"), "must not be 0");
-  o.number("diameter_mm", l.diameter_mm, Range::positive());
-  o.number("center_thickness_mm", l.center_thickness_mm, Range::nonNegative(), false);
-  o.number("index", l.index, kIndex, false);
-}
-
-void readFoveation(Reader& r, const ojson& j, Foveation& f) {
-  Reader::Obj o(r, j, "foveation", "/foveation");
-  o.number("blur_start_deg", f.blur_start_deg, Range::closed(0.0, 90.0));
-  o.number("blend_start_deg", f.blend_start_deg, Range::closed(0.0, 90.0));
-  o.number("blend_end_deg", f.blend_end_deg, Range::closed(0.0, 90.0));
-  if (!(f.blur_start_deg <= f.blend_start_deg && f.blend_start_deg < f.blend_end_deg))
-    r.error("foveation", "must satisfy blur_start_deg <= blend_start_deg < blend_end_deg");
-}
-
-bool isRotationAxis(const std::string& axis) { return axis == "yaw" || axis == "pitch" || axis == "roll"; }
-
-void readStage(Reader& r, const ojson& j, std::size_t i, StageBinding& s) {
-  const std::string path = "stages[" + std::to_string(i) + "]";
-  Reader::Obj o(r, j, path, "/stages/" + std::to_string(i));
-  o.string("element", s.element, true, {"hoe", "foveal_display", "projector", "beam_shaping_lens", "camera"});
-  o.string("axis", s.axis, true, {"x", "y", "z", "yaw", "pitch", "roll"});
-  o.string("controller", s.controller, true, {"KDC101", "TDC001", "KBD101", "K10CR1"});
-  o.string("stage_model", s.stage_model, true, {"MTS25-Z8", "Z825B", "DDSM50", "K10CR1"});
-  o.string("serial", s.serial, false);
-  o.integer("channel", s.channel, 1, 4, false);
-  const std::string unit = isRotationAxis(s.axis) ? "_deg" : "_mm";
-  o.numbers("soft_limits" + unit, s.soft_limits, kCoord);
-  if (s.soft_limits[0] >= s.soft_limits[1])
-    r.error(o.at("soft_limits" + unit), "lower limit must be below the upper limit");
-  o.number("home_offset" + unit, s.home_offset, kCoord, false);
+template <class T>
+void readObjectElement(Reader& r, Reader::Obj& root, const std::string& key, Presence presence,
+                       const FieldTable<T>& table, T& obj) {
+  if (const ojson* j = root.object(key, presence == Presence::Required)) readElement(r, *j, key, "/" + key, table, obj);
 }
 
 }  // namespace
@@ -448,7 +348,7 @@ SceneLoadResult parseScene(std::string_view text, const std::string& source) {
     if (!format.empty() && format != "fovea-scene")
       r.error("format", "must be \"fovea-scene\", got \"" + format + "\"");
     int version = 0;
-    o.integer("version", version, 1, 1000000);
+    o.integer("version", version, Range::closed(1, 1000000));
     if (version > Scene::kFormatVersion) {
       r.error("version", "file is version " + std::to_string(version) + ", this studio reads up to version " +
                              std::to_string(Scene::kFormatVersion) + " (update the studio)");
@@ -456,35 +356,17 @@ SceneLoadResult parseScene(std::string_view text, const std::string& source) {
     }
     o.string("name", scene.name, false);
     if (const ojson* n = o.get("notes", false)) scene.notes = *n;
-    if (const ojson* p = o.object("projector")) readProjector(r, *p, scene.projector);
-    if (const ojson* h = o.object("hoe")) readHoe(r, *h, scene.hoe);
-    if (const ojson* layers = o.array("hoe_layers")) {
-      if (layers->empty()) r.error("hoe_layers", "must contain at least one layer");
-      for (std::size_t i = 0; i < layers->size(); ++i) {
-        HoeLayer layer;
-        if (!(*layers)[i].is_object()) {
-          r.error("hoe_layers[" + std::to_string(i) + "]", "must be an object, got " + Reader::typeName((*layers)[i]));
-          continue;
-        }
-        readLayer(r, (*layers)[i], i, layer);
-        scene.hoe_layers.push_back(layer);
-      }
-    }
-    if (const ojson* e = o.object("eye")) readEye(r, *e, scene.eye);
-    if (const ojson* f = o.object("foveal_display")) readFovealDisplay(r, *f, scene.foveal_display);
-    if (const ojson* l = o.object("beam_shaping_lens", false)) readLens(r, *l, scene.lens);
-    if (const ojson* f = o.object("foveation", false)) readFoveation(r, *f, scene.foveation);
-    if (const ojson* st = o.array("stages", false)) {
-      for (std::size_t i = 0; i < st->size(); ++i) {
-        StageBinding s;
-        if (!(*st)[i].is_object()) {
-          r.error("stages[" + std::to_string(i) + "]", "must be an object, got " + Reader::typeName((*st)[i]));
-          continue;
-        }
-        readStage(r, (*st)[i], i, s);
-        scene.stages.push_back(s);
-      }
-    }
+    readObjectElement(r, o, "projector", Presence::Required, projectorFields(), scene.projector);
+    readObjectElement(r, o, "hoe", Presence::Required, hoeFields(), scene.hoe);
+    if (const ojson* layers = o.get("hoe_layers", false); layers && layers->is_array() && layers->empty())
+      r.error("hoe_layers", "must contain at least one layer");
+    readElements(r, o, "hoe_layers", Presence::Required, hoeLayerFields(), scene.hoe_layers);
+    readObjectElement(r, o, "eye", Presence::Required, eyeFields(), scene.eye);
+    readObjectElement(r, o, "foveal_display", Presence::Required, fovealDisplayFields(), scene.foveal_display);
+    readObjectElement(r, o, "beam_shaping_lens", Presence::Optional, lensFields(), scene.lens);
+    readObjectElement(r, o, "foveation", Presence::Optional, foveationFields(), scene.foveation);
+    readElements(r, o, "stages", Presence::Optional, stageFields(), scene.stages);
+    readObjectElement(r, o, "view", Presence::Optional, viewFields(), scene.view);
   }
   if (result.errors.empty()) result.scene = std::move(scene);
   return result;
@@ -516,22 +398,19 @@ namespace {
 
 // Doubles are written as JSON numbers; NaN/Inf (which JSON cannot hold) become null so the
 // loader reports them rather than the writer producing invalid JSON.
-ojson num(double v) { return std::isfinite(v) ? ojson(v) : ojson(nullptr); }
-template <std::size_t N>
-ojson nums(const std::array<double, N>& a) {
-  ojson j = ojson::array();
-  for (double v : a) j.push_back(num(v));
-  return j;
+ojson num(double v) {
+  return std::isfinite(v) ? ojson(v) : ojson(nullptr);
 }
-ojson nums(const std::vector<double>& a) {
+// Numbers in an array: doubles as num(), integers as they are.
+template <class Range>
+ojson numberArray(const Range& values) {
   ojson j = ojson::array();
-  for (double v : a) j.push_back(num(v));
-  return j;
-}
-template <std::size_t N>
-ojson ints(const std::array<int, N>& a) {
-  ojson j = ojson::array();
-  for (int v : a) j.push_back(v);
+  for (auto v : values) {
+    if constexpr (std::is_same_v<decltype(v), double>)
+      j.push_back(num(v));
+    else
+      j.push_back(v);
+  }
   return j;
 }
 
@@ -541,9 +420,70 @@ void appendUnknown(ojson& obj, const ojson& unknown, const std::string& pointer)
   for (auto kv = it->begin(); kv != it->end(); ++kv) obj[kv.key()] = kv.value();
 }
 
-void writePose(ojson& o, const Pose& p) {
-  o["position_mm"] = nums(p.position_mm);
-  o["rotation_deg"] = nums(p.rotation_deg);
+ojson toJson(const ValueRef& ref) {
+  return std::visit(
+      Overloaded{[](double* d) { return num(*d); }, [](int* i) { return ojson(*i); }, [](bool* b) { return ojson(*b); },
+                 [](std::string* s) { return ojson(*s); }, [](std::span<double> a) { return numberArray(a); },
+                 [](std::span<int> a) { return numberArray(a); },
+                 [](std::vector<double>* v) { return numberArray(*v); }},
+      ref);
+}
+
+bool sameValue(const ValueRef& a, const ValueRef& b) {
+  return std::visit(
+      [&b](auto pa) {
+        using P = decltype(pa);
+        const P pb = std::get<P>(b);
+        if constexpr (std::is_pointer_v<P>)
+          return *pa == *pb;
+        else
+          return std::equal(pa.begin(), pa.end(), pb.begin(), pb.end());
+      },
+      a);
+}
+
+// Writes the entries of `table` under `prefix` into `out` (canonical order = table order);
+// returns the index after them.
+template <class T>
+std::size_t writeEntries(ojson& out, const ojson& unknown, const std::string& pointer, const FieldTable<T>& table,
+                         const T& obj, std::size_t i, const std::string& prefix) {
+  static T defaults{};
+  T& value = const_cast<T&>(obj);  // the references are only read
+  const auto& entries = table.entries;
+  while (i < entries.size() && startsWith(entries[i].info.key, prefix)) {
+    const FieldEntry<T>& e = entries[i];
+    const std::string key = table.fileKey(e.info, obj).substr(prefix.size());
+    if (e.isRule()) {
+      ++i;
+    } else if (e.info.type == FieldType::Object) {
+      ojson nested = ojson::object();
+      const std::string nested_pointer = pointer + "/" + key;
+      i = writeEntries(nested, unknown, nested_pointer, table, obj, i + 1, e.info.key + ".");
+      appendUnknown(nested, unknown, nested_pointer);
+      out[key] = nested;
+    } else {
+      if (!(e.info.omit_default && sameValue(e.ref(value), e.ref(defaults)))) out[key] = toJson(e.ref(value));
+      ++i;
+    }
+  }
+  return i;
+}
+
+template <class T>
+ojson writeElement(const ojson& unknown, const std::string& pointer, const FieldTable<T>& table, const T& obj) {
+  ojson out = ojson::object();
+  writeEntries(out, unknown, pointer, table, obj, 0, "");
+  appendUnknown(out, unknown, pointer);
+  return out;
+}
+
+template <class T>
+ojson writeElements(const ojson& unknown, const std::string& key, const FieldTable<T>& table,
+                    const std::vector<T>& list) {
+  ojson out = ojson::array();
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out.push_back(writeElement(unknown, "/" + key + "/" + std::to_string(i), table, list[i]));
+  return out;
 }
 
 }  // namespace
@@ -555,130 +495,16 @@ std::string serializeScene(const Scene& s) {
   root["version"] = Scene::kFormatVersion;
   root["name"] = s.name;
   if (!s.notes.is_null()) root["notes"] = s.notes;
-
-  ojson p;
-  p["name"] = s.projector.name;
-  writePose(p, s.projector.pose);
-  p["pixels"] = ints(s.projector.pixels);
-  p["fov_deg"] = nums(s.projector.fov_deg);
-  p["wavelengths_nm"] = nums(s.projector.wavelengths_nm);
-  p["exit_pupil_diameter_mm"] = num(s.projector.exit_pupil_diameter_mm);
-  {
-    const auto& m = s.projector.pixel_beam;
-    ojson b;
-    b["waist_distance_mm"] = num(m.waist_distance_mm);
-    b["waist_fwhm_um"] = num(m.waist_fwhm_um);
-    b["divergence_mrad"] = num(m.divergence_mrad);
-    b["exit_fwhm_um"] = num(m.exit_fwhm_um);
-    b["exit_ellipticity"] = num(m.exit_ellipticity);
-    appendUnknown(b, u, "/projector/pixel_beam");
-    p["pixel_beam"] = b;
-  }
-  appendUnknown(p, u, "/projector");
-  root["projector"] = p;
-
-  ojson h;
-  h["name"] = s.hoe.name;
-  writePose(h, s.hoe.pose);
-  h["size_mm"] = nums(s.hoe.size_mm);
-  h["substrate_thickness_mm"] = num(s.hoe.substrate_thickness_mm);
-  h["cover_index"] = num(s.hoe.cover_index);
-  h["substrate_index"] = num(s.hoe.substrate_index);
-  appendUnknown(h, u, "/hoe");
-  root["hoe"] = h;
-
-  ojson layers = ojson::array();
-  for (std::size_t i = 0; i < s.hoe_layers.size(); ++i) {
-    const auto& l = s.hoe_layers[i];
-    const std::string ptr = "/hoe_layers/" + std::to_string(i);
-    ojson o;
-    o["name"] = l.name;
-    o["thickness_um"] = num(l.thickness_um);
-    o["offset_um"] = num(l.offset_um);
-    o["n0"] = num(l.n0);
-    o["n1"] = num(l.n1);
-    o["absorption_per_mm"] = num(l.absorption_per_mm);
-    o["shrinkage_percent"] = num(l.shrinkage_percent);
-    o["recording_n0_delta"] = num(l.recording_n0_delta);
-    ojson rec;
-    rec["wavelength_nm"] = num(l.recording.wavelength_nm);
-    rec["reference_point_mm"] = nums(l.recording.reference_point_mm);
-    rec["signal_point_mm"] = nums(l.recording.signal_point_mm);
-    rec["phase_conjugate"] = l.recording.phase_conjugate;
-    appendUnknown(rec, u, ptr + "/recording");
-    o["recording"] = rec;
-    appendUnknown(o, u, ptr);
-    layers.push_back(o);
-  }
-  root["hoe_layers"] = layers;
-
-  ojson e;
-  e["eyeball_diameter_mm"] = num(s.eye.eyeball_diameter_mm);
-  e["pupil_diameter_mm"] = num(s.eye.pupil_diameter_mm);
-  e["relief_mm"] = num(s.eye.relief_mm);
-  e["lateral_offset_mm"] = nums(s.eye.lateral_offset_mm);
-  e["gaze_deg"] = nums(s.eye.gaze_deg);
-  e["gaze_range_deg"] = nums(s.eye.gaze_range_deg);
-  e["fovea_radius_deg"] = num(s.eye.fovea_radius_deg);
-  appendUnknown(e, u, "/eye");
-  root["eye"] = e;
-
-  ojson f;
-  f["name"] = s.foveal_display.name;
-  writePose(f, s.foveal_display.pose);
-  f["size_mm"] = nums(s.foveal_display.size_mm);
-  f["pixels"] = ints(s.foveal_display.pixels);
-  f["primaries_nm"] = nums(s.foveal_display.primaries_nm);
-  {
-    const auto& ic = s.foveal_display.combiner;
-    ojson c;
-    c["name"] = ic.name;
-    c["magnification"] = num(ic.magnification);
-    c["eye_distance_mm"] = num(ic.eye_distance_mm);
-    c["image_distance_mm"] = num(ic.image_distance_mm);
-    c["mtf30_cpd_on_axis"] = num(ic.mtf30_cpd_on_axis);
-    c["field_curvature_per_deg2"] = num(ic.field_curvature_per_deg2);
-    appendUnknown(c, u, "/foveal_display/combiner");
-    f["combiner"] = c;
-  }
-  appendUnknown(f, u, "/foveal_display");
-  root["foveal_display"] = f;
-
-  ojson l;
-  l["enabled"] = s.lens.enabled;
-  l["name"] = s.lens.name;
-  writePose(l, s.lens.pose);
-  l["focal_length_mm"] = num(s.lens.focal_length_mm);
-  l["diameter_mm"] = num(s.lens.diameter_mm);
-  l["center_thickness_mm"] = num(s.lens.center_thickness_mm);
-  l["index"] = num(s.lens.index);
-  appendUnknown(l, u, "/beam_shaping_lens");
-  root["beam_shaping_lens"] = l;
-
-  ojson fv;
-  fv["blur_start_deg"] = num(s.foveation.blur_start_deg);
-  fv["blend_start_deg"] = num(s.foveation.blend_start_deg);
-  fv["blend_end_deg"] = num(s.foveation.blend_end_deg);
-  appendUnknown(fv, u, "/foveation");
-  root["foveation"] = fv;
-
-  ojson stages = ojson::array();
-  for (std::size_t i = 0; i < s.stages.size(); ++i) {
-    const auto& st = s.stages[i];
-    const std::string unit = isRotationAxis(st.axis) ? "_deg" : "_mm";
-    ojson o;
-    o["element"] = st.element;
-    o["axis"] = st.axis;
-    o["controller"] = st.controller;
-    o["stage_model"] = st.stage_model;
-    o["serial"] = st.serial;
-    o["channel"] = st.channel;
-    o["soft_limits" + unit] = nums(st.soft_limits);
-    o["home_offset" + unit] = num(st.home_offset);
-    appendUnknown(o, u, "/stages/" + std::to_string(i));
-    stages.push_back(o);
-  }
-  root["stages"] = stages;
+  root["projector"] = writeElement(u, "/projector", projectorFields(), s.projector);
+  root["hoe"] = writeElement(u, "/hoe", hoeFields(), s.hoe);
+  root["hoe_layers"] = writeElements(u, "hoe_layers", hoeLayerFields(), s.hoe_layers);
+  root["eye"] = writeElement(u, "/eye", eyeFields(), s.eye);
+  root["foveal_display"] = writeElement(u, "/foveal_display", fovealDisplayFields(), s.foveal_display);
+  root["beam_shaping_lens"] = writeElement(u, "/beam_shaping_lens", lensFields(), s.lens);
+  root["foveation"] = writeElement(u, "/foveation", foveationFields(), s.foveation);
+  root["stages"] = writeElements(u, "stages", stageFields(), s.stages);
+  // Newer, optional state: left out while it holds only defaults (older files stay as they are).
+  if (ojson view = writeElement(u, "/view", viewFields(), s.view); !view.empty()) root["view"] = view;
   appendUnknown(root, u, "/");
   return root.dump(2) + "\n";
 }

@@ -100,7 +100,10 @@ class TestAnalysesPanel : public QObject {
     for (std::size_t i = 0; i < cli["samples"].size(); ++i)
       QVERIFY(std::abs(r->json->at("samples")[i]["perceived_cpd"].get<double>() -
                        cli["samples"][i]["perceived_cpd"].get<double>()) < 1e-9);
-    QVERIFY(panel.cliCommand().startsWith("fovea-cli resolution"));
+    QVERIFY(panel.cliCommand().isEmpty());  // unsaved: fovea-cli could not read this scene
+    doc.markSaved(tmpDir() + "/resolution.json");
+    QVERIFY2(panel.cliCommand().startsWith("fovea-cli resolution " + tmpDir() + "/resolution.json --gaze-deg 5,0"),
+             qPrintable(panel.cliCommand()));
   }
 
   void sweepKeysMatchTheCli() {

@@ -261,16 +261,18 @@ class TestMainWindow : public QObject {
     auto* editor = w->propertyEditor();
     const Scene before = w->document()->scene();
     QSignalSpy refused(editor, &widgets::PropertyEditor::editRefused);
-    QCOMPARE(editor->commitText("hoe_layers[1].thickness_um", "-5"),
-             QString("hoe_layers[1].thickness_um: must be > 0, got -5"));
-    QCOMPARE(editor->messageFor("hoe_layers[1].thickness_um"),
-             QString("hoe_layers[1].thickness_um: must be > 0, got -5"));
-    QCOMPARE(editor->commitText("hoe_layers[1].n1", "1.7"), QString("hoe_layers[1].n1: must be < n0 (1.5), got 1.7"));
-    QCOMPARE(editor->commitText("hoe_layers[1].n0", "abc"), QString("hoe_layers[1].n0: not a number: \"abc\""));
+    // Units as printed, and the table's help text in the tooltip.
+    QCOMPARE(editor->unitFor("hoe_layers[1].thickness_um"), QString("µm"));
+    QVERIFY(editor->fieldFor("hoe_layers[1].thickness_um")->toolTip().startsWith("film thickness\n"));
+    // The messages name the field by its label, as the editor shows it.
+    QCOMPARE(editor->commitText("hoe_layers[1].thickness_um", "-5"), QString("Thickness: must be > 0, got -5"));
+    QCOMPARE(editor->messageFor("hoe_layers[1].thickness_um"), QString("Thickness: must be > 0, got -5"));
+    QCOMPARE(editor->commitText("hoe_layers[1].n1", "1.7"), QString("Index modulation n1: must be < n0 (1.5), got 1.7"));
+    QCOMPARE(editor->commitText("hoe_layers[1].n0", "abc"), QString("Mean index n0: not a number: \"abc\""));
     QCOMPARE(refused.count(), 3);
     QVERIFY(w->document()->scene() == before);
     QCOMPARE(w->document()->undoStack()->count(), 0);
-    QVERIFY(w->messageLog()->entries().last().startsWith("warning: edit refused: hoe_layers[1].n0: not a number"));
+    QVERIFY(w->messageLog()->entries().last().startsWith("warning: edit refused: Mean index n0: not a number"));
     // A good value afterwards clears the message and is applied.
     QCOMPARE(editor->commitText("hoe_layers[1].thickness_um", "20"), QString());
     QCOMPARE(w->document()->scene().hoe_layers[1].thickness_um, 20.0);

@@ -123,6 +123,41 @@ class TestReportFigures : public QObject {
     QCOMPARE(cameraPosition(view), camera);
     QCOMPARE(w.document()->undoStack()->count(), 0);  // composing edits nothing
   }
+
+  // Printed figures: a light background, and the selection (highlight box, drag handles)
+  // leaves no trace in them; the studio's look comes back afterwards.
+  void figuresArePrintedWithoutHandlesOnALightBackground() {
+    studio::MainWindow w;
+    w.resize(1400, 900);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.traceWorkbench()->waitForTrace());
+    viz::SceneView* view = w.sceneView();
+    studio::ReportData d;
+    d.scene = w.document()->scene();
+    d.options.rays = 500;
+    auto figure = [&](const char* id) {
+      const studio::ReportContent c = studio::composeReport(w, d, {}, widgets::DisplayUnits{});
+      for (const auto& section : c.sections)
+        for (const auto& f : section.figures)
+          if (f.id == id) return f.image;
+      return QImage();
+    };
+    const QImage plain = figure("view-iso");
+    QVERIFY(!plain.isNull());
+    // Light: the corners are the background, near white.
+    for (const QPoint p : {QPoint(2, 2), QPoint(plain.width() - 3, 2), QPoint(2, plain.height() - 3)})
+      QVERIFY2(qGray(plain.pixel(p)) > 200, qPrintable(QString::number(qGray(plain.pixel(p)))));
+    w.selectElement("hoe");
+    QVERIFY(view->layer("handles").size() > 0 && view->layer("handles").isVisible());
+    const QImage selected = figure("view-iso");
+    QCOMPARE(selected, plain);
+    // The studio's look again: dark background, handles shown.
+    QVERIFY(!view->printLook());
+    QVERIFY(view->layer("handles").isVisible());
+    const QImage live = view->renderToImage();
+    QVERIFY(qGray(live.pixel(2, 2)) < 100);
+  }
 };
 
 QTEST_MAIN(TestReportFigures)

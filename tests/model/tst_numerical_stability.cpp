@@ -625,7 +625,7 @@ class TestNumericalStability : public QObject {
   void randomScenes() {
     // Random benches (projector, plate pose and size, 1-3 layers with random recordings,
     // shrinkage, index change, absorption, 1 mm films, cover/substrate indices, eye): the
-    // memoised pipeline equals the plain loop bit for bit, and the double trace agrees with
+    // memoised pipeline equals the plain loop (bit for bit, efficiencies to 1e-12), and the double trace agrees with
     // the long-double one ray by ray and on the FOV.
     const long target = std::max(1L, sampleCount());  // ray-layer evaluations
     const std::uint64_t seed = 0x3d5ceeULL;
@@ -662,12 +662,15 @@ class TestNumericalStability : public QObject {
           ++fail;
           if (msg.size() < 5) msg.push_back("scene " + std::to_string(i) + ": " + t);
         };
-        // Pipeline == plain loop (double), bit for bit.
+        // Pipeline == plain loop (double), bit for bit but for the efficiency: the pipeline solves
+        // lossless films through the SIMD Kogelnik batch (kogelnik_batch.h, its own sin/sinh
+        // kernels), within 1e-12 of the scalar closed forms the plain loop calls.
         if (piped.ray_list.size() != dref.rays.size()) failWith("ray count");
         for (std::size_t k = 0; k < dref.rays.size() && k < piped.ray_list.size(); ++k) {
           const TracedRay& a = piped.ray_list[k];
           const ReferenceRay<double>& b = dref.rays[k];
-          if (a.hits_hoe != b.hits_hoe || a.efficiency != b.efficiency || a.in_pupil != b.in_pupil ||
+          if (a.hits_hoe != b.hits_hoe || !(std::abs(a.efficiency - b.efficiency) <= 1e-12) ||
+              a.in_pupil != b.in_pupil ||
               (b.in_pupil && (a.field_deg != b.field_deg || a.out_direction != b.out_direction))) {
             char buf[300];
             std::snprintf(buf, sizeof buf,

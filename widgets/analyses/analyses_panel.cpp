@@ -87,7 +87,7 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
   connect(cliButton_, &QPushButton::clicked, this, [this] {
     const QString cmd = cliCommand();
     if (!cmd.isEmpty()) QApplication::clipboard()->setText(cmd);
-    status_->setText(cmd.isEmpty() ? tr("This analysis has no fovea-cli twin.") : tr("Copied: %1").arg(cmd));
+    status_->setText(!cmd.isEmpty() ? tr("Copied: %1").arg(cmd) : cliUnavailableReason());
   });
   connect(runner_, &AnalysisRunner::progress, this,
           [this](const QString&, double f) { progress_->setValue(static_cast<int>(std::lround(1000.0 * f))); });
@@ -136,13 +136,19 @@ void AnalysesPanel::rebuildForm() {
   const AnalysisSpec* spec = findAnalysis(currentAnalysis());
   if (!spec) return;
   description_->setText(spec->description);
-  const AnalysisParams values =
-      edited_.value(spec->id, defaultParameters(*spec, Preferences::instance().values().defaultRays));
+  const AnalysisParams values = edited_.value(spec->id, defaultParameters(*spec));
   for (const AnalysisParameter& p : spec->parameters) {
     QWidget* field = nullptr;
     const QVariant v = values.value(p.key, p.defaultValue);
     switch (p.kind) {
       case AnalysisParameter::Kind::Number: {
+        if (!p.defaultValue.isValid()) {  // may stay unset: empty means p.unsetMeaning
+          auto* edit = new QLineEdit(formHost_);
+          edit->setPlaceholderText(p.unsetMeaning);
+          edit->setText(v.isValid() ? QString::number(v.toDouble(), 'g', 10) : QString());
+          field = edit;
+          break;
+        }
         auto* box = new QDoubleSpinBox(formHost_);
         box->setDecimals(p.decimals);
         box->setRange(p.minimum, p.maximum);
@@ -178,7 +184,9 @@ void AnalysesPanel::rebuildForm() {
     }
     field->setObjectName(p.key);
     field->setProperty("analysis", spec->id);
-    field->setToolTip(QString("--%1: %2").arg(p.key, p.help));
+    field->setToolTip(
+        QString("--%1: %2%3")
+            .arg(p.key, p.help, p.unsetMeaning.isEmpty() ? QString() : tr(" (empty: %1)").arg(p.unsetMeaning)));
     form_->addRow(p.label, field);
     fields_.insert(p.key, field);
   }
@@ -198,6 +206,8 @@ AnalysisParams AnalysesPanel::parameters() const {
       p[it.key()] = i->value();
     else if (auto* c = qobject_cast<QComboBox*>(it.value()))
       p[it.key()] = c->currentText();
+    else if (auto* e = qobject_cast<QLineEdit*>(it.value()))
+      p[it.key()] = e->text().trimmed().isEmpty() ? QVariant() : QVariant(e->text().trimmed());
   }
   return p;
 }
@@ -211,6 +221,10 @@ bool AnalysesPanel::setParameter(const QString& key, const QVariant& value) {
     i->setValue(value.toInt());
   else if (auto* c = qobject_cast<QComboBox*>(w))
     c->setCurrentText(value.toString());
+  else if (auto* e = qobject_cast<QLineEdit*>(w))
+    e->setText(!value.isValid()                       ? QString()
+               : value.typeId() == QMetaType::QString ? value.toString()
+                                                      : QString::number(value.toDouble(), 'g', 10));
   return true;
 }
 
@@ -258,7 +272,19 @@ QString AnalysesPanel::statusText() const {
 
 QString AnalysesPanel::cliCommand() const {
   const AnalysisSpec* spec = findAnalysis(currentAnalysis());
-  return spec ? cliCommandLine(*spec, parameters(), document_->filePath()) : QString();
+  // fovea-cli reads the scene from its file: unsaved changes would not be in it.
+  if (!spec || document_->isModified()) return {};
+  return cliCommandLine(*spec, parameters(), document_->filePath());
+}
+
+QString AnalysesPanel::cliUnavailableReason() const {
+  const AnalysisSpec* spec = findAnalysis(currentAnalysis());
+  if (!spec || !spec->hasCliTwin) return tr("This analysis has no fovea-cli twin.");
+  if (!spec->definition->takes_scene) return {};
+  if (document_->filePath().isEmpty())
+    return tr("Save the scene first: fovea-cli reads the scene from a file, and this one has none yet.");
+  if (document_->isModified()) return tr("Save the scene first: fovea-cli would not see the unsaved changes.");
+  return {};
 }
 
 void AnalysesPanel::setBusy(bool busy) {

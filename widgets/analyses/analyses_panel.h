@@ -42,7 +42,10 @@ class AnalysesPanel : public QWidget {
   AnalysisRunner* runner() const { return runner_; }
   std::optional<AnalysisResult> lastResult(const QString& id) const;
   QString statusText() const;
+  // The equivalent fovea-cli command of the form; empty when there is none: then
+  // cliUnavailableReason() says why (no twin, or the scene must be saved first).
   QString cliCommand() const;
+  QString cliUnavailableReason() const;
 
  signals:
   void resultReady(const fovea::widgets::AnalysisResult& result);

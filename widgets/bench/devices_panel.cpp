@@ -27,6 +27,7 @@
 #include "model/analysis/trace_evaluator.h"
 #include "widgets/bench/camera_view.h"
 #include "widgets/bench/capture_wizard.h"
+#include "widgets/bench/pupil_tracker_view.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
@@ -201,6 +202,16 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
   patternRow->addWidget(pattern_, 1);
   cl->addLayout(patternRow);
   root->addWidget(camBox, 1);
+  // The pupil tracker (pupil_tracker_view.h): while it tracks, its gaze drives follow gaze.
+  auto* trackBox = new QGroupBox(tr("Pupil tracker"), this);
+  auto* tl = new QVBoxLayout(trackBox);
+  tl->setContentsMargins(4, 4, 4, 4);
+  tracker_ = new PupilTrackerView(document_ ? document_->scene() : Scene{}, trackBox);
+  tl->addWidget(tracker_);
+  root->addWidget(trackBox, 1);
+  connect(tracker_, &PupilTrackerView::gazeTracked, this, [this](double y, double p, double) {
+    if (follower_) follower_->setGaze(y, p);
+  });
   connect(crosshair_, &QCheckBox::toggled, camera_view_, &CameraView::setCrosshair);
   connect(exposure_, &QDoubleSpinBox::valueChanged, this, [this] { applyExposure(); });
   connect(gain_, &QDoubleSpinBox::valueChanged, this, [this] { applyExposure(); });
@@ -890,7 +901,8 @@ void DevicesPanel::setGaze(double yaw, double pitch) {
     gazeYaw_->setValue(y);
     gazePitch_->setValue(p);
   }
-  if (follower_) follower_->setGaze(yaw, pitch);
+  tracker_->setEyeGaze(yaw, pitch);  // the virtual eye looks where the slider says
+  if (follower_ && !tracker_->tracking()) follower_->setGaze(yaw, pitch);
   refresh();
 }
 

@@ -53,6 +53,7 @@ namespace fovea::widgets {
 
 class SceneDocument;
 class CameraView;
+class PupilTrackerView;
 
 struct DevicesPanelOptions {
   bool auto_connect = true;               // connect when a scene is opened
@@ -79,6 +80,7 @@ class DevicesPanel : public QWidget {
   void setSelectedAxis(const QString& key);  // "hoe.x"
   QString selectedAxis() const;
   CaptureWizard* wizard() const { return wizard_; }
+  PupilTrackerView* pupilTracker() const { return tracker_; }
   // Element position of an axis from its last snapshot (nullopt: unknown / no such axis).
   std::optional<double> axisPosition(const QString& key) const;
   bool followGaze() const;
@@ -156,6 +158,7 @@ class DevicesPanel : public QWidget {
   QSlider *gazeYaw_ = nullptr, *gazePitch_ = nullptr;
   QLabel *gazeLabel_ = nullptr, *followInfo_ = nullptr;
   CameraView* camera_view_ = nullptr;
+  PupilTrackerView* tracker_ = nullptr;
   QDoubleSpinBox *exposure_ = nullptr, *gain_ = nullptr;
   QCheckBox *crosshair_ = nullptr, *live_check_ = nullptr;
   QComboBox* pattern_ = nullptr;

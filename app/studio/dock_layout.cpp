@@ -1,0 +1,103 @@
+#include "app/studio/dock_layout.h"
+
+#include <QDockWidget>
+#include <QMainWindow>
+#include <QScrollArea>
+
+#include <algorithm>
+#include <vector>
+
+namespace fovea::studio {
+
+namespace {
+
+// The default tab groups: the first dock of each group is in front.
+struct DockGroup {
+  Qt::DockWidgetArea area;
+  std::vector<const char*> docks;
+};
+
+const std::vector<DockGroup>& defaultGroups() {
+  static const std::vector<DockGroup> groups = {
+      {Qt::LeftDockWidgetArea, {"SceneTreeDock"}},
+      {Qt::LeftDockWidgetArea, {"GazeDock", "RaysDock"}},
+      {Qt::RightDockWidgetArea, {"PropertiesDock", "AnalysesDock", "DevicesDock"}},
+      {Qt::RightDockWidgetArea, {"RetinaDock", "KSpaceDock", "PreviewDock"}},
+      {Qt::BottomDockWidgetArea, {"MessagesDock", "PlotsDock"}},
+  };
+  return groups;
+}
+
+}  // namespace
+
+QWidget* scrollableDockContent(QWidget* panel) {
+  auto* scroll = new QScrollArea;
+  scroll->setObjectName(panel->objectName().isEmpty() ? QString("dockScroll") : panel->objectName() + "Scroll");
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidget(panel);
+  return scroll;
+}
+
+void applyDefaultDockLayout(QMainWindow* window) {
+  // Bottom docks span only the centre: the side columns keep the full height.
+  window->setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
+  window->setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
+  // Take every known dock out first: tabifyDockWidget() and splitDockWidget() never undo
+  // an earlier tab group, so re-adding is the only way to rebuild the groups.
+  for (const DockGroup& group : defaultGroups())
+    for (const char* name : group.docks)
+      if (auto* dock = window->findChild<QDockWidget*>(name)) {
+        dock->setFloating(false);  // a floating dock is not in the layout to be removed from
+        window->removeDockWidget(dock);
+      }
+  // First the front dock of every group, stacked per area; then the other docks as tabs
+  // behind their front (splitDockWidget() on a tabbed dock would add a tab, not a split).
+  auto areaIndex = [](Qt::DockWidgetArea a) {
+    return a == Qt::LeftDockWidgetArea ? 0 : a == Qt::RightDockWidgetArea ? 1 : 2;
+  };
+  QDockWidget* lastInArea[3] = {nullptr, nullptr, nullptr};
+  std::vector<QDockWidget*> fronts(defaultGroups().size(), nullptr);
+  for (std::size_t g = 0; g < defaultGroups().size(); ++g) {
+    const DockGroup& group = defaultGroups()[g];
+    for (const char* name : group.docks) {
+      auto* dock = window->findChild<QDockWidget*>(name);
+      if (!dock) continue;
+      dock->setFloating(false);
+      const Qt::Orientation along = group.area == Qt::BottomDockWidgetArea ? Qt::Horizontal : Qt::Vertical;
+      window->addDockWidget(group.area, dock, along);
+      QDockWidget*& above = lastInArea[areaIndex(group.area)];
+      if (above) window->splitDockWidget(above, dock, Qt::Vertical);
+      above = dock;
+      fronts[g] = dock;
+      dock->show();
+      break;
+    }
+  }
+  for (std::size_t g = 0; g < defaultGroups().size(); ++g) {
+    if (!fronts[g]) continue;
+    for (const char* name : defaultGroups()[g].docks) {
+      auto* dock = window->findChild<QDockWidget*>(name);
+      if (!dock || dock == fronts[g]) continue;
+      dock->setFloating(false);
+      window->tabifyDockWidget(fronts[g], dock);
+      dock->show();
+    }
+    fronts[g]->raise();
+  }
+  // Proportions: side columns about a fifth and a quarter of the width, the bottom strip
+  // a sixth of the height; the upper group of each column gets a little more than half.
+  const int w = std::max(window->width(), 800), h = std::max(window->height(), 600);
+  auto dock = [window](const char* name) { return window->findChild<QDockWidget*>(name); };
+  if (auto* tree = dock("SceneTreeDock"), *props = dock("PropertiesDock"); tree && props)
+    window->resizeDocks({tree, props}, {std::clamp(w / 5, 220, 340), std::clamp(w / 4, 300, 440)}, Qt::Horizontal);
+  if (auto* messages = dock("MessagesDock"))
+    window->resizeDocks({messages}, {std::clamp(h / 6, 110, 220)}, Qt::Vertical);
+  const int column = h - 90;  // menu bar, status bar, dock titles
+  if (auto* tree = dock("SceneTreeDock"), *gaze = dock("GazeDock"); tree && gaze)
+    window->resizeDocks({tree, gaze}, {column * 45 / 100, column * 55 / 100}, Qt::Vertical);
+  if (auto* props = dock("PropertiesDock"), *retina = dock("RetinaDock"); props && retina)
+    window->resizeDocks({props, retina}, {column * 55 / 100, column * 45 / 100}, Qt::Vertical);
+}
+
+}  // namespace fovea::studio

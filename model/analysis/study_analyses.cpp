@@ -1,0 +1,275 @@
+#include "model/analysis/study_analyses.h"
+
+#include <stdexcept>
+
+#include "model/analysis/analysis_json.h"
+#include "model/analysis/angular_resolution.h"
+#include "model/analysis/beam_shaping.h"
+#include "model/analysis/lens_catalog.h"
+#include "model/analysis/trace_evaluator.h"
+
+namespace fovea::analysis {
+
+namespace {
+const std::vector<std::string> kPolarizations{"unpolarized", "s", "p"};
+
+Polarization polarizationFrom(const nlohmann::json& v) {
+  return *parsePolarization(textOf(v, "polarization"));  // a validated choice
+}
+
+std::vector<ParameterSpec> gazeRangeParameters(double from, double to, const std::string& step_help) {
+  return {
+      gazeAngle("gaze-from", "Gaze from", from, "first gaze angle"),
+      gazeAngle("gaze-to", "Gaze to", to, "last gaze angle"),
+      positive("gaze-step", "Gaze step", "deg", 5.0, 90.0, 2, step_help),
+      choice("axis", "Axis", {"yaw", "pitch"}, "yaw", "yaw: horizontal, HOE local x; pitch: vertical, HOE local y")};
+}
+
+OptionGroup gazeGroup(bool repeatable) {
+  return {"gaze-deg", {"gaze-yaw", "gaze-pitch"}, "YAW[,PITCH] gaze in degrees", repeatable};
+}
+}  // namespace
+
+std::vector<ParameterSpec> studyParameters() {
+  // 3 deg: above the 1-2 deg jitter of the ray-sampled FOV (gaze_studies.h), so that the eye
+  // box measures the optics, not the ray sampling; 12 000 rays per wavelength per trace.
+  return {integer("rays", "Rays per wavelength", 12000, 50, 1000000, "rays per wavelength per trace"),
+          number("tolerance-deg", "Eye-box tolerance", "deg", 3.0, 0.0, 90.0, 2,
+                 "eye-box criterion: FOV within this of the zero-gaze FOV")};
+}
+
+std::optional<std::array<double, 2>> gazeFrom(const nlohmann::json& v) {
+  const auto yaw = optionalNumberOf(v, "gaze-yaw"), pitch = optionalNumberOf(v, "gaze-pitch");
+  if (!yaw && !pitch) return std::nullopt;
+  return std::array<double, 2>{yaw.value_or(0.0), pitch.value_or(0.0)};
+}
+
+TraceOptions traceOptionsFrom(const nlohmann::json& v) {
+  TraceOptions o;
+  o.gaze_deg = gazeFrom(v);
+  o.hoe_shift_mm = {numberOf(v, "hoe-shift-x"), numberOf(v, "hoe-shift-y")};
+  o.source_shift_mm = numberOf(v, "source-shift-mm");
+  o.wavelength_nm = optionalNumberOf(v, "wavelength-nm");
+  o.rays = integerOf(v, "rays");
+  o.efficiency_threshold = numberOf(v, "threshold");
+  o.polarization = polarizationFrom(v);
+  return o;
+}
+
+FovEvaluator evaluatorFrom(const nlohmann::json& v) {
+  TraceEvaluatorOptions t;
+  t.rays = integerOf(v, "rays");
+  return traceEvaluator(t);
+}
+
+GazeStudyOptions gazeStudyOptionsFrom(const nlohmann::json& v) {
+  GazeStudyOptions g;
+  g.tolerance_deg = numberOf(v, "tolerance-deg");
+  return g;
+}
+
+GazeAxis axisFrom(const nlohmann::json& v) {
+  return textOf(v, "axis") == "pitch" ? GazeAxis::Pitch : GazeAxis::Yaw;
+}
+
+SelectivityOptions selectivityOptionsFrom(const nlohmann::json& v) {
+  SelectivityOptions o;
+  o.point_mm = {numberOf(v, "point-u"), numberOf(v, "point-v")};
+  o.angle_span_deg = numberOf(v, "angle-span-deg");
+  o.wavelength_span_nm = numberOf(v, "wavelength-span-nm");
+  o.angle_samples = o.wavelength_samples = integerOf(v, "samples");
+  o.polarization = polarizationFrom(v);
+  return o;
+}
+
+AnalysisDefinition traceAnalysis() {
+  AnalysisDefinition d;
+  d.id = "trace";
+  d.title = "Trace (retinal FOV at one gaze)";
+  d.description =
+      "Projector -> recorded HOE stack -> eye: retinal FOV, rays in the pupil and mean efficiency, per wavelength.";
+  ParameterSpec yaw = gazeAngle("gaze-yaw", "Gaze yaw", nullptr, "gaze yaw (+ towards the projector's side)");
+  ParameterSpec pitch = gazeAngle("gaze-pitch", "Gaze pitch", nullptr, "gaze pitch (+ up)");
+  yaw.unset_meaning = pitch.unset_meaning = "the scene's gaze";
+  ParameterSpec wavelength =
+      positive("wavelength-nm", "Wavelength", "nm", nullptr, 2000.0, 1, "trace only this wavelength");
+  wavelength.unset_meaning = "every projector laser";
+  d.parameters = {
+      yaw,
+      pitch,
+      number("hoe-shift-x", "HOE shift x", "mm", 0.0, -50, 50, 3, "lateral HOE shift, local x"),
+      number("hoe-shift-y", "HOE shift y", "mm", 0.0, -50, 50, 3, "lateral HOE shift, local y"),
+      number("source-shift-mm", "Source shift", "mm", 0.0, -100, 100, 3, "projector point-source shift along bench z"),
+      wavelength,
+      integer("rays", "Rays per wavelength", 4000, 1, 10000000,
+              "approximate rays per wavelength over the projector FOV"),
+      number("threshold", "Efficiency threshold", "", 0.1, 0, 1, 3, "rays below it do not count for the FOV"),
+      choice("polarization", "Polarisation", kPolarizations, "unpolarized", "projector light")};
+  d.option_groups = {
+      gazeGroup(true),
+      {"hoe-shift-mm", {"hoe-shift-x", "hoe-shift-y"}, "X[,Y] lateral HOE shift in its local frame (mm)"}};
+  d.run = [](const Scene& scene, const nlohmann::json& v, const StudyControl&) -> std::optional<nlohmann::json> {
+    const TraceOptions o = traceOptionsFrom(v);
+    return traceResultJson(traceScene(scene, o), o);
+  };
+  return d;
+}
+
+AnalysisDefinition sweepAnalysis() {
+  AnalysisDefinition d;
+  d.id = "sweep";
+  d.title = "Sweep: HOE travel and FOV vs gaze";
+  d.description = "For each gaze, the lateral HOE shift that maximises the FOV (supplement A.3), and the eye box.";
+  d.parameters = gazeRangeParameters(-20, 20, "gaze step (> 0)");
+  d.parameters.push_back(choice("method", "Method", {"hoe", "source"}, "hoe",
+                                "hoe: move the HOE laterally; source: move the projector along bench z"));
+  for (auto& p : studyParameters()) d.parameters.push_back(p);
+  d.plots = {"fov-vs-gaze", "travel-vs-gaze"};
+  d.cached = true;
+  d.check = checkGazeRange;
+  d.run = [](const Scene& scene, const nlohmann::json& v,
+             const StudyControl& control) -> std::optional<nlohmann::json> {
+    const ShiftMethod m = textOf(v, "method") == "source" ? ShiftMethod::Source : ShiftMethod::Hoe;
+    const auto r = sweepGaze(scene, evaluatorFrom(v), numberOf(v, "gaze-from"), numberOf(v, "gaze-to"),
+                             numberOf(v, "gaze-step"), axisFrom(v), m, gazeStudyOptionsFrom(v), control);
+    if (!r.ok()) return std::nullopt;
+    return sweepResultJson(*r.value, textOf(v, "axis"));
+  };
+  return d;
+}
+
+std::optional<nlohmann::json> compareShiftStudy(const Scene& scene, const nlohmann::json& v,
+                                                const StudyControl& control) {
+  const FovEvaluator eval = evaluatorFrom(v);
+  EyeBox boxes[3];  // hoe, source, static
+  int done = 0;
+  for (ShiftMethod m : {ShiftMethod::Hoe, ShiftMethod::Source, ShiftMethod::None}) {
+    StudyControl third;
+    third.cancel = control.cancel;
+    if (control.on_progress) third.on_progress = [&control, done](double f) { control.on_progress((done + f) / 3.0); };
+    const auto r = sweepGaze(scene, eval, numberOf(v, "gaze-from"), numberOf(v, "gaze-to"), numberOf(v, "gaze-step"),
+                             axisFrom(v), m, gazeStudyOptionsFrom(v), third);
+    if (!r.ok()) return std::nullopt;
+    boxes[done++] = r.value->eyebox;
+  }
+  return compareShiftJson(boxes[0], boxes[1], &boxes[2], axisFrom(v));
+}
+
+AnalysisDefinition compareShiftAnalysis() {
+  AnalysisDefinition d;
+  d.id = "compare-shift";
+  d.title = "Compare shift: HOE vs point source";
+  d.description = "Dynamic eye box: moving the HOE vs moving the projector point source (supplement A.4).";
+  d.parameters = gazeRangeParameters(-40, 40, "coarse step before the borders are bisected");
+  for (auto& p : studyParameters()) d.parameters.push_back(p);
+  d.cached = true;
+  d.check = checkGazeRange;
+  d.run = compareShiftStudy;
+  return d;
+}
+
+AnalysisDefinition sensitivityAnalysis() {
+  AnalysisDefinition d;
+  d.id = "sensitivity";
+  d.title = "Sensitivity to one scene parameter";
+  d.description =
+      "FOV, mean efficiency and efficiency uniformity at the scene's gaze over values of any numeric scene "
+      "parameter (its JSON path in the scene file).";
+  d.parameters = {text("parameter", "Parameter (JSON path)",
+                       {"eye.relief_mm", "eye.pupil_diameter_mm", "hoe_layers[1].shrinkage_percent", "hoe_layers[1].n1",
+                        "hoe_layers[1].thickness_um", "hoe.rotation_deg[0]", "projector.position_mm[2]"},
+                       "eye.relief_mm", "JSON path of a number in the scene file, e.g. eye.relief_mm"),
+                  number("from", "From", "", 18.0, -1e6, 1e6, 4, "first value"),
+                  number("to", "To", "", 26.0, -1e6, 1e6, 4, "last value"),
+                  integer("steps", "Steps", 5, 1, 10000, "number of values")};
+  for (auto& p : studyParameters()) d.parameters.push_back(p);
+  d.plots = {"sensitivity"};
+  d.cached = true;
+  d.run = [](const Scene& scene, const nlohmann::json& v,
+             const StudyControl& control) -> std::optional<nlohmann::json> {
+    const std::string path = textOf(v, "parameter");
+    double nominal = 0;
+    try {  // both ends must give a valid scene before any work
+      nominal = parameterValue(scene, path);
+      withParameter(scene, path, numberOf(v, "from"));
+      withParameter(scene, path, numberOf(v, "to"));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("parameter: ") + e.what());
+    }
+    const auto r = sensitivitySweep(scene, evaluatorFrom(v), path, numberOf(v, "from"), numberOf(v, "to"),
+                                    integerOf(v, "steps"), control);
+    if (!r.ok()) return std::nullopt;
+    return sensitivityResultJson(*r.value, path, nominal);
+  };
+  return d;
+}
+
+AnalysisDefinition resolutionAnalysis() {
+  AnalysisDefinition d;
+  d.id = "resolution";
+  d.title = "Angular resolution vs eccentricity";
+  d.description = "Foveal, peripheral, optical-limit and perceived resolution (cpd) for one gaze (supplement A.5).";
+  ParameterSpec yaw = gazeAngle("gaze-yaw", "Gaze yaw", nullptr, "gaze yaw");
+  ParameterSpec pitch = gazeAngle("gaze-pitch", "Gaze pitch", nullptr, "gaze pitch");
+  yaw.unset_meaning = pitch.unset_meaning = "the scene's gaze";
+  d.parameters = {yaw, pitch,
+                  integer("samples", "Samples", 241, 3, 100000, "eccentricity samples over the peripheral field")};
+  d.option_groups = {gazeGroup(false)};
+  d.plots = {"resolution-vs-eccentricity"};
+  d.run = [](const Scene& scene, const nlohmann::json& v, const StudyControl&) -> std::optional<nlohmann::json> {
+    ResolutionOptions o;
+    o.samples = integerOf(v, "samples");
+    o.gaze_deg = gazeFrom(v);
+    const ResolutionResult r = analyzeResolution(scene, o);
+    if (r.samples.empty())
+      throw std::runtime_error("no line of sight reaches the HOE or the foveal image for this gaze");
+    return resolutionResultJson(r, scene);
+  };
+  return d;
+}
+
+AnalysisDefinition optimizeLensAnalysis() {
+  AnalysisDefinition d;
+  d.id = "optimize-lens";
+  d.title = "Optimise the beam-shaping lens";
+  d.description =
+      "Stock lens, position and Scheimpflug tilt minimising the RMS pixel spot on the HOE (supplement A.2), NLopt "
+      "BOBYQA from several starts per catalogue lens.";
+  d.parameters = {integer("starts", "Starts per lens", 5, 1, 50, "optimiser starts per catalogue lens")};
+  d.plots = {"lens-candidates"};
+  d.cached = true;
+  d.run = [](const Scene& scene, const nlohmann::json& v,
+             const StudyControl& control) -> std::optional<nlohmann::json> {
+    LensOptimizationOptions o;
+    o.starts_per_lens = integerOf(v, "starts");
+    const auto r = optimizeBeamShapingLens(scene, defaultLensCatalog(), o, control);
+    if (!r.ok()) return std::nullopt;
+    return lensOptimizationJson(*r.value);
+  };
+  return d;
+}
+
+AnalysisDefinition selectivityAnalysis() {
+  AnalysisDefinition d;
+  d.id = "selectivity";
+  d.title = "HOE layer selectivity (efficiency vs detuning)";
+  d.description =
+      "Angular and spectral selectivity of every recorded layer at one plate point: efficiency of the layer alone "
+      "as the projector's probe is tilted or its wavelength swept.";
+  d.parameters = {number("point-u", "Plate point u", "mm", 0.0, -500, 500, 3, "HOE local x of the point"),
+                  number("point-v", "Plate point v", "mm", 0.0, -500, 500, 3, "HOE local y of the point"),
+                  number("angle-span-deg", "Angle span (±)", "deg", 10.0, 0.01, 80, 2, "detuning range -A..A"),
+                  number("wavelength-span-nm", "Wavelength span (±)", "nm", 40.0, 0.1, 500, 1,
+                         "wavelength range around each layer"),
+                  integer("samples", "Samples", 401, 11, 100001, "samples per curve"),
+                  choice("polarization", "Polarisation", kPolarizations, "unpolarized", "probe light")};
+  d.option_groups = {{"point-mm", {"point-u", "point-v"}, "U[,V] plate point in the HOE's local frame (mm)"}};
+  d.plots = {"efficiency-vs-angle", "efficiency-vs-wavelength"};
+  d.run = [](const Scene& scene, const nlohmann::json& v, const StudyControl&) -> std::optional<nlohmann::json> {
+    if (scene.hoe_layers.empty()) throw std::runtime_error("the scene has no HOE layer");
+    return selectivityResultJson(analyzeSelectivity(scene, selectivityOptionsFrom(v)));
+  };
+  return d;
+}
+
+}  // namespace fovea::analysis

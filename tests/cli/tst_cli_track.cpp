@@ -1,0 +1,161 @@
+// fovea-cli track and closed-loop contracts: per-frame centre, ellipse, confidence, time
+// (and with --virtual the ground truth and errors); PNG files through the image I/O; an
+// unreadable file and a closed eye give zero confidence, never a pupil; the closed loop's
+// latency budget, inset error and FOV-loss keys and its latency sweep.
+#include <QtTest>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "model/gaze/eye_image_renderer.h"
+#include "model/image/image_io.h"
+#include "tests/cli/cli_process.h"
+
+namespace {
+using Run = fovea::testing::CliOutput;
+Run cli(const QStringList& args) {
+  return fovea::testing::runFoveaCli(args, 300000);
+}
+std::filesystem::path tmpDir() {
+  const auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_track";
+  std::filesystem::create_directories(d);
+  return d;
+}
+void writeGreyPng(const std::string& path, const cv::Mat& grey8) {
+  cv::Mat rgb(grey8.size(), CV_32FC3);
+  for (int y = 0; y < grey8.rows; ++y)
+    for (int x = 0; x < grey8.cols; ++x) {
+      const float v = fovea::image::srgbToLinear(grey8.at<std::uint8_t>(y, x) / 255.0f);
+      rgb.at<cv::Vec3f>(y, x) = {v, v, v};
+    }
+  fovea::image::writeLinearRgb(path, rgb);
+}
+const std::string kScene = std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
+}  // namespace
+
+class TestCliTrack : public QObject {
+  Q_OBJECT
+ private slots:
+  void virtualFramesWithTruth() {
+    const Run r = cli({"track", "--virtual", "12", "--seed", "3", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["source"].get<std::string>(), std::string("virtual"));
+    QCOMPARE(j["seed"].get<int>(), 3);
+    QCOMPARE(j["frames"].size(), std::size_t{12});
+    int closed = 0;
+    for (const auto& f : j["frames"]) {
+      for (const char* k :
+           {"index", "found", "confidence", "centre_px", "ellipse", "glints_px", "time_ms", "subset", "truth", "error"})
+        QVERIFY2(f.contains(k), k);
+      QVERIFY(f["time_ms"].get<double>() >= 0);
+      if (f["subset"] == "closed") {
+        ++closed;
+        QCOMPARE(f["found"].get<bool>(), false);
+        QCOMPARE(f["confidence"].get<double>(), 0.0);
+        QVERIFY(f["centre_px"].is_null());
+        QVERIFY(f["reason"].is_string());
+        QCOMPARE(f["error"]["false_positive"].get<bool>(), false);
+        continue;
+      }
+      if (f["found"].get<bool>()) {
+        const auto& e = f["ellipse"];
+        for (const char* k : {"centre_px", "major_px", "minor_px", "angle_deg"}) QVERIFY2(e.contains(k), k);
+        QVERIFY(f["confidence"].get<double>() > 0 && f["confidence"].get<double>() <= 1);
+        QVERIFY(f["error"]["centre_px"].is_number());
+      }
+      QVERIFY(f["truth"]["centre_px"].is_array());
+      QVERIFY(f["truth"]["gaze_deg"].is_array());
+    }
+    QCOMPARE(closed, 2);
+    const auto& s = j["summary"];
+    QCOMPARE(s["frames"].get<int>(), 12);
+    QCOMPARE(s["with_pupil"].get<int>(), 10);
+    QCOMPARE(s["false_positives"].get<int>(), 0);
+    QVERIFY(s["detection_rate"].get<double>() >= 0.8);
+    QCOMPARE(s["subsets"].size(), std::size_t{6});
+    for (const auto& sub : s["subsets"]) QCOMPARE(sub["frames"].get<int>(), 2);
+    // Same seed, same frames.
+    const auto again =
+        nlohmann::json::parse(cli({"track", "--virtual", "12", "--seed", "3", "--json"}).out.toStdString());
+    QCOMPARE(again["frames"][0]["centre_px"], j["frames"][0]["centre_px"]);
+  }
+
+  void imageFiles() {
+    fovea::gaze::IrCameraPose cam;
+    fovea::gaze::EyeAppearance eye;
+    fovea::gaze::EyeFrameSpec spec;
+    spec.gaze_deg = {8, -3};
+    spec.leds_mm = fovea::gaze::ledRing(cam, 6, 10);
+    const auto frame = fovea::gaze::renderEyeFrame(cam, eye, spec);
+    const std::string eye_png = (tmpDir() / "eye.png").string(), black = (tmpDir() / "black.png").string();
+    const std::string garbage = (tmpDir() / "garbage.jpg").string();
+    writeGreyPng(eye_png, frame.image);
+    writeGreyPng(black, cv::Mat(200, 200, CV_8U, cv::Scalar(0)));
+    std::ofstream(garbage) << "not a jpeg";
+    Run r = cli({"track", QString::fromStdString(eye_png), QString::fromStdString(black), "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["source"].get<std::string>(), std::string("images"));
+    QVERIFY(j["seed"].is_null());
+    const auto& f0 = j["frames"][0];
+    QCOMPARE(f0["image"].get<std::string>(), eye_png);
+    QVERIFY(f0["found"].get<bool>());
+    QVERIFY(std::hypot(f0["centre_px"][0].get<double>() - frame.truth.pupil.centre.x,
+                       f0["centre_px"][1].get<double>() - frame.truth.pupil.centre.y) < 1.0);
+    QVERIFY(f0["glints_px"].size() >= 4);
+    QCOMPARE(j["frames"][1]["found"].get<bool>(), false);
+    QCOMPARE(j["frames"][1]["confidence"].get<double>(), 0.0);
+    // An unreadable file: zero confidence with its error, the others still tracked, exit 1.
+    r = cli({"track", QString::fromStdString(garbage), QString::fromStdString(eye_png), "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY(r.err.contains("garbage.jpg"));
+    j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["frames"][0]["confidence"].get<double>(), 0.0);
+    QCOMPARE(j["frames"][0]["found"].get<bool>(), false);
+    QVERIFY(j["frames"][0]["error"].is_string());
+    QVERIFY(j["frames"][1]["found"].get<bool>());
+    QCOMPARE(j["summary"]["unreadable"].get<int>(), 1);
+  }
+
+  void usageErrors() {
+    QCOMPARE(cli({"track", "--json"}).code, 2);
+    QCOMPARE(cli({"track", "a.png", "--virtual", "3"}).code, 2);
+    QCOMPARE(cli({"track", "--virtual", "0"}).code, 2);
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--saccades", "0"}).code, 2);
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--latency-sweep", "5,-1"}).code, 2);
+    QCOMPARE(cli({"closed-loop", "/nonexistent/scene.json", "--saccades", "1"}).code, 1);
+  }
+
+  void closedLoopBudget() {
+    const Run r = cli({"closed-loop", kScene.c_str(), "--saccades", "2", "--seed", "5", "--stage-model", "DDSM50",
+                       "--fps", "60", "--latency-sweep", "0,40", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["saccades"].get<int>(), 2);
+    QCOMPARE(j["seed"].get<int>(), 5);
+    const auto& b = j["latency_budget_ms"];
+    for (const char* k :
+         {"capture", "detect", "detect_measured_mean", "map", "command", "to_command", "hoe_motion", "oled_motion"})
+      QVERIFY2(b.contains(k), k);
+    QVERIFY(std::abs(b["to_command"].get<double>() -
+                     (b["capture"].get<double>() + b["detect"].get<double>() + b["map"].get<double>() +
+                      b["extra"].get<double>() + b["command"].get<double>())) < 1e-9);
+    QCOMPARE(j["stages"]["hoe"].get<std::string>(), std::string("DDSM50"));
+    for (const char* k : {"inset_error_deg", "off_fovea", "settle_ms", "unsettled_saccades", "hoe_error_mm", "fov_loss",
+                          "saccade_stats", "calibration"})
+      QVERIFY2(j.contains(k), k);
+    QCOMPARE(j["saccade_stats"]["count"].get<int>(), 2);
+    QVERIFY(j["inset_error_deg"]["mean"].get<double>() < 2.0);
+    QVERIFY(j["calibration"]["accuracy_deg"].get<double>() < 1.0);
+    const auto& sweep = j["latency_sweep"];
+    QCOMPARE(sweep.size(), std::size_t{2});
+    QVERIFY(sweep[1]["inset_error_deg_mean"].get<double>() > sweep[0]["inset_error_deg_mean"].get<double>());
+    QVERIFY(std::abs(sweep[1]["to_command_ms"].get<double>() - sweep[0]["to_command_ms"].get<double>() - 40) < 1e-9);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliTrack)
+#include "tst_cli_track.moc"
