@@ -1,5 +1,12 @@
 // fovea-cli format SCENE [--in-place]: rewrite a scene in canonical form (key order,
-// indentation, unknown keys kept). Prints to stdout, or replaces the file atomically.
+// indentation, unknown keys kept). Prints to stdout, or replaces the file atomically (through a
+// symlink: the link's target is replaced, the link stays).
+//
+// The canonical form is bounded: the reader refuses nesting deeper than 64 levels, and a
+// canonical text more than kMaxGrowth times the input (+ 64 KiB) is refused before anything
+// is written (2-space indentation grows with the depth; a normal scene grows by less than 3).
+#include <cstddef>
+#include <filesystem>
 #include <iostream>
 
 #include "app/cli/cli_common.h"
@@ -7,6 +14,8 @@
 
 namespace fovea::cli {
 namespace {
+
+constexpr std::size_t kMaxGrowth = 16;
 
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("format", "Rewrite a scene file in canonical form");
@@ -16,12 +25,19 @@ void install(CLI::App& app) {
   cmd->add_flag("--in-place,-i", *inPlace, "replace the file (atomically) instead of printing");
   cmd->callback([path, inPlace] {
     const Scene scene = loadSceneOrExit(*path);
+    const std::string text = serializeScene(scene);
+    std::error_code ec;
+    const auto input_bytes = std::filesystem::file_size(*path, ec);
+    if (!ec && text.size() > kMaxGrowth * input_bytes + (64u << 10))
+      inputError(*path + ": the canonical form would be " + std::to_string(text.size()) + " bytes, more than " +
+                 std::to_string(kMaxGrowth) + " times the file's " + std::to_string(input_bytes) +
+                 " bytes: refused (deeply nested notes?)");
     if (!*inPlace) {
-      std::cout << serializeScene(scene);
+      std::cout << text;
       return;
     }
     try {
-      saveSceneFileAtomic(scene, *path);
+      writeFileAtomic(*path, text);
     } catch (const SceneIoError& e) {
       inputError(e.what());
     }

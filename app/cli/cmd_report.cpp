@@ -23,6 +23,7 @@
 #include <memory>
 
 #include "app/cli/cli_common.h"
+#include "model/io/save_temporaries.h"
 
 namespace fovea::cli {
 namespace {
@@ -113,6 +114,7 @@ void install(CLI::App& app) {
   cmd->callback([a] {
     const std::string ext = lower(std::filesystem::path(a->out).extension().string());
     if (ext != ".pdf" && ext != ".html" && ext != ".htm") usageError("--out: the file must end in .pdf or .html");
+    if (auto why = cannotWriteFile(a->out)) usageError("--out: cannot write '" + a->out + "': " + *why);
     for (const auto& g : a->gazes) {
       const auto v = parseNumberList(g, "--gaze-deg", 1, 2);
       for (double x : v)

@@ -10,7 +10,6 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QScreen>
-#include <QSaveFile>
 #include <QSettings>
 #include <QShortcut>
 #include <QStatusBar>
@@ -257,17 +256,15 @@ bool MainWindow::openFile(const QString& path, bool interactive) {
 }
 
 bool MainWindow::saveTo(const QString& path, bool interactive) {
-  QSaveFile out(path);
-  const std::string text = serializeScene(document_->scene());
+  // The save code of the CLI (model/scene/scene_io.h): atomic, through symlinks, and its
+  // temporary files are the ones the next open finds and removes if a save was killed.
   QString error;
-  if (!out.open(QIODevice::WriteOnly))
-    error = out.errorString();
-  else if (out.write(text.data(), static_cast<qint64>(text.size())) != static_cast<qint64>(text.size()))
-    error = out.errorString();
-  else if (!out.commit())
-    error = out.errorString();
+  try {
+    writeFileAtomic(path.toStdString(), serializeScene(document_->scene()));
+  } catch (const SceneIoError& e) {
+    error = QString::fromStdString(e.what());
+  }
   if (!error.isEmpty()) {
-    out.cancelWriting();
     const QString message = tr("Saving %1 failed (%2); any existing file is unchanged.").arg(path, error);
     log_->error(message);
     if (interactive) QMessageBox::critical(this, tr("Save failed"), message);

@@ -6,15 +6,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/io/json_input.h"
+
 namespace fovea {
 
 std::vector<StockLens> parseLensCatalog(std::string_view text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw LensCatalogError(source + ": not valid JSON: " + e.what());
-  }
+  auto parsed = parseJsonText(text);
+  if (const auto* e = std::get_if<JsonInputError>(&parsed)) throw LensCatalogError(describe(*e, source));
+  nlohmann::json j = std::get<nlohmann::json>(std::move(parsed));
   if (!j.is_object() || !j.contains("lenses") || !j["lenses"].is_array())
     throw LensCatalogError(source + ": expected an object with a \"lenses\" array");
   std::vector<StockLens> out;

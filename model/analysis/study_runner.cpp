@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "model/io/json_input.h"
 #include "model/scene/scene_io.h"
 
 namespace fovea {
@@ -45,17 +46,16 @@ std::optional<nlohmann::json> StudyCache::find(const std::string& key) {
     return it->second;
   }
   if (!directory_.empty()) {
-    std::ifstream in(std::filesystem::path(directory_) / (hexDigest(key) + ".json"));
-    if (in) {
-      try {
-        nlohmann::json stored = nlohmann::json::parse(in);
-        if (stored.value("key", std::string()) == key && stored.contains("result")) {
-          memory_[key] = stored["result"];
-          ++hits_;
-          return stored["result"];
-        }
-      } catch (const nlohmann::json::exception&) {
-        // A damaged cache file is a miss; it is rewritten below by store().
+    // Through the JSON input limits: a damaged or hostile cache file is a miss (rewritten by store()).
+    auto text = readInputFile(std::filesystem::path(directory_) / (hexDigest(key) + ".json"));
+    if (auto* bytes = std::get_if<0>(&text)) {
+      auto parsed = parseJsonText(*bytes);
+      if (auto* stored = std::get_if<nlohmann::json>(&parsed);
+          stored && stored->is_object() && stored->contains("result") && stored->contains("key") &&
+          (*stored)["key"] == key) {
+        memory_[key] = (*stored)["result"];
+        ++hits_;
+        return (*stored)["result"];
       }
     }
   }

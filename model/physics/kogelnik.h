@@ -67,6 +67,13 @@ inline T chc(T u2) {
   return u2 > T(0) ? cosh(sqrt(u2)) : cos(sqrt(-u2));
 }
 
+// min(1, x) that keeps a NaN a NaN: std::min(T(1), NaN) is 1, which turned overflowed
+// intermediate results (inf - inf) into "full diffraction" instead of exposing them.
+template <class T>
+inline T atMostOne(T x) {
+  return x > T(1) ? T(1) : x;
+}
+
 // Directions below this |c_S| are treated as grazing: the diffracted wave runs along the film
 // and carries no power out (the limit of both closed forms as c_S -> 0 with vartheta != 0).
 inline constexpr double kGrazingCs = 1e-12;
@@ -90,8 +97,8 @@ inline ResultT<T> losslessT(T c_r, T c_s, T vartheta, T kappa, T d) {
     const T s = shc(u2), c = chc(u2);
     // = sin^2(sqrt(nu^2+xi^2)) / (1 + xi^2/nu^2) and cos^2 + xi^2 sin^2/(nu^2+xi^2) = |R(d)|^2;
     // rounding can carry either an ulp above 1.
-    r.efficiency = std::min(T(1), nu2 * s * s);
-    r.zero_order = std::min(T(1), c * c + r.xi * r.xi * s * s);
+    r.efficiency = atMostOne(nu2 * s * s);
+    r.zero_order = atMostOne(c * c + r.xi * r.xi * s * s);
   } else {
     // nu^2 - xi^2 as a product: no cancellation next to the branch change nu = xi.
     const T g = r.nu * shc((r.nu - r.xi) * (r.nu + r.xi));
@@ -127,6 +134,17 @@ ResultT<T> absorbingT(T c_r, T c_s, T vartheta, T kappa, T alpha, T d) {
   const T acs = abs(c_s);
   r.nu = abs(kappa) * d / sqrt(c_r * acs);
   r.xi = abs(vartheta) * d / (T(2) * acs);
+  // Without modulation (kappa = 0) nothing couples into S and Eq. 19 gives R(d) = e^{-alpha d / c_R}
+  // exactly. The same holds, to far below the rounding of T, when alpha/c_R, alpha/|c_S| or
+  // vartheta/|c_S| exceed the floating range (probe or diffracted wave at grazing incidence in a
+  // strongly absorbing film): S is then slaved to R with |S| <= kappa |R| / |alpha + i vartheta|
+  // (quasi-static limit of Eq. 20), and the matrix below would hold inf and give inf - inf = NaN.
+  using std::isfinite;
+  if (kappa == T(0) || !isfinite(alpha / c_r) || !isfinite(alpha / acs) || !isfinite(vartheta / acs)) {
+    r.efficiency = T(0);
+    r.zero_order = std::exp(T(-2) * (alpha * d) / c_r);
+    return r;
+  }
 
   const C m11 = -alpha / c_r;
   const C m22 = -(alpha + kI * vartheta) / c_s;
@@ -134,8 +152,16 @@ ResultT<T> absorbingT(T c_r, T c_s, T vartheta, T kappa, T alpha, T d) {
   const C n21 = -kI * kappa / c_s;
   const C n11 = T(0.5) * (m11 - m22);
   const C p = n12 * n21;
-  C q = std::sqrt(n11 * n11 + p);
-  if (std::real(q * std::conj(n11)) < T(0)) q = -q;
+  // q = sqrt(n11^2 + p) on the branch along n11. For |n11| > 1 it is formed as
+  // n11 sqrt(1 + p/n11^2) (principal root: Re(q conj n11) >= 0 by construction), so that n11^2
+  // cannot overflow (|n11| > 1e154 in double: a thick, strongly absorbing film).
+  C q;
+  if (std::abs(n11) > T(1)) {
+    q = n11 * std::sqrt(T(1) + (p / n11) / n11);
+  } else {
+    q = std::sqrt(n11 * n11 + p);
+    if (std::real(q * std::conj(n11)) < T(0)) q = -q;
+  }
   const C qd = q * d;  // Q
   C s_out, r_out;      // transmission: S(d), R(d); reflection: S(0), R(d)
 
@@ -185,8 +211,8 @@ ResultT<T> absorbingT(T c_r, T c_s, T vartheta, T kappa, T alpha, T d) {
       r_out = two_q * std::exp(lp) / den;
     }
   }
-  r.efficiency = std::min(T(1), acs / c_r * std::norm(s_out));
-  r.zero_order = std::min(T(1), std::norm(r_out));
+  r.efficiency = atMostOne(acs / c_r * std::norm(s_out));
+  r.zero_order = atMostOne(std::norm(r_out));
   return r;
 }
 

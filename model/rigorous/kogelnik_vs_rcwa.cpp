@@ -48,8 +48,7 @@ KogelnikRcwaGrid KogelnikRcwaGrid::quick() {
   return g;
 }
 
-std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, const KogelnikEvaluator& evaluator) {
-  const KogelnikEvaluator kog = evaluator ? evaluator : KogelnikEvaluator(&kogelnikClosedForm);
+std::vector<KogelnikRcwaPoint> kogelnikRcwaCases(const KogelnikRcwaGrid& grid) {
   std::vector<KogelnikRcwaPoint> out;
   for (const GratingGeometry& geo : grid.geometries) {
     const double period_nm =
@@ -72,63 +71,73 @@ std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, cons
           pt.detuning_deg = c.probe_deg - geo.bragg_probe_deg;
           pt.rho = rhoParameter(c);
           pt.klein_q = kleinQ(c);
-
-          // Kogelnik, timed as the fastest of 5 batches (the machine is shared: the minimum is the
-          // cost, the rest is interference). The sink keeps the loop from being optimised away.
-          volatile double sink = 0.0;
-          const int reps = std::max(1, grid.kogelnik_repeats / 5);
-          pt.kogelnik_ns = 1e300;
-          for (int batch = 0; batch < 5; ++batch) {
-            const auto t0 = Clock::now();
-            for (int i = 0; i < reps; ++i) sink = sink + kog(c).efficiency;
-            pt.kogelnik_ns = std::min(pt.kogelnik_ns, msSince(t0) * 1e6 / reps);
-          }
-          pt.kogelnik = kog(c);
-
-          // RCWA, converged on Kogelnik's wave; slices start at 16 per fringe period along z so
-          // that a coarse staircase cannot "converge" by aliasing.
-          const RcwaProblem prob = rcwaProblemOf(c);
-          const KogelnikOrder ko = kogelnikDiffractedOrder(prob);
-          RcwaConvergence conv;
-          conv.tolerance = grid.rcwa_tolerance;
-          conv.target_order = ko.order;
-          conv.target_reflected = ko.reflected;
-          const double cos_slant = std::abs(std::cos(degToRad(c.slant_deg)));
-          const double periods_z = d * 1e3 * cos_slant / period_nm;
-          conv.min_slices = std::max(8, int(std::ceil(16.0 * periods_z)));
-          conv.max_slices = std::max(conv.min_slices, conv.max_slices);
-          auto t0 = Clock::now();
-          const RcwaConvergedResult rc = solveRcwaConverged(prob, conv);
-          pt.rcwa_ms = msSince(t0);
-          t0 = Clock::now();
-          (void)solveRcwaConverged(prob, conv);  // second run: fastest of two, as above
-          pt.rcwa_ms = std::min(pt.rcwa_ms, msSince(t0));
-          pt.rcwa_single_ms = 1e300;
-          for (int rep = 0; rep < 2; ++rep) {
-            t0 = Clock::now();
-            (void)solveRcwa(prob, {rc.orders, rc.slices, false});
-            pt.rcwa_single_ms = std::min(pt.rcwa_single_ms, msSince(t0));
-          }
-          pt.rcwa_efficiency = rc.result.efficiency(ko.order, ko.reflected);
-          pt.rcwa_total = rc.result.total_efficiency;
-          pt.rcwa_other_orders = pt.rcwa_total - pt.rcwa_efficiency;
-          if (ko.order != 0)
-            pt.rcwa_other_orders -= rc.result.efficiency(0, true) + rc.result.efficiency(0, false);
-          else
-            pt.rcwa_other_orders -= rc.result.efficiency(0, false);
-          pt.rcwa_orders = rc.orders;
-          pt.rcwa_slices = rc.slices;
-          pt.rcwa_solves = rc.solves;
-          pt.rcwa_converged = rc.converged;
-          pt.abs_error = std::abs(pt.kogelnik.efficiency - pt.rcwa_efficiency);
-          if (grid.with_linearised) {
-            RcwaProblem lin = prob;
-            lin.linearised_permittivity = true;
-            pt.rcwa_linearised_efficiency = solveRcwaConverged(lin, conv).result.efficiency(ko.order, ko.reflected);
-            pt.abs_error_linearised = std::abs(pt.kogelnik.efficiency - pt.rcwa_linearised_efficiency);
-          }
           out.push_back(pt);
         }
+  }
+  return out;
+}
+
+std::vector<KogelnikRcwaPoint> kogelnikVsRcwa(const KogelnikRcwaGrid& grid, const KogelnikEvaluator& evaluator) {
+  const KogelnikEvaluator kog = evaluator ? evaluator : KogelnikEvaluator(&kogelnikClosedForm);
+  std::vector<KogelnikRcwaPoint> out;
+  for (KogelnikRcwaPoint pt : kogelnikRcwaCases(grid)) {
+    const PlanarCase& c = pt.grating;
+    const double d = c.thickness_um, period_nm = c.period_nm;
+    // Kogelnik, timed as the fastest of 5 batches (the machine is shared: the minimum is the
+    // cost, the rest is interference). The sink keeps the loop from being optimised away.
+    volatile double sink = 0.0;
+    const int reps = std::max(1, grid.kogelnik_repeats / 5);
+    pt.kogelnik_ns = 1e300;
+    for (int batch = 0; batch < 5; ++batch) {
+      const auto t0 = Clock::now();
+      for (int i = 0; i < reps; ++i) sink = sink + kog(c).efficiency;
+      pt.kogelnik_ns = std::min(pt.kogelnik_ns, msSince(t0) * 1e6 / reps);
+    }
+    pt.kogelnik = kog(c);
+
+    // RCWA, converged on Kogelnik's wave; slices start at 16 per fringe period along z so
+    // that a coarse staircase cannot "converge" by aliasing.
+    const RcwaProblem prob = rcwaProblemOf(c);
+    const KogelnikOrder ko = kogelnikDiffractedOrder(prob);
+    RcwaConvergence conv;
+    conv.tolerance = grid.rcwa_tolerance;
+    conv.target_order = ko.order;
+    conv.target_reflected = ko.reflected;
+    const double cos_slant = std::abs(std::cos(c.slant_deg * kPi / 180.0));
+    const double periods_z = d * 1e3 * cos_slant / period_nm;
+    conv.min_slices = std::max(8, int(std::ceil(16.0 * periods_z)));
+    conv.max_slices = std::max(conv.min_slices, conv.max_slices);
+    auto t0 = Clock::now();
+    const RcwaConvergedResult rc = solveRcwaConverged(prob, conv);
+    pt.rcwa_ms = msSince(t0);
+    t0 = Clock::now();
+    (void)solveRcwaConverged(prob, conv);  // second run: fastest of two, as above
+    pt.rcwa_ms = std::min(pt.rcwa_ms, msSince(t0));
+    pt.rcwa_single_ms = 1e300;
+    for (int rep = 0; rep < 2; ++rep) {
+      t0 = Clock::now();
+      (void)solveRcwa(prob, {rc.orders, rc.slices, false});
+      pt.rcwa_single_ms = std::min(pt.rcwa_single_ms, msSince(t0));
+    }
+    pt.rcwa_efficiency = rc.result.efficiency(ko.order, ko.reflected);
+    pt.rcwa_total = rc.result.total_efficiency;
+    pt.rcwa_other_orders = pt.rcwa_total - pt.rcwa_efficiency;
+    if (ko.order != 0)
+      pt.rcwa_other_orders -= rc.result.efficiency(0, true) + rc.result.efficiency(0, false);
+    else
+      pt.rcwa_other_orders -= rc.result.efficiency(0, false);
+    pt.rcwa_orders = rc.orders;
+    pt.rcwa_slices = rc.slices;
+    pt.rcwa_solves = rc.solves;
+    pt.rcwa_converged = rc.converged;
+    pt.abs_error = std::abs(pt.kogelnik.efficiency - pt.rcwa_efficiency);
+    if (grid.with_linearised) {
+      RcwaProblem lin = prob;
+      lin.linearised_permittivity = true;
+      pt.rcwa_linearised_efficiency = solveRcwaConverged(lin, conv).result.efficiency(ko.order, ko.reflected);
+      pt.abs_error_linearised = std::abs(pt.kogelnik.efficiency - pt.rcwa_linearised_efficiency);
+    }
+    out.push_back(pt);
   }
   return out;
 }

@@ -62,6 +62,10 @@ struct KogelnikRcwaPoint {
   double rcwa_single_ms = 0.0;              // one RCWA solve at the converged orders and slices
 };
 
+// The grid's points without solving anything: geometry, grating (probe angle solved for the
+// detuning), xi_target, detuning_deg, rho, klein_q. kogelnikVsRcwa evaluates exactly these.
+std::vector<KogelnikRcwaPoint> kogelnikRcwaCases(const KogelnikRcwaGrid& grid);
+
 using KogelnikEvaluator = std::function<KogelnikEvaluation(const PlanarCase&)>;
 
 // Evaluates every grid point (geometries × thickness × n1 × detuning). `kogelnik` defaults to

@@ -1,6 +1,10 @@
 #include "model/scene/scene_io.h"
 
+#include "model/io/json_input.h"
+#include "model/io/save_temporaries.h"
+
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -319,56 +323,16 @@ void readObjectElement(Reader& r, Reader::Obj& root, const std::string& key, Pre
   if (const ojson* j = root.object(key, presence == Presence::Required)) readElement(r, *j, key, "/" + key, table, obj);
 }
 
-std::pair<int, int> lineColumn(std::string_view text, std::size_t byte) {
-  int line = 1, col = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return {line, col};
-}
-
 }  // namespace
 
 SceneLoadResult parseScene(std::string_view text, const std::string& source) {
   SceneLoadResult result;
-  ojson root;
-  try {
-    root = ojson::parse(text.begin(), text.end());
-  } catch (const ojson::parse_error& e) {
-    // nlohmann reports the byte *after* the offending character; report the character.
-    const std::size_t at = e.byte > 0 ? e.byte - 1 : 0;
-    auto [line, col] = lineColumn(text, at);
-    std::string reason = e.what();
-    if (auto p = reason.find(": "); p != std::string::npos) reason = reason.substr(p + 2);
-    if (auto p = reason.find(": "); p != std::string::npos && reason.rfind("syntax error", 0) != 0)
-      reason = reason.substr(p + 2);
-    result.errors.push_back(source + ": malformed JSON at line " + std::to_string(line) + ", column " +
-                            std::to_string(col) + ": " + reason);
-    return result;
-  } catch (const ojson::out_of_range& e) {
-    // Number overflow ("1e999"): nlohmann gives no position, so find the literal it names.
-    std::string reason = e.what();
-    if (auto p = reason.find("] "); p != std::string::npos) reason = reason.substr(p + 2);
-    std::string where;
-    const auto q1 = reason.find('\''), q2 = reason.rfind('\'');
-    if (q1 != std::string::npos && q2 > q1) {
-      const auto at = text.find(reason.substr(q1 + 1, q2 - q1 - 1));
-      if (at != std::string_view::npos) {
-        auto [line, col] = lineColumn(text, at);
-        where = " at line " + std::to_string(line) + ", column " + std::to_string(col);
-      }
-    }
-    result.errors.push_back(source + ": malformed JSON" + where + ": " + reason);
-    return result;
-  } catch (const std::exception& e) {
-    result.errors.push_back(source + ": malformed JSON: " + e.what());
+  auto parsed = parseOrderedJsonText(text);  // size, depth, UTF-8, duplicate keys, syntax
+  if (const auto* e = std::get_if<JsonInputError>(&parsed)) {
+    result.errors.push_back(describe(*e, source));
     return result;
   }
+  const ojson root = std::get<ojson>(std::move(parsed));
 
   Scene scene;
   scene.hoe_layers.clear();
@@ -410,21 +374,16 @@ SceneLoadResult parseScene(std::string_view text, const std::string& source) {
 
 SceneLoadResult loadSceneFile(const std::filesystem::path& path) {
   SceneLoadResult result;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::error_code ec;
-    const bool exists = std::filesystem::exists(path, ec);
-    result.errors.push_back(path.string() + ": cannot read scene file: " +
-                            (exists ? std::string(std::strerror(errno)) : "no such file"));
+  auto text = readInputFile(path);
+  if (const auto* reason = std::get_if<1>(&text)) {
+    result.errors.push_back(path.string() + ": cannot read scene file: " + *reason);
     return result;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) {
-    result.errors.push_back(path.string() + ": read error");
-    return result;
-  }
-  return parseScene(ss.str(), path.filename().string());
+  SceneLoadResult parsed = parseScene(std::get<0>(text), path.filename().string());
+  for (const auto& stale : removeStaleSaveTemporaries(path))
+    parsed.warnings.push_back(path.filename().string() + ": removed " + stale.filename().string() +
+                              ", the temporary file of an interrupted save");
+  return parsed;
 }
 
 std::vector<std::string> validateScene(const Scene& scene) {
@@ -553,13 +512,17 @@ std::string serializeScene(const Scene& s) {
 void writeFileAtomic(const std::filesystem::path& path, std::string_view text,
                      const std::function<void()>& beforeRename) {
   namespace fs = std::filesystem;
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
+  const fs::path target = saveTarget(path);  // through symlinks: replace the link's target, not the link
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code dir_ec;
+  if (fs::is_directory(target, dir_ec)) throw SceneIoError(path.string() + ": is a directory, not a file");
+  std::string tmpl = saveTemporaryTemplate(target);
   std::vector<char> name(tmpl.begin(), tmpl.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
   if (fd < 0) throw SceneIoError(path.string() + ": cannot create a temporary file in " + dir.string() + ": " +
                                  std::strerror(errno));
+  ::flock(fd, LOCK_EX);  // marks the temporary file as in use (removeStaleSaveTemporaries)
   const std::string tmp(name.data());
   auto fail = [&](const std::string& why) {
     ::close(fd);
@@ -578,7 +541,7 @@ void writeFileAtomic(const std::filesystem::path& path, std::string_view text,
   if (::fsync(fd) != 0) fail(std::string("fsync: ") + std::strerror(errno));
   // Keep the target's permissions when replacing it (mkstemp creates 0600).
   std::error_code ec;
-  const auto st = fs::status(path, ec);
+  const auto st = fs::status(target, ec);
   ::fchmod(fd, ec || !fs::exists(st) ? 0644 : static_cast<mode_t>(st.permissions()) & 0777);
   if (::close(fd) != 0) {
     ::unlink(tmp.c_str());
@@ -591,7 +554,7 @@ void writeFileAtomic(const std::filesystem::path& path, std::string_view text,
     ::unlink(tmp.c_str());
     throw;
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+  if (::rename(tmp.c_str(), target.c_str()) != 0) {
     const std::string why = std::strerror(errno);
     ::unlink(tmp.c_str());
     throw SceneIoError(path.string() + ": save failed (rename: " + why + "); the existing file is unchanged");
