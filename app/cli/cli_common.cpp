@@ -17,11 +17,13 @@ std::vector<std::pair<std::string, Installer>>& registry() {
   return r;
 }
 
-Registrar::Registrar(const char* name, Installer install) { registry().emplace_back(name, install); }
+Registrar::Registrar(const char* name, Installer install) {
+  registry().emplace_back(name, install);
+}
 
 Scene loadSceneOrExit(const std::string& path) {
-  SceneLoadResult r = path.empty() ? parseScene(embeddedDefaultSceneJson(), std::string(kEmbeddedSceneName))
-                                   : loadSceneFile(path);
+  SceneLoadResult r =
+      path.empty() ? parseScene(embeddedDefaultSceneJson(), std::string(kEmbeddedSceneName)) : loadSceneFile(path);
   for (const auto& w : r.warnings) std::cerr << "warning: " << w << "\n";
   if (!r.ok()) {
     std::string all;

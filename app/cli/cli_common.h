@@ -35,8 +35,12 @@ class CliError : public std::runtime_error {
  private:
   int code_;
 };
-[[noreturn]] inline void usageError(const std::string& m) { throw CliError(2, m); }
-[[noreturn]] inline void inputError(const std::string& m) { throw CliError(1, m); }
+[[noreturn]] inline void usageError(const std::string& m) {
+  throw CliError(2, m);
+}
+[[noreturn]] inline void inputError(const std::string& m) {
+  throw CliError(1, m);
+}
 
 // Loads a scene file (exit 1 with every problem, one per line), or the embedded default
 // prototype bench when `path` is empty.

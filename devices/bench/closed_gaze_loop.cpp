@@ -16,7 +16,6 @@
 namespace fovea::devices {
 namespace {
 
-
 // Minimum-jerk position fraction s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5 (Flash & Hogan 1985).
 double minimumJerk(double tau) {
   tau = std::clamp(tau, 0.0, 1.0);

@@ -50,9 +50,9 @@ std::optional<nlohmann::json> StudyCache::find(const std::string& key) {
     auto text = readInputFile(std::filesystem::path(directory_) / (hexDigest(key) + ".json"));
     if (auto* bytes = std::get_if<0>(&text)) {
       auto parsed = parseJsonText(*bytes);
-      if (auto* stored = std::get_if<nlohmann::json>(&parsed);
-          stored && stored->is_object() && stored->contains("result") && stored->contains("key") &&
-          (*stored)["key"] == key) {
+      if (auto* stored = std::get_if<nlohmann::json>(&parsed); stored && stored->is_object() &&
+                                                               stored->contains("result") && stored->contains("key") &&
+                                                               (*stored)["key"] == key) {
         memory_[key] = (*stored)["result"];
         ++hits_;
         return (*stored)["result"];

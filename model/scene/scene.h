@@ -34,19 +34,19 @@ struct Pose {
 // A.2.1 / Fig. S3: each scanned pixel reaches a waist a short way out of the projector and
 // then grows linearly with throw; elliptical near the exit, round far away.
 struct PixelBeamModel {
-  double waist_distance_mm = 150.0;     // throw at which the pixel is smallest (Fig. S3: ~0.15 m)
-  double waist_fwhm_um = 600.0;         // FWHM at the waist
-  double divergence_mrad = 1.2;         // full-angle FWHM growth rate after the waist
-  double exit_fwhm_um = 1200.0;         // FWHM at the exit pupil (long axis)
-  double exit_ellipticity = 1.6;        // long/short axis ratio at the exit; -> 1 far away
+  double waist_distance_mm = 150.0;  // throw at which the pixel is smallest (Fig. S3: ~0.15 m)
+  double waist_fwhm_um = 600.0;      // FWHM at the waist
+  double divergence_mrad = 1.2;      // full-angle FWHM growth rate after the waist
+  double exit_fwhm_um = 1200.0;      // FWHM at the exit pupil (long axis)
+  double exit_ellipticity = 1.6;     // long/short axis ratio at the exit; -> 1 far away
   bool operator==(const PixelBeamModel&) const = default;
 };
 
 struct Projector {
   std::string name = "projector";
   Pose pose;
-  std::array<int, 2> pixels{1280, 720};           // horizontal, vertical
-  std::array<double, 2> fov_deg{40.0, 22.5};      // full horizontal, vertical projection angles
+  std::array<int, 2> pixels{1280, 720};       // horizontal, vertical
+  std::array<double, 2> fov_deg{40.0, 22.5};  // full horizontal, vertical projection angles
   std::vector<double> wavelengths_nm{660.0, 532.0, 460.0};
   double exit_pupil_diameter_mm = 1.0;
   PixelBeamModel pixel_beam;
@@ -56,11 +56,11 @@ struct Projector {
 // The HOE carrier: one rigid plate (the stack of layers), moved by the stages.
 struct Hoe {
   std::string name = "hoe";
-  Pose pose;                                      // centre of the stack; local +z = film normal
-  std::array<double, 2> size_mm{40.0, 30.0};      // width (local x), height (local y)
-  double substrate_thickness_mm = 0.0;            // glass behind the films (0 = film only)
-  double cover_index = 1.0;                       // medium on the eye side of the stack
-  double substrate_index = 1.0;                   // medium on the world side of the stack
+  Pose pose;                                  // centre of the stack; local +z = film normal
+  std::array<double, 2> size_mm{40.0, 30.0};  // width (local x), height (local y)
+  double substrate_thickness_mm = 0.0;        // glass behind the films (0 = film only)
+  double cover_index = 1.0;                   // medium on the eye side of the stack
+  double substrate_index = 1.0;               // medium on the world side of the stack
   bool operator==(const Hoe&) const = default;
 };
 
@@ -68,23 +68,23 @@ struct Hoe {
 // with the HOE at its nominal pose (recorded in place); the fringes then move with the HOE.
 struct HoeRecording {
   double wavelength_nm = 532.0;
-  Vec3mm reference_point_mm{0.0, 0.0, 0.0};      // diverging reference source (the projector)
-  Vec3mm signal_point_mm{0.0, 0.0, -22.0};        // converging signal focus (the pupil centre)
-  bool phase_conjugate = false;                   // B.1.2: record with the time-reversed pair
+  Vec3mm reference_point_mm{0.0, 0.0, 0.0};  // diverging reference source (the projector)
+  Vec3mm signal_point_mm{0.0, 0.0, -22.0};   // converging signal focus (the pupil centre)
+  bool phase_conjugate = false;              // B.1.2: record with the time-reversed pair
   bool operator==(const HoeRecording&) const = default;
 };
 
 struct HoeLayer {
-  std::string name;                               // "red", "green", "blue", ...
+  std::string name;  // "red", "green", "blue", ...
   double thickness_um = 16.0;
-  double offset_um = 0.0;                         // layer centre along the normal from the stack centre
-  double n0 = 1.5;                                // mean index of the processed film
-  double n1 = 0.02;                               // index modulation amplitude
-  double absorption_per_mm = 0.0;                 // intensity absorption coefficient alpha (1/mm)
+  double offset_um = 0.0;          // layer centre along the normal from the stack centre
+  double n0 = 1.5;                 // mean index of the processed film
+  double n1 = 0.02;                // index modulation amplitude
+  double absorption_per_mm = 0.0;  // intensity absorption coefficient alpha (1/mm)
   // Processing changes: the film shrinks along its normal (negative = thinner) and its mean
   // index moves by delta_n0 relative to the index during recording.
   double shrinkage_percent = 0.0;
-  double recording_n0_delta = 0.0;                // n0(recording) = n0 - recording_n0_delta
+  double recording_n0_delta = 0.0;  // n0(recording) = n0 - recording_n0_delta
   HoeRecording recording;
   bool operator==(const HoeLayer&) const = default;
 };
@@ -106,18 +106,18 @@ struct Eye {
 // combiner to a virtual image at image_distance_mm, moved by a stage by x_f (Eq. S1).
 struct ImageCombiner {
   std::string name = "IC2";
-  double magnification = 10.0;                 // M: lateral magnification display -> virtual image
-  double eye_distance_mm = 22.0;              // b: combiner (eye-side principal plane) to pupil
-  double image_distance_mm = 800.0;           // d_f: virtual image distance from the eye
-  double mtf30_cpd_on_axis = 60.0;            // optical limit on axis (Fig. S7)
-  double field_curvature_per_deg2 = 0.0015;   // fractional MTF30 drop per deg^2 off-axis
+  double magnification = 10.0;               // M: lateral magnification display -> virtual image
+  double eye_distance_mm = 22.0;             // b: combiner (eye-side principal plane) to pupil
+  double image_distance_mm = 800.0;          // d_f: virtual image distance from the eye
+  double mtf30_cpd_on_axis = 60.0;           // optical limit on axis (Fig. S7)
+  double field_curvature_per_deg2 = 0.0015;  // fractional MTF30 drop per deg^2 off-axis
   bool operator==(const ImageCombiner&) const = default;
 };
 
 struct FovealDisplay {
   std::string name = "micro-OLED";
   Pose pose;
-  std::array<double, 2> size_mm{15.36, 8.64};   // active area
+  std::array<double, 2> size_mm{15.36, 8.64};  // active area
   std::array<int, 2> pixels{1920, 1080};
   std::vector<double> primaries_nm{620.0, 530.0, 460.0};
   ImageCombiner combiner;
@@ -131,15 +131,15 @@ struct BeamShapingLens {
   double focal_length_mm = 50.0;
   double diameter_mm = 12.7;
   double center_thickness_mm = 3.0;
-  double index = 1.517;                          // N-BK7 at ~550 nm
+  double index = 1.517;  // N-BK7 at ~550 nm
   bool operator==(const BeamShapingLens&) const = default;
 };
 
 // B.2.3: blur ramps from blur_start to blend_start; intensity crossfade to blend_end.
 struct Foveation {
-  double blur_start_deg = 3.0;    // eps_s
-  double blend_start_deg = 5.0;   // eps_o
-  double blend_end_deg = 6.0;     // eps_e
+  double blur_start_deg = 3.0;   // eps_s
+  double blend_start_deg = 5.0;  // eps_o
+  double blend_end_deg = 6.0;    // eps_e
   bool operator==(const Foveation&) const = default;
 };
 
@@ -153,15 +153,15 @@ struct StageControllerSetup {
 
 // Which motorised axis drives which element coordinate (the live bench, docs/bench.md).
 struct StageBinding {
-  std::string element;            // "hoe", "foveal_display", "projector", "lens", "camera"
-  std::string axis;               // "x", "y", "z" (translation, mm) or "yaw" (rotation, deg)
-  std::string controller;         // "KDC101", "TDC001", "KBD101", "K10CR1"
-  std::string stage_model;        // "MTS25-Z8", "Z825B", "DDSM50", "K10CR1"
-  std::string serial;             // empty: any / virtual
+  std::string element;      // "hoe", "foveal_display", "projector", "lens", "camera"
+  std::string axis;         // "x", "y", "z" (translation, mm) or "yaw" (rotation, deg)
+  std::string controller;   // "KDC101", "TDC001", "KBD101", "K10CR1"
+  std::string stage_model;  // "MTS25-Z8", "Z825B", "DDSM50", "K10CR1"
+  std::string serial;       // empty: any / virtual
   int channel = 1;
   std::array<double, 2> soft_limits{-10.0, 10.0};  // mm or deg, in the element axis
-  double home_offset = 0.0;        // element coordinate when the stage reads 0
-  double counts_per_unit = 0.0;    // encoder counts per mm (deg); 0: the stage model's figure
+  double home_offset = 0.0;                        // element coordinate when the stage reads 0
+  double counts_per_unit = 0.0;                    // encoder counts per mm (deg); 0: the stage model's figure
   StageControllerSetup setup;
   bool operator==(const StageBinding&) const = default;
 };
@@ -176,7 +176,7 @@ struct ViewState {
 struct Scene {
   static constexpr int kFormatVersion = 1;
   std::string name = "untitled";
-  nlohmann::ordered_json notes;    // free text / object; kept verbatim
+  nlohmann::ordered_json notes;  // free text / object; kept verbatim
   Projector projector;
   Hoe hoe;
   std::vector<HoeLayer> hoe_layers;

@@ -39,6 +39,8 @@ EyePlacement placeEye(const Scene& scene, double yaw_deg, double pitch_deg) {
   return e;
 }
 
-EyePlacement placeEye(const Scene& scene) { return placeEye(scene, scene.eye.gaze_deg[0], scene.eye.gaze_deg[1]); }
+EyePlacement placeEye(const Scene& scene) {
+  return placeEye(scene, scene.eye.gaze_deg[0], scene.eye.gaze_deg[1]);
+}
 
 }  // namespace fovea

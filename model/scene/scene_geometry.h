@@ -13,8 +13,12 @@ namespace fovea {
 // (so a pitch of +10 deg looks up), roll > 0 turns local +x towards +y.
 Eigen::Matrix3d rotationFromDeg(const std::array<double, 3>& yaw_pitch_roll_deg);
 
-inline Eigen::Vector3d toVec(const Vec3mm& v) { return {v[0], v[1], v[2]}; }
-inline Vec3mm fromVec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+inline Eigen::Vector3d toVec(const Vec3mm& v) {
+  return {v[0], v[1], v[2]};
+}
+inline Vec3mm fromVec(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 struct Frame {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
@@ -37,7 +41,7 @@ Eigen::Vector3d gazeDirection(double yaw_deg, double pitch_deg);
 // the eyeball surface along the gaze direction.
 struct EyePlacement {
   Eigen::Vector3d rotation_center;
-  Eigen::Vector3d gaze;            // unit optical axis
+  Eigen::Vector3d gaze;  // unit optical axis
   Eigen::Vector3d pupil_center;
   double pupil_radius_mm = 2.5;
   double eyeball_radius_mm = 11.5;

@@ -135,8 +135,8 @@ class Reader {
       const ojson* v = get(key, required);
       if (!v) return;
       if (!v->is_array() || v->size() != out.size()) {
-        r_.error(at(key), "must be an array of " + std::to_string(out.size()) + " " + kindOf<V>() + "s, got " +
-                              typeName(*v));
+        r_.error(at(key),
+                 "must be an array of " + std::to_string(out.size()) + " " + kindOf<V>() + "s, got " + typeName(*v));
         return;
       }
       std::vector<V> tmp;
@@ -192,8 +192,8 @@ class Reader {
           ok = false;
           continue;
         }
-        const std::string problem = std::is_same_v<V, int> ? range.checkInteger(e.get<long long>())
-                                                           : range.check(e.get<double>());
+        const std::string problem =
+            std::is_same_v<V, int> ? range.checkInteger(e.get<long long>()) : range.check(e.get<double>());
         if (!problem.empty()) {
           r_.error(p, problem);
           ok = false;
@@ -520,8 +520,9 @@ void writeFileAtomic(const std::filesystem::path& path, std::string_view text,
   std::vector<char> name(tmpl.begin(), tmpl.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
-  if (fd < 0) throw SceneIoError(path.string() + ": cannot create a temporary file in " + dir.string() + ": " +
-                                 std::strerror(errno));
+  if (fd < 0)
+    throw SceneIoError(path.string() + ": cannot create a temporary file in " + dir.string() + ": " +
+                       std::strerror(errno));
   ::flock(fd, LOCK_EX);  // marks the temporary file as in use (removeStaleSaveTemporaries)
   const std::string tmp(name.data());
   auto fail = [&](const std::string& why) {

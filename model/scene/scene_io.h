@@ -18,9 +18,9 @@
 namespace fovea {
 
 struct SceneLoadResult {
-  std::optional<Scene> scene;          // set only when errors is empty
-  std::vector<std::string> errors;     // every problem found, one message each
-  std::vector<std::string> warnings;   // e.g. unknown keys (kept, not dropped)
+  std::optional<Scene> scene;         // set only when errors is empty
+  std::vector<std::string> errors;    // every problem found, one message each
+  std::vector<std::string> warnings;  // e.g. unknown keys (kept, not dropped)
   bool ok() const { return scene.has_value(); }
 };
 

@@ -267,7 +267,8 @@ class TestMainWindow : public QObject {
     // The messages name the field by its label, as the editor shows it.
     QCOMPARE(editor->commitText("hoe_layers[1].thickness_um", "-5"), QString("Thickness: must be > 0, got -5"));
     QCOMPARE(editor->messageFor("hoe_layers[1].thickness_um"), QString("Thickness: must be > 0, got -5"));
-    QCOMPARE(editor->commitText("hoe_layers[1].n1", "1.7"), QString("Index modulation n1: must be < n0 (1.5), got 1.7"));
+    QCOMPARE(editor->commitText("hoe_layers[1].n1", "1.7"),
+             QString("Index modulation n1: must be < n0 (1.5), got 1.7"));
     QCOMPARE(editor->commitText("hoe_layers[1].n0", "abc"), QString("Mean index n0: not a number: \"abc\""));
     QCOMPARE(refused.count(), 3);
     QVERIFY(w->document()->scene() == before);

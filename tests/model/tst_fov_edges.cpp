@@ -15,11 +15,11 @@
 #include "model/physics/ray_probe.h"
 #include "model/physics/trace_pipeline.h"
 #include "model/scene/scene_io.h"
+#include "model/units.h"
 
 using namespace fovea;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Scene prototype() {
   return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
