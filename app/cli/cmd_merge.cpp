@@ -6,6 +6,7 @@
 
 #include "app/cli/cli_common.h"
 #include "model/analysis/tolerance_run.h"
+#include "model/io/json_input.h"
 
 namespace fovea::cli {
 
@@ -20,12 +21,10 @@ void install(CLI::App& app) {
   cmd->callback([=] {
     std::vector<nlohmann::json> docs;
     for (const auto& p : *parts) {
-      std::ifstream f(p, std::ios::binary);
-      if (!f) inputError("merge: cannot read " + p);
       try {
-        docs.push_back(nlohmann::json::parse(f));
-      } catch (const nlohmann::json::parse_error& e) {
-        inputError("merge: " + p + ": not JSON (an unfinished part?): " + e.what());
+        docs.push_back(readJsonFile(p));
+      } catch (const std::exception& e) {
+        inputError(std::string("merge: ") + e.what() + " (an unfinished part?)");
       }
     }
     nlohmann::json r;

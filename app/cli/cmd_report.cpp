@@ -23,6 +23,7 @@
 #include <memory>
 
 #include "app/cli/cli_common.h"
+#include "model/io/json_input.h"
 #include "model/io/save_temporaries.h"
 
 namespace fovea::cli {
@@ -147,7 +148,7 @@ void install(CLI::App& app) {
     if (code != 0) inputError("report: fovea-studio failed (exit " + std::to_string(code) + ")");
     nlohmann::json m;
     try {
-      m = nlohmann::json::parse(manifest);
+      m = readJsonText(manifest, "fovea-studio's manifest");
     } catch (const std::exception&) {
       inputError("report: unexpected output from fovea-studio: " + manifest.substr(0, 200));
     }

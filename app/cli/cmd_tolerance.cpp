@@ -18,6 +18,7 @@
 #include "app/cli/slurm_job.h"
 #include "model/analysis/tolerance_run.h"
 #include "model/analysis/tolerance_spec.h"
+#include "model/io/json_input.h"
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
@@ -32,13 +33,11 @@ struct Args {
 };
 
 ToleranceSpec loadSpec(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) inputError("--spec: cannot read " + path);
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(f);
-  } catch (const nlohmann::json::parse_error& e) {
-    inputError("--spec " + path + ": not JSON: " + e.what());
+    j = readJsonFile(path);
+  } catch (const std::exception& e) {
+    inputError(std::string("--spec ") + e.what());
   }
   try {
     return parseToleranceSpec(j);
@@ -118,8 +117,7 @@ nlohmann::json submitAndFollow(const SlurmJob& job, const Args& a) {
   }
   const CommandResult merged = runCommand({"sh", mergePath(job)});
   if (merged.status != 0) inputError("--submit: the merge step failed (" + mergePath(job) + ")");
-  std::ifstream f(resultPath(job));
-  return nlohmann::json::parse(f);
+  return readJsonFile(resultPath(job));
 }
 
 void printSummary(const nlohmann::json& r) {

@@ -1,5 +1,7 @@
 #include "app/cli/slurm_job.h"
 
+#include "model/io/json_input.h"
+
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -93,7 +95,7 @@ std::vector<int> missingParts(const SlurmJob& job) {
     bool ok = false;
     if (f) {
       try {
-        const nlohmann::json j = nlohmann::json::parse(f);
+        const nlohmann::json j = readJsonFile(partPath(job, k));
         ok = j.value("format", std::string()) == "fovea-tolerance-part";
       } catch (const std::exception&) {
         ok = false;

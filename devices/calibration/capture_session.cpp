@@ -15,6 +15,7 @@
 #include "devices/bench/bench.h"
 #include "devices/stage/stage_binding.h"
 #include "model/color/color_calibration.h"
+#include "model/io/json_input.h"
 
 namespace fovea::devices {
 
@@ -95,9 +96,8 @@ CaptureSession::CaptureSession(CaptureKind kind, std::vector<CaptureStep> plan, 
   }
   nlohmann::json j;
   try {
-    std::ifstream in(manifest);
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
+    j = readJsonFile(manifest);
+  } catch (const std::exception& e) {
     throw std::runtime_error(manifest.string() + ": not a capture session manifest (" + e.what() + ")");
   }
   if (j.value("format", "") != kFormat)
@@ -214,8 +214,8 @@ fs::path CaptureSession::importMeasurement(const fs::path& file) {
   }
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(ss.str());
-  } catch (const nlohmann::json::exception& e) {
+    j = readJsonText(ss.str(), file.string());
+  } catch (const std::exception& e) {
     throw std::invalid_argument(file.string() + ": not JSON (" + e.what() + ")");
   }
   if (kind_ == CaptureKind::Color) color::parseColorMeasurements(j);  // throws naming the key

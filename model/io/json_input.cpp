@@ -1,5 +1,7 @@
 #include "model/io/json_input.h"
 
+#include <stdexcept>
+
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -328,6 +330,18 @@ std::string printableExcerpt(std::string_view text, std::size_t max_bytes) {
   }
   if (i < text.size()) out += "…";
   return out;
+}
+
+nlohmann::json readJsonText(std::string_view text, std::string_view source, const JsonLimits& limits) {
+  auto parsed = parseJsonText(text, limits);
+  if (auto* e = std::get_if<JsonInputError>(&parsed)) throw std::runtime_error(describe(*e, source));
+  return std::move(std::get<nlohmann::json>(parsed));
+}
+
+nlohmann::json readJsonFile(const std::filesystem::path& path, const JsonLimits& limits) {
+  auto bytes = readInputFile(path, limits.max_bytes);
+  if (bytes.index() == 1) throw std::runtime_error(path.string() + ": " + std::get<1>(bytes));
+  return readJsonText(std::get<0>(bytes), path.string(), limits);
 }
 
 }  // namespace fovea

@@ -53,6 +53,12 @@ std::variant<nlohmann::ordered_json, JsonInputError> parseOrderedJsonText(std::s
 std::variant<std::string, std::string> readInputFile(const std::filesystem::path& path,
                                                      std::size_t max_bytes = JsonLimits{}.max_bytes);
 
+// Whole-document readers for files and texts that are not scenes (tolerance specs, shard parts,
+// capture manifests, the studio's report manifest): the limits above, and on any problem a
+// std::runtime_error "SOURCE: …" naming the file (or `source`).
+nlohmann::json readJsonFile(const std::filesystem::path& path, const JsonLimits& limits = {});
+nlohmann::json readJsonText(std::string_view text, std::string_view source, const JsonLimits& limits = {});
+
 // At most max_bytes of `text`, cut at a UTF-8 character boundary, invalid bytes shown as \xHH,
 // "…" appended when cut: safe to embed in a message.
 std::string printableExcerpt(std::string_view text, std::size_t max_bytes = 40);

@@ -109,6 +109,15 @@ class TestCliTolerance : public QObject {
     r = runFoveaCli({"merge", dir.filePath("nope.json"), "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY(r.err.contains("nope.json"));
+    // Spec and part files go through the same JSON input limits as scenes.
+    const QString deep = writeFile(dir, "deep.json", QByteArray(100000, '[') + QByteArray(100000, ']'));
+    r = runFoveaCli({"tolerance", "--spec", deep, "--trials", "4", "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("deep.json: line 1, column 65: nesting deeper than 64"), r.err.constData());
+    const QString dup = writeFile(dir, "dup.json", "{\"format\": 1, \"format\": 2}");
+    r = runFoveaCli({"merge", dup, "--json"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("duplicate key \"format\""), r.err.constData());
   }
 };
 
