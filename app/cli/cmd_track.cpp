@@ -15,6 +15,7 @@
 #include "app/cli/cli_common.h"
 #include "model/gaze/pupil_benchmark.h"
 #include "model/gaze/pupil_detector.h"
+#include "model/color/srgb.h"
 #include "model/image/image_io.h"
 
 namespace fovea::cli {
@@ -39,7 +40,7 @@ cv::Mat readGrey8(const std::string& path) {
     auto* g = grey.ptr<std::uint8_t>(y);
     for (int x = 0; x < rgb.cols; ++x) {
       const float lin = 0.2126f * p[x][0] + 0.7152f * p[x][1] + 0.0722f * p[x][2];  // Rec. 709 luminance
-      g[x] = cv::saturate_cast<std::uint8_t>(255.0f * image::linearToSrgb(lin));
+      g[x] = cv::saturate_cast<std::uint8_t>(255.0f * color::linearToSrgb(lin));
     }
   }
   return grey;
