@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/color/srgb.h"
 #include "model/gaze/eye_image_renderer.h"
 #include "model/image/image_io.h"
 #include "tests/cli/cli_process.h"
@@ -27,7 +28,7 @@ void writeGreyPng(const std::string& path, const cv::Mat& grey8) {
   cv::Mat rgb(grey8.size(), CV_32FC3);
   for (int y = 0; y < grey8.rows; ++y)
     for (int x = 0; x < grey8.cols; ++x) {
-      const float v = fovea::image::srgbToLinear(grey8.at<std::uint8_t>(y, x) / 255.0f);
+      const float v = fovea::color::srgbToLinear(grey8.at<std::uint8_t>(y, x) / 255.0f);
       rgb.at<cv::Vec3f>(y, x) = {v, v, v};
     }
   fovea::image::writeLinearRgb(path, rgb);
