@@ -460,7 +460,9 @@ std::size_t writeEntries(ojson& out, const ojson& unknown, const std::string& po
       const std::string nested_pointer = pointer + "/" + key;
       i = writeEntries(nested, unknown, nested_pointer, table, obj, i + 1, e.info.key + ".");
       appendUnknown(nested, unknown, nested_pointer);
-      out[key] = nested;
+      // An optional object with nothing to say (every field at an omitted default) is left
+      // out, so files written before its fields existed keep their bytes.
+      if (!nested.empty() || e.info.required()) out[key] = nested;
     } else {
       if (!(e.info.omit_default && sameValue(e.ref(value), e.ref(defaults)))) out[key] = toJson(e.ref(value));
       ++i;

@@ -53,9 +53,9 @@ std::vector<nlohmann::json> jsonLines(const QByteArray& out) {
   return v;
 }
 
-// η Kogelnik and η RCWA of every point of docs/bench/kogelnik_vs_rcwa.md's per-point table.
+// η Kogelnik and η RCWA of every point of docs/benchmarks/kogelnik_vs_rcwa.md's per-point table.
 std::vector<std::pair<double, double>> documentedPoints() {
-  std::ifstream in(std::string(FOVEA_SOURCE_DIR) + "/docs/bench/kogelnik_vs_rcwa.md");
+  std::ifstream in(std::string(FOVEA_SOURCE_DIR) + "/docs/benchmarks/kogelnik_vs_rcwa.md");
   std::vector<std::pair<double, double>> rows;
   std::string line;
   bool in_points = false;
@@ -199,7 +199,7 @@ class TestCliGratingRcwa : public QObject {
     }
     QVERIFY2(worst_k <= 5.1e-5, qPrintable(QString("Kogelnik vs table: %1").arg(worst_k)));
     QVERIFY2(worst_r <= 1.5e-4, qPrintable(QString("RCWA vs table: %1").arg(worst_r)));
-    qInfo("CLI vs docs/bench/kogelnik_vs_rcwa.md over %d points: Kogelnik %.2g, RCWA %.2g", int(index.size()), worst_k,
+    qInfo("CLI vs docs/benchmarks/kogelnik_vs_rcwa.md over %d points: Kogelnik %.2g, RCWA %.2g", int(index.size()), worst_k,
           worst_r);
   }
 };
