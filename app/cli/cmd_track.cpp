@@ -13,9 +13,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "app/cli/cli_common.h"
+#include "model/color/srgb.h"
 #include "model/gaze/pupil_benchmark.h"
 #include "model/gaze/pupil_detector.h"
-#include "model/color/srgb.h"
 #include "model/image/image_io.h"
 
 namespace fovea::cli {

@@ -199,8 +199,8 @@ class TestCliGratingRcwa : public QObject {
     }
     QVERIFY2(worst_k <= 5.1e-5, qPrintable(QString("Kogelnik vs table: %1").arg(worst_k)));
     QVERIFY2(worst_r <= 1.5e-4, qPrintable(QString("RCWA vs table: %1").arg(worst_r)));
-    qInfo("CLI vs docs/benchmarks/kogelnik_vs_rcwa.md over %d points: Kogelnik %.2g, RCWA %.2g", int(index.size()), worst_k,
-          worst_r);
+    qInfo("CLI vs docs/benchmarks/kogelnik_vs_rcwa.md over %d points: Kogelnik %.2g, RCWA %.2g", int(index.size()),
+          worst_k, worst_r);
   }
 };
 
