@@ -24,6 +24,8 @@ inline constexpr int kMaxGazeSamples = 2000;
 
 enum class ParameterKind { Number, Integer, Choice, Text };
 
+// NOLINTNEXTLINE(bugprone-exception-escape): the implicit destructor is flagged through
+// nlohmann::json's destructor (its invariant assertion), which does not throw.
 struct ParameterSpec {
   std::string name;  // fovea-cli flag without the dashes and the studio's key: "gaze-step"
   std::string label;
