@@ -24,10 +24,10 @@ inline constexpr int kMaxGazeSamples = 2000;
 
 enum class ParameterKind { Number, Integer, Choice, Text };
 
-// NOLINTNEXTLINE(bugprone-exception-escape): the implicit destructor is flagged through
+// clang-tidy's bugprone-exception-escape flags the implicit destructor through
 // nlohmann::json's destructor (its invariant assertion), which does not throw.
-struct ParameterSpec {
-  std::string name;  // fovea-cli flag without the dashes and the studio's key: "gaze-step"
+struct ParameterSpec {  // NOLINT(bugprone-exception-escape)
+  std::string name;     // fovea-cli flag without the dashes and the studio's key: "gaze-step"
   std::string label;
   std::string unit;  // "deg", "mm", "nm", "" for none
   ParameterKind kind = ParameterKind::Number;
