@@ -64,7 +64,7 @@ std::vector<ParameterSpec> studyParameters() {
   // box measures the optics, not the ray sampling; 12 000 rays per wavelength per trace.
   return {integer("rays", "Rays per wavelength", 12000, 50, 1000000, "rays per wavelength per trace"),
           number("tolerance-deg", "Eye-box tolerance", "deg", 3.0, 0.0, 90.0, 2,
-                 "eye-box criterion: FOV within this of the zero-gaze FOV"),
+                 "eye-box criterion tolerance: FOV within this of the zero-gaze FOV"),
           choice("fov-method", "FOV estimator", {"edges", "dense"}, "edges",
                  "edges: the field's edges root-found to 0.005 deg (fov_edges.h); dense: counted on the rays grid"),
           choice("eyebox-criterion", "Eye-box criterion", {"tolerance", "centre-fov"}, "tolerance",
