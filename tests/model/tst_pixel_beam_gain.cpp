@@ -21,7 +21,7 @@ Scene withBeam(double waist_distance_mm, double waist_fwhm_um, double divergence
 }
 double gain(const Scene& s, std::optional<double> max_distance_mm = std::nullopt) {
   LensOptimizationOptions o;
-  o.starts_per_lens = 3;
+  o.starts_per_lens = 2;
   o.max_distance_mm = max_distance_mm;
   const auto r = optimizeBeamShapingLens(s, defaultLensCatalog(), o);
   return r.ok() ? r.value->improvement_percent : -1.0;
