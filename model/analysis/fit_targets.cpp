@@ -38,7 +38,9 @@ FitTarget parseTarget(const nlohmann::json& j, const std::string& where) {
   t.value = number("value");
   t.sigma = number("sigma");
   if (!(t.sigma > 0)) throw std::invalid_argument(at + ": \"sigma\" must be > 0, got " + j["sigma"].dump());
-  t.unit = j.contains("unit") ? text("unit", false) : def->unit;
+  if (j.contains("unit") && !j["unit"].is_string())
+    throw std::invalid_argument(at + ": \"unit\" must be a string, got " + j["unit"].dump());
+  t.unit = j.value("unit", def->unit);
   if (t.unit != def->unit)
     throw std::invalid_argument(at + ": \"unit\" of " + t.observable + " is \"" + def->unit + "\", got \"" + t.unit +
                                 "\"");
