@@ -40,7 +40,8 @@ const FovEvaluator& ObservableContext::evaluator(std::optional<double> wavelengt
 const GazeSample& ObservableContext::optimalShift(double gaze_deg, GazeAxis axis, ShiftMethod method,
                                                   std::optional<double> wavelength_nm,
                                                   const GazeStudyOptions& options) {
-  const std::string k = keyOf({gaze_deg, double(axis), double(method), options.tolerance_deg}, laserKey(wavelength_nm));
+  const std::string k =
+      keyOf({gaze_deg, double(axis), double(method), options.plateau_tolerance_deg}, laserKey(wavelength_nm));
   auto it = shifts_.find(k);
   if (it == shifts_.end())
     it = shifts_.emplace(k, optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options)).first;
@@ -85,6 +86,7 @@ GazeStudyOptions studyOptions(const ObservableContext& ctx, const nlohmann::json
   o.edge_bisections = ctx.settings().shift_bisections;
   o.border_bisections = ctx.settings().border_bisections;
   if (p.contains("tolerance_deg")) o.tolerance_deg = num(p, "tolerance_deg");
+  if (p.contains("plateau_tolerance_deg")) o.plateau_tolerance_deg = num(p, "plateau_tolerance_deg");
   return o;
 }
 
@@ -145,7 +147,7 @@ std::vector<ObservableParameter> shiftParams() {
            "optimal: the HOE (or source) at x_p of the gaze; fixed: at shift_mm; none: unmoved"},
           {"shift_mm", 0.0, {}, "the shift with shift \"fixed\" (mm)"},
           {"method", "hoe", {"hoe", "source"}, "what moves: the HOE laterally or the point source along bench z"},
-          {"tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best (gaze_studies.h)"}};
+          {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best (gaze_studies.h)"}};
 }
 std::vector<ObservableParameter> sweepParams(bool with_end) {
   std::vector<ObservableParameter> v{
@@ -197,7 +199,7 @@ std::vector<ObservableDefinition> buildTable() {
                            {gazeParam(),
                             axisParam(),
                             {"method", "hoe", {"hoe", "source"}, "what moves"},
-                            {"tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best"},
+                            {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best"},
                             laserParam()},
                            nullptr};
     d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) {

@@ -95,6 +95,26 @@ class TestFit : public QObject {
     QVERIFY(refusal([&] { parseFitTargets(nlohmann::json::array()); }).contains("empty"));
   }
 
+  void observablesReadTheAnalyses() {
+    const Scene s = prototype();
+    const std::vector<FitTarget> t{
+        target("xp5", "x_p_mm", {{"gaze_deg", 10}, {"wavelength_nm", 532}}, 1),
+        target("xp2", "x_p_mm", {{"gaze_deg", 10}, {"wavelength_nm", 532}, {"plateau_tolerance_deg", 2}}, 1),
+        target("fov0", "fov_deg", {{"shift", "none"}, {"wavelength_nm", 532}, {"gaze_deg", 10}}, 1),
+        target("fov1", "fov_deg", {{"shift", "fixed"}, {"shift_mm", 1.6}, {"wavelength_nm", 532}, {"gaze_deg", 10}}, 1),
+        target("box", "eyebox_mm", {{"wavelength_nm", 532}, {"gaze_step", 10}}, 1),
+        target("top", "gaze_coverage_deg", {{"wavelength_nm", 532}, {"gaze_step", 10}}, 1),
+        target("bottom", "gaze_coverage_deg", {{"wavelength_nm", 532}, {"gaze_step", 10}, {"end", "lower"}}, 1),
+        target("cpd", "cpd", {{"eccentricity_deg", 20}, {"kind", "peripheral"}}, 1)};
+    const std::vector<double> v = evaluateTargets(s, t);
+    QVERIFY(v[0] > 1.3 && v[0] < 2.0);     // x_p(10 deg) ~ 1.6 mm (docs/analyses.md)
+    QVERIFY(v[0] != v[1]);                 // the plateau tolerance reaches the x_p search
+    QVERIFY(std::abs(v[3] - v[2]) > 0.1);  // the fixed shift reaches the trace (90 vs 89.6 deg)
+    QVERIFY2(v[4] > 8 && v[4] < 20, qPrintable(QString::number(v[4])));  // the HOE eye box, 8-20 mm
+    QVERIFY(v[5] > 20 && v[6] < -20);                                    // its gaze borders (one sweep)
+    QVERIFY(v[7] > 0);
+  }
+
   void freeParameterSpelling() {
     const Scene s = prototype();
     const FreeParameter d = parseFreeParameter(s, "eye.relief_mm");
