@@ -105,7 +105,9 @@ class TestFit : public QObject {
         target("box", "eyebox_mm", {{"wavelength_nm", 532}, {"gaze_step", 20}}, 1),
         target("top", "gaze_coverage_deg", {{"wavelength_nm", 532}, {"gaze_step", 20}}, 1),
         target("bottom", "gaze_coverage_deg", {{"wavelength_nm", 532}, {"gaze_step", 20}, {"end", "lower"}}, 1),
-        target("cpd", "cpd", {{"eccentricity_deg", 20}, {"kind", "peripheral"}}, 1)};
+        target("cpd", "cpd", {{"eccentricity_deg", 20}, {"kind", "peripheral"}}, 1),
+        target("zs", "x_p_mm", {{"gaze_deg", 5}, {"method", "source"}, {"wavelength_nm", 532}}, 1),
+        target("zs-axial", "x_p_mm", {{"gaze_deg", 5}, {"method", "source_axial"}, {"wavelength_nm", 532}}, 1)};
     ObservableSettings coarse;  // the study's tolerances as the analyses use them: cheaper than the fit's
     coarse.fov_tolerance_deg = 0.005;
     coarse.shift_bisections = 6;
@@ -117,6 +119,10 @@ class TestFit : public QObject {
     QVERIFY2(v[4] > 8 && v[4] < 20, qPrintable(QString::number(v[4])));  // the HOE eye box, 8-20 mm
     QVERIFY(v[5] > 20 && v[6] < -20);                                    // its gaze borders (one sweep)
     QVERIFY(v[7] > 0);
+    // The seed's axial source shift (along the projector's axis) is not the bench-z one.
+    QVERIFY(std::isfinite(v[9]) && std::abs(v[9] - v[8]) > 1e-3);
+    const FitTarget seed = target("box", "eyebox_mm", {{"criterion", "centre-fov"}, {"method", "source_axial"}}, 1);
+    QCOMPARE(seed.parameters["criterion"].get<std::string>(), std::string("centre-fov"));
   }
 
   void freeParameterSpelling() {
