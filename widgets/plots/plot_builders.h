@@ -7,6 +7,7 @@
 //   time-vs-error                          <- kogelnik-vs-rcwa
 //   sensitivity                            <- sensitivity
 //   lens-candidates                        <- optimize-lens
+//   fit-residuals                          <- fit
 // Angles and lengths are shown in the preferred display units; the CSV table carries the
 // same numbers as the plot, with the unit in each header.
 
