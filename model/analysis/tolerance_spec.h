@@ -56,6 +56,7 @@ struct FigureBound {
   std::optional<double> min, max;
 };
 
+// NOLINTNEXTLINE(bugprone-exception-escape): the implicit members copy json/vectors; std::bad_alloc only.
 struct ToleranceSpec {
   std::vector<ToleranceParameter> parameters;
   GazeAxis axis = GazeAxis::Yaw;

@@ -146,6 +146,7 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
   nlohmann::json inputs = nlohmann::json::object();
   for (std::size_t q = 0; q < k; ++q) {
     std::vector<double> v;
+    v.reserve(records.size());
     for (const auto& r : records) v.push_back(r.inputs[q]);
     inputs[spec.parameters[q].name] = distribution(v);
   }

@@ -16,7 +16,7 @@ constexpr int kLevels = 256;
 const char* const kDisplays[2] = {"foveal", "peripheral"};
 const char* const kChannels[3] = {"R", "G", "B"};
 
-std::string trim(std::string s) {
+std::string trim(const std::string& s) {
   const auto a = s.find_first_not_of(" \t\r\"");
   if (a == std::string::npos) return {};
   const auto b = s.find_last_not_of(" \t\r\"");

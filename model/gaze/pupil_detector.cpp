@@ -37,8 +37,11 @@ Proposal propose(const cv::Mat& grey, const PupilDetectorOptions& o) {
   double best_score = -1e9;
   const double r_min = std::max(1.0, o.min_diameter_px / (2.0 * scale) * 0.8);
   const double r_max = o.max_diameter_px / (2.0 * scale) * 0.8;  // the inner box sits inside the disc
-  for (double rf = r_min; rf <= r_max; rf *= 1.35) {
+  // Radii grow geometrically by 1.35 from r_min up to r_max (same sequence as rf *= 1.35).
+  double rf = r_min;
+  while (rf <= r_max) {
     const int r = std::max(1, static_cast<int>(std::lround(rf)));
+    rf *= 1.35;
     const double inner_n = 4.0 * r * r, outer_n = 16.0 * r * r - inner_n;
     for (int y = 2 * r; y + 2 * r <= small.rows; y += 1)
       for (int x = 2 * r; x + 2 * r <= small.cols; x += 1) {
@@ -279,6 +282,7 @@ PupilDetection detectPupil(const cv::Mat& image, const PupilDetectorOptions& o) 
   const cv::Rect frame(0, 0, grey.cols, grey.rows);
   for (int it = 0; it < o.ransac_iterations; ++it) {
     std::vector<cv::Point2f> sample;
+    sample.reserve(5);
     for (int k = 0; k < 5; ++k) sample.push_back(pts[pickPoint(rng)]);
     cv::RotatedRect r;
     try {

@@ -178,7 +178,7 @@ DisplayPattern flatPatch(std::array<double, 3> rgb) {
   return p;
 }
 
-DisplayPattern fixationDot(Eigen::Vector2d centre_px, double radius_px) {
+DisplayPattern fixationDot(const Eigen::Vector2d& centre_px, double radius_px) {
   DisplayPattern p;
   p.kind = DisplayPattern::Kind::Dot;
   p.dot_px = centre_px;

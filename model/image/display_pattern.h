@@ -28,7 +28,8 @@
 
 namespace fovea::image {
 
-struct DisplayPattern {
+// Fields grouped by pattern kind for reading, not packed: a handful exist at a time.
+struct DisplayPattern {  // NOLINT(clang-analyzer-optin.performance.Padding)
   enum class Kind { Off, Flat, Checkerboard, Dot };
   Kind kind = Kind::Off;
   // Checkerboard
@@ -67,7 +68,7 @@ DisplayPattern centredCheckerboard(std::array<int, 2> display_pixels, std::array
 DisplayPattern checkerboardInRect(const std::array<double, 4>& rect, std::array<int, 2> squares,
                                   double border_squares = 0.5);
 DisplayPattern flatPatch(std::array<double, 3> rgb);
-DisplayPattern fixationDot(Eigen::Vector2d centre_px, double radius_px);
+DisplayPattern fixationDot(const Eigen::Vector2d& centre_px, double radius_px);
 
 // Adds brightness x pattern to `radiance` (CV_32FC1 of the maps' size) at every camera pixel
 // whose map entry is finite. map_x/map_y: display position seen at each camera pixel

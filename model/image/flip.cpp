@@ -70,7 +70,7 @@ cv::Mat filteredHuntLab(const cv::Mat& srgb, double ppd) {
   cv::Mat opp(srgb.size(), CV_32FC3);
   for (int y = 0; y < srgb.rows; ++y)
     for (int x = 0; x < srgb.cols; ++x) {
-      const cv::Vec3f s = srgb.at<cv::Vec3f>(y, x);
+      const cv::Vec3f& s = srgb.at<cv::Vec3f>(y, x);
       const cv::Vec3f lin(color::srgbToLinear(s[0]), color::srgbToLinear(s[1]), color::srgbToLinear(s[2]));
       opp.at<cv::Vec3f>(y, x) = xyzToYcxcz(kRgbToXyz * lin);
     }
@@ -96,7 +96,7 @@ void features(const cv::Mat& srgb, double ppd, cv::Mat& edge, cv::Mat& point) {
   cv::Mat yn(srgb.size(), CV_32F);
   for (int y = 0; y < srgb.rows; ++y)
     for (int x = 0; x < srgb.cols; ++x) {
-      const cv::Vec3f s = srgb.at<cv::Vec3f>(y, x);
+      const cv::Vec3f& s = srgb.at<cv::Vec3f>(y, x);
       const cv::Vec3f lin(color::srgbToLinear(s[0]), color::srgbToLinear(s[1]), color::srgbToLinear(s[2]));
       yn.at<float>(y, x) = (xyzToYcxcz(kRgbToXyz * lin)[0] + 16.0f) / 116.0f;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -46,6 +47,7 @@ void checkInput(const std::vector<PointPair>& pairs, WarpModel model) {
                     " given, at least " + std::to_string(need) + " needed");
   // Collinear (or coincident) sources: the spread matrix has a (near) zero eigenvalue.
   std::vector<Eigen::Vector2d> src;
+  src.reserve(pairs.size());
   for (const auto& p : pairs) src.push_back(p.src);
   const Similarity2d n = hartley(src);
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
@@ -102,7 +104,7 @@ Eigen::Vector2d Warp2d::apply(const Eigen::Vector2d& src) const {
     return out;
   }
   if (model_ == WarpModel::Homography) {
-    const Eigen::Vector3d h = H_ * src.homogeneous();
+    const Eigen::Vector3d h = h_ * src.homogeneous();
     return h.hnormalized();
   }
   return coeffs_ * monomials(norm_.apply(src), polyOrder(model_));
@@ -119,7 +121,7 @@ nlohmann::json Warp2d::coefficients() const {
   }
   if (model_ == WarpModel::Homography) {
     nlohmann::json H = nlohmann::json::array();
-    for (int r = 0; r < 3; ++r) H.push_back({H_(r, 0), H_(r, 1), H_(r, 2)});
+    for (int r = 0; r < 3; ++r) H.push_back({h_(r, 0), h_(r, 1), h_(r, 2)});
     return {{"H", H}};
   }
   std::vector<double> u(coeffs_.cols()), v(coeffs_.cols());
@@ -144,7 +146,7 @@ Warp2d Warp2d::polynomial(WarpModel m, Similarity2d norm, const Eigen::MatrixXd&
   if (coeffs.rows() != 2 || coeffs.cols() != termCount(polyOrder(m))) throw WarpError("wrong coefficient count");
   Warp2d w;
   w.model_ = m;
-  w.norm_ = norm;
+  w.norm_ = std::move(norm);
   w.coeffs_ = coeffs;
   return w;
 }
@@ -152,7 +154,7 @@ Warp2d Warp2d::polynomial(WarpModel m, Similarity2d norm, const Eigen::MatrixXd&
 Warp2d Warp2d::homography(const Eigen::Matrix3d& H) {
   Warp2d w;
   w.model_ = WarpModel::Homography;
-  w.H_ = H / H(2, 2);
+  w.h_ = H / H(2, 2);
   return w;
 }
 
@@ -199,7 +201,7 @@ Warp2d fitWarp(const std::vector<PointPair>& pairs, WarpModel model) {
   // Homography: normalised DLT (Hartley & Zisserman, Alg. 4.2), then Gauss-Newton on the
   // geometric (reprojection) error in the normalised frames, with h22 = 1.
   const Similarity2d nd = hartley(dst);
-  Eigen::MatrixXd A(2 * n, 9);
+  Eigen::MatrixXd A(2 * Eigen::Index{n}, 9);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d p = ns.apply(src[i]), q = nd.apply(dst[i]);
     A.row(2 * i) << -p.x(), -p.y(), -1, 0, 0, 0, q.x() * p.x(), q.x() * p.y(), q.x();
@@ -212,8 +214,8 @@ Warp2d fitWarp(const std::vector<PointPair>& pairs, WarpModel model) {
   if (std::abs(h[8]) < 1e-12) throw WarpError("homography maps a source point to infinity");
   h /= h[8];
   for (int iter = 0; iter < 20; ++iter) {
-    Eigen::MatrixXd J(2 * n, 8);
-    Eigen::VectorXd r(2 * n);
+    Eigen::MatrixXd J(2 * Eigen::Index{n}, 8);
+    Eigen::VectorXd r(2 * Eigen::Index{n});
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector2d p = ns.apply(src[i]), q = nd.apply(dst[i]);
       const double w = h[6] * p.x() + h[7] * p.y() + 1.0;

@@ -66,7 +66,7 @@ class Warp2d {
   WarpModel model_ = WarpModel::Poly1;
   Similarity2d norm_;
   Eigen::MatrixXd coeffs_;  // 2 x terms
-  Eigen::Matrix3d H_ = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d h_ = Eigen::Matrix3d::Identity();
   std::vector<Warp2d> mix_;  // non-empty: the warp is the weighted sum of these
   std::vector<double> mix_weights_;
 };

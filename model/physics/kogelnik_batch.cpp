@@ -26,13 +26,13 @@ struct K;
 
 template <>
 struct K<double> {
-  // pi/2 = P1 + P2 + P3 (Cephes sin.c's pi/4 split, doubled): k * P1 is exact for k < 2^29.
-  static constexpr double P1 = 1.57079625129699707031e+00, P2 = 7.54978941586159635336e-08,
-                          P3 = 5.39030285815811905290e-15;
+  // pi/2 = kHalfPi1 + kHalfPi2 + kHalfPi3 (Cephes sin.c's pi/4 split, doubled): k * kHalfPi1 is exact for k < 2^29.
+  static constexpr double kHalfPi1 = 1.57079625129699707031e+00, kHalfPi2 = 7.54978941586159635336e-08,
+                          kHalfPi3 = 5.39030285815811905290e-15;
   static constexpr double two_over_pi = 6.36619772367581382433e-01;
   static constexpr double max_phase = 1e6;  // beyond: scalar path (reduction error would grow)
-  // Cephes sin/cos on [-pi/4, pi/4]: sin r = r + r z S(z), cos r = 1 - z/2 + z^2 C(z), z = r^2.
-  static double S(double z) {
+  // Cephes sin/cos on [-pi/4, pi/4]: sin r = r + r z sinPoly(z), cos r = 1 - z/2 + z^2 cosPoly(z), z = r^2.
+  static double sinPoly(double z) {
     return ((((1.58962301576546568060e-10 * z - 2.50507477628578072866e-8) * z + 2.75573136213857245213e-6) * z -
              1.98412698295895385996e-4) *
                 z +
@@ -40,7 +40,7 @@ struct K<double> {
                z -
            1.66666666666666307295e-1;
   }
-  static double C(double z) {
+  static double cosPoly(double z) {
     return ((((-1.13585365213876817300e-11 * z + 2.08757008419747316778e-9) * z - 2.75573141792967388112e-7) * z +
              2.48015872888517045348e-5) *
                 z -
@@ -84,12 +84,14 @@ struct K<double> {
 
 template <>
 struct K<float> {
-  // Cephes sinf.c's pi/4 split, doubled: k * P1 exact for k < 2^16.
-  static constexpr float P1 = 1.5703125f, P2 = 4.837512969970703125e-4f, P3 = 7.54978995489188216e-8f;
+  // Cephes sinf.c's pi/4 split, doubled: k * kHalfPi1 exact for k < 2^16.
+  static constexpr float kHalfPi1 = 1.5703125f, kHalfPi2 = 4.837512969970703125e-4f, kHalfPi3 = 7.54978995489188216e-8f;
   static constexpr float two_over_pi = 0.636619772367581343f;
   static constexpr float max_phase = 8192.0f;
-  static float S(float z) { return (-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f; }
-  static float C(float z) { return (2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f; }
+  static float sinPoly(float z) { return (-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f; }
+  static float cosPoly(float z) {
+    return (2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f;
+  }
   static float series(float a) {
     float p = 1.0f / 6227020800.0f;  // 1/13!
     p = p * a + 1.0f / 39916800.0f;
@@ -134,10 +136,10 @@ inline Element<T> element(T c_r, T c_s, T vartheta, T kappa, T d) {
   const T u = std::sqrt(aa);
   // sin(u)/u, u >= 1: Cody-Waite reduction by pi/2, quadrant select.
   const T k = std::rint(u * Kt::two_over_pi);
-  const T r = ((u - k * Kt::P1) - k * Kt::P2) - k * Kt::P3;
+  const T r = ((u - k * Kt::kHalfPi1) - k * Kt::kHalfPi2) - k * Kt::kHalfPi3;
   const T z = r * r;
-  const T s = r + r * z * Kt::S(z);
-  const T c = T(1) - T(0.5) * z + z * z * Kt::C(z);
+  const T s = r + r * z * Kt::sinPoly(z);
+  const T c = T(1) - T(0.5) * z + z * z * Kt::cosPoly(z);
   // Quadrant q = k mod 4: sin(r + q pi/2) is s, c, -s, -c and cos(r + q pi/2) is c, -s, -c, s
   // for q = 0..3 (selects on doubles only, so the vectoriser can if-convert them).
   const T q = k - T(4) * std::floor(k * T(0.25));

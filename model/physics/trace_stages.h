@@ -51,7 +51,8 @@ struct FringeData {
   std::vector<std::uint8_t> valid;          // per hit: both recording beams enter the film there
 };
 
-enum : std::uint8_t { kEntered = 1, kEvanescent = 2, kExits = 4, kTir = 8, kValid = 16 };
+// Per-hit flags of DiffractionData::flags.
+inline constexpr std::uint8_t kEntered = 1, kEvanescent = 2, kExits = 4, kTir = 8, kValid = 16;
 
 struct Obliquity {
   double c_r, c_s, vartheta, p_factor;
@@ -71,7 +72,8 @@ struct CoupledWaveData {
   long long done_count = 0;
 };
 
-enum : std::uint8_t { kSEvaluated = 1, kSExits = 2, kSTir = 4, kSTowardsEye = 8, kSEvanescent = 16 };
+// Per-ray flags of the stack stage.
+inline constexpr std::uint8_t kSEvaluated = 1, kSExits = 2, kSTir = 4, kSTowardsEye = 8, kSEvanescent = 16;
 
 struct StackData {
   std::vector<std::uint8_t> flags;  // per hit
