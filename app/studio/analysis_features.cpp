@@ -226,7 +226,7 @@ void AnalysisFeatures::showPreferences() {
 }
 
 bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
-                                    int* figures, QList<GazeFigureStats>* gazeFigures) {
+                                    int* figures, QList<GazeFigureStats>* gazeFigures, QStringList* sections) {
   ReportOptions options = requested;
   if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
     options.follow_gaze = true;
@@ -272,10 +272,14 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   };
   if (!failure.isEmpty()) return fail(failure);
   if (!data) return fail(tr("cancelled"));
+  // A tolerance result of this very scene from the analyses panel gives the Tolerance section.
+  const std::string sceneText = serializeScene(scene);
+  if (data->tolerance.is_null())
+    if (const auto r = analyses_->lastResult("tolerance"); r && r->json && r->sceneText == sceneText)
+      data->tolerance = *r->json;
 
   // Plots filled in the studio for this very scene (or scene-independent ones) join the report.
   QList<widgets::PlotData> extra;
-  const std::string sceneText = serializeScene(scene);
   for (const QString& id : plots_->filledPlots())
     for (const QString& a : widgets::plotSources(id)) {
       const auto r = analyses_->lastResult(a);
@@ -289,6 +293,10 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   if (!writeReport(content, path, &writeError, pages)) return fail(writeError);
   if (figures) *figures = content.figureCount();
   if (gazeFigures) *gazeFigures = content.gazeFigures;
+  if (sections) {
+    sections->clear();
+    for (const ReportSection& sec : content.sections) *sections << sec.heading;
+  }
   window_->messageLog()->info(tr("Report written to %1 (%n figure(s))", "", content.figureCount()).arg(path));
   for (const QString& p : data->problems) window_->messageLog()->warning(tr("report: %1").arg(p));
   return true;
@@ -307,6 +315,18 @@ void AnalysisFeatures::exportReportDialog() {
   rays->setValue(Preferences::instance().values().defaultRays);
   form->addRow(tr("Gazes (deg)"), gazes);
   form->addRow(tr("Rays per wavelength"), rays);
+  auto* tolerance = new QSpinBox(&dialog);
+  tolerance->setObjectName("reportToleranceTrials");
+  tolerance->setRange(0, 1000000);
+  tolerance->setSpecialValueText(tr("none"));
+  tolerance->setToolTip(
+      tr("Run the tolerance analysis (the shipped default spec) with this many trials for the "
+         "report's Tolerance section; a tolerance result already computed for this scene in "
+         "the Analyses panel is used as it is."));
+  const auto last = analyses_->lastResult("tolerance");
+  const bool haveTolerance = last && last->json && last->sceneText == serializeScene(window_->document()->scene());
+  tolerance->setValue(0);
+  form->addRow(haveTolerance ? tr("Tolerance trials (a result is there)") : tr("Tolerance trials"), tolerance);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
   connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
   connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
@@ -314,6 +334,8 @@ void AnalysisFeatures::exportReportDialog() {
   if (dialog.exec() != QDialog::Accepted) return;
   ReportOptions options;
   options.rays = rays->value();
+  options.tolerance = tolerance->value() > 0 && !haveTolerance;
+  options.tolerance_trials = std::max(1, tolerance->value());
   for (const QString& part : gazes->text().split(';', Qt::SkipEmptyParts)) {
     std::array<double, 2> gz{};
     if (!parseGaze(part, &gz)) {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "model/analysis/study_analyses.h"
+#include "model/analysis/tolerance_analysis.h"
 
 namespace fovea::analysis {
 
@@ -22,9 +23,9 @@ const OptionGroup* AnalysisDefinition::groupOf(std::string_view parameter_name) 
 namespace {
 // The registry: one line per analysis, in the order the studio lists them.
 std::vector<AnalysisDefinition> buildRegistry() {
-  return {traceAnalysis(),       sweepAnalysis(),        compareShiftAnalysis(),
-          sensitivityAnalysis(), resolutionAnalysis(),   optimizeLensAnalysis(),
-          selectivityAnalysis(), gratingSweepAnalysis(), kogelnikVsRcwaAnalysis()};
+  return {traceAnalysis(),          sweepAnalysis(),        compareShiftAnalysis(), sensitivityAnalysis(),
+          resolutionAnalysis(),     optimizeLensAnalysis(), selectivityAnalysis(),  gratingSweepAnalysis(),
+          kogelnikVsRcwaAnalysis(), toleranceAnalysis()};
 }
 }  // namespace
 

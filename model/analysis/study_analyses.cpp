@@ -118,6 +118,16 @@ AnalysisDefinition traceAnalysis() {
   return d;
 }
 
+ShiftMethod sweepMethodFrom(const nlohmann::json& v) {
+  return textOf(v, "method") == "source" ? ShiftMethod::Source : ShiftMethod::Hoe;
+}
+
+nlohmann::json sweepDocument(const GazeSweepResult& r, const nlohmann::json& v) {
+  nlohmann::json out = sweepResultJson(r, textOf(v, "axis"));
+  out["fov_method"] = textOf(v, "fov-method");
+  return out;
+}
+
 AnalysisDefinition sweepAnalysis() {
   AnalysisDefinition d;
   d.id = "sweep";
@@ -132,13 +142,11 @@ AnalysisDefinition sweepAnalysis() {
   d.check = checkGazeRange;
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
-    const ShiftMethod m = textOf(v, "method") == "source" ? ShiftMethod::Source : ShiftMethod::Hoe;
-    const auto r = sweepGaze(scene, evaluatorFrom(v), numberOf(v, "gaze-from"), numberOf(v, "gaze-to"),
-                             numberOf(v, "gaze-step"), axisFrom(v), m, gazeStudyOptionsFrom(v), control);
+    const auto r =
+        sweepGaze(scene, evaluatorFrom(v), numberOf(v, "gaze-from"), numberOf(v, "gaze-to"), numberOf(v, "gaze-step"),
+                  axisFrom(v), sweepMethodFrom(v), gazeStudyOptionsFrom(v), control);
     if (!r.ok()) return std::nullopt;
-    nlohmann::json out = sweepResultJson(*r.value, textOf(v, "axis"));
-    out["fov_method"] = textOf(v, "fov-method");
-    return out;
+    return sweepDocument(*r.value, v);
   };
   return d;
 }
