@@ -5,6 +5,7 @@
 #include <string>
 
 #include "model/analysis/analysis_registry.h"
+#include "model/analysis/shard_parts.h"
 #include "model/analysis/study_analyses.h"
 #include "model/analysis/tolerance_run.h"  // shardRange, sceneDigest
 #include "model/scene/scene_io.h"
@@ -80,34 +81,18 @@ std::optional<nlohmann::json> sweepPartJson(const Scene& scene, const nlohmann::
 }
 
 std::optional<nlohmann::json> mergeSweepParts(const std::vector<nlohmann::json>& parts, const StudyControl& control) {
-  if (parts.empty()) throw std::invalid_argument("merge: no parts given");
-  const char* same[] = {"values", "scene_digest", "scene", "gaze_count"};
-  int shards = -1;
+  const std::map<int, std::size_t> index =
+      indexShardParts(parts, "fovea-sweep-part", {"values", "scene_digest", "scene", "gaze_count"}, "sweep");
   std::map<int, const nlohmann::json*> by_shard;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
+  for (const auto& [k, i] : index) {
     const nlohmann::json& p = parts[i];
-    const std::string where = "merge: part " + std::to_string(i + 1);
-    if (!p.is_object() || p.value("format", std::string()) != "fovea-sweep-part")
-      throw std::invalid_argument(where + ": not a fovea-sweep-part document");
-    for (const char* k : same)
-      if (!p.contains(k) || p[k] != parts[0][k])
-        throw std::invalid_argument(where + ": \"" + k + "\" differs from part 1 (not the same sweep)");
-    const auto sh = p.at("shard").get<std::vector<int>>();
-    if (sh.size() != 2) throw std::invalid_argument(where + ": bad \"shard\"");
-    if (shards < 0) shards = sh[1];
-    if (sh[1] != shards) throw std::invalid_argument(where + ": shard count differs from part 1");
-    if (by_shard.count(sh[0])) throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " given twice");
-    const TrialRange range = shardRange(p.at("gaze_count").get<std::uint64_t>(), sh[0], sh[1]);
+    const TrialRange range = shardRange(p.at("gaze_count").get<std::uint64_t>(), k, static_cast<int>(index.size()));
     if (p.at("first_gaze").get<std::uint64_t>() != range.begin || p.at("samples").size() != range.end - range.begin ||
-        (sh[0] == 0 && !p.contains("reference")))
-      throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " is incomplete");
-    by_shard[sh[0]] = &p;
+        (k == 0 && !p.contains("reference")))
+      throw std::invalid_argument("merge: part " + std::to_string(i + 1) + ": shard " + std::to_string(k) +
+                                  " is incomplete");
+    by_shard[k] = &p;
   }
-  std::string missing;
-  for (int k = 0; k < shards; ++k)
-    if (!by_shard.count(k)) missing += (missing.empty() ? "" : ",") + std::to_string(k);
-  if (!missing.empty())
-    throw std::invalid_argument("merge: missing shard(s) " + missing + " of " + std::to_string(shards));
 
   nlohmann::json values = parts[0]["values"];
   const AnalysisDefinition& def = sweepDefinition();

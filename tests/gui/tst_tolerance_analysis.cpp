@@ -5,6 +5,7 @@
 #include <QtTest>
 
 #include <QChartView>
+#include <QDockWidget>
 #include <QFile>
 #include <QLineEdit>
 #include <QProgressBar>
@@ -15,6 +16,8 @@
 #include <cmath>
 
 #include "app/embedded_scene.h"
+#include "app/studio/analysis_features.h"
+#include "app/studio/main_window.h"
 #include "model/analysis/tolerance_analysis.h"
 #include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
@@ -177,6 +180,38 @@ class TestToleranceAnalysis : public QObject {
     QCOMPARE((*r)["spec"]["gaze"]["from_deg"].get<double>(), 0.0);
     // One gaze: the smallest FOV over the gazes is the zero-gaze FOV in every unit.
     QCOMPARE((*r)["figures"]["fov_min_deg"]["mean"], (*r)["figures"]["fov_zero_gaze_deg"]["mean"]);
+  }
+
+  // The studio at the two layouts it must fit (1366x768 and 1920x1080): Run in the Analyses dock
+  // feeds the Plots dock's tolerance plots; the screenshots are looked at (FOVEA_TEST_TMP).
+  void studioShowsThePlots() {
+    QTemporaryDir dir;
+    const QString spec = writeSpec(dir);
+    for (const QSize size : {QSize(1366, 768), QSize(1920, 1080)}) {
+      studio::MainWindow window;
+      window.resize(size);
+      window.show();
+      QVERIFY(QTest::qWaitForWindowExposed(&window));
+      AnalysesPanel* panel = window.analysisFeatures()->analysesPanel();
+      PlotsPanel* plots = window.analysisFeatures()->plotsPanel();
+      panel->selectAnalysis("tolerance");
+      QVERIFY(panel->setParameter("spec", spec));
+      QVERIFY(panel->setParameter("trials", 25));
+      QSignalSpy ready(panel, &AnalysesPanel::resultReady);
+      QVERIFY(panel->run());
+      QTRY_COMPARE_WITH_TIMEOUT(ready.count(), 1, 120000);
+      QVERIFY(plots->filledPlots().contains("tolerance-ranking"));
+      const QString dirOut = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp");
+      const QString tag = QString("%1x%2").arg(size.width()).arg(size.height());
+      for (const char* id : {"tolerance-yield", "tolerance-fov_min_deg", "tolerance-ranking"}) {
+        plots->setCurrentPlot(id);
+        QTest::qWait(150);
+        QVERIFY(window.captureWindow().save(dirOut + "/tolerance-" + tag + "-" + id + ".png"));
+      }
+      if (auto* dock = window.findChild<QDockWidget*>("AnalysesDock")) dock->raise();
+      QTest::qWait(150);
+      QVERIFY(window.captureWindow().save(dirOut + "/tolerance-" + tag + "-analyses.png"));
+    }
   }
 
   void cancelStopsALongRun() {
