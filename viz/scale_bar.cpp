@@ -1,5 +1,6 @@
 #include "viz/scale_bar.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -39,7 +40,7 @@ double roundScaleLength(double limit) {
   return decade;
 }
 
-ScaleBar::ScaleBar(vtkRenderer* renderer) : renderer_(renderer) {
+ScaleBar::ScaleBar(vtkRenderer* measured, vtkRenderer* host) : renderer_(measured), host_(host) {
   vtkNew<vtkPolyData> data;
   for (int i = 0; i < 6; ++i) points_->InsertNextPoint(0, 0, 0);
   vtkNew<vtkCellArray> lines;
@@ -59,14 +60,8 @@ ScaleBar::ScaleBar(vtkRenderer* renderer) : renderer_(renderer) {
   label_->GetTextProperty()->SetColor(1, 1, 1);
   label_->GetTextProperty()->SetJustificationToCentered();
   label_->PickableOff();
-  overlay_->SetLayer(1);
-  overlay_->InteractiveOff();
-  if (vtkRenderWindow* window = renderer_->GetRenderWindow()) {
-    if (window->GetNumberOfLayers() < 2) window->SetNumberOfLayers(2);
-    window->AddRenderer(overlay_);
-  }
-  overlay_->AddViewProp(bar_);
-  overlay_->AddViewProp(label_);
+  host_->AddViewProp(bar_);
+  host_->AddViewProp(label_);
   callback_->SetClientData(this);
   callback_->SetCallback(&ScaleBar::onStart);
   renderer_->AddObserver(vtkCommand::StartEvent, callback_);
@@ -77,9 +72,15 @@ void ScaleBar::setColor(double r, double g, double b) {
   label_->GetTextProperty()->SetColor(r, g, b);
 }
 
+void ScaleBar::setVisible(bool on) {
+  bar_->SetVisibility(on);
+  label_->SetVisibility(on);
+}
+
 ScaleBar::~ScaleBar() {
   renderer_->RemoveObserver(callback_);
-  if (vtkRenderWindow* window = overlay_->GetRenderWindow()) window->RemoveRenderer(overlay_);
+  host_->RemoveViewProp(bar_);
+  host_->RemoveViewProp(label_);
 }
 
 void ScaleBar::onStart(vtkObject*, unsigned long, void* clientData, void*) {
@@ -88,11 +89,13 @@ void ScaleBar::onStart(vtkObject*, unsigned long, void* clientData, void*) {
 
 void ScaleBar::update() {
   const double mmpp = millimetresPerPixel(renderer_);
-  const int* size = renderer_->GetSize();
+  const int* size = host_->GetSize();
+  const int* origin = host_->GetOrigin();
   if (!(mmpp > 0.0) || size[0] <= 0) return;
   length_mm_ = roundScaleLength(120.0 * mmpp);
   const double px = length_mm_ / mmpp;
-  const double x1 = size[0] - 30.0, x0 = x1 - px, y = 24.0;
+  // Bar and label in the host's viewport pixels (the 2-D mapper's default coordinates).
+  const double x1 = size[0] - 24.0, x0 = x1 - px, y = std::max(8.0, size[1] * 0.30);
   points_->SetPoint(0, x0, y, 0);
   points_->SetPoint(1, x1, y, 0);
   points_->SetPoint(2, x0, y - 5, 0);
@@ -102,7 +105,7 @@ void ScaleBar::update() {
   points_->Modified();
   const QString text = QString::number(length_mm_, 'g', 3) + " mm";
   label_->SetInput(text.toUtf8().constData());
-  label_->SetDisplayPosition(static_cast<int>((x0 + x1) / 2), static_cast<int>(y + 8));
+  label_->SetDisplayPosition(origin[0] + static_cast<int>((x0 + x1) / 2), origin[1] + static_cast<int>(y + 8));
 }
 
 }  // namespace fovea::viz

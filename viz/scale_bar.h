@@ -1,8 +1,9 @@
 #pragma once
-// A scale bar in millimetres at the bottom right of a renderer: a bar of a round length
-// (1, 2 or 5 x 10^n mm) about 120 px long, valid at the camera's focal plane (perspective)
-// or everywhere (parallel projection). Updated before each render; drawn in an overlay
-// renderer (layer 1) of the same window so the translucent passes never touch it.
+// A scale bar in millimetres for a renderer: a bar of a round length (1, 2 or 5 x 10^n mm)
+// about 120 px long, valid at the camera's focal plane (perspective) or everywhere (parallel
+// projection). Updated before each render of the measured renderer; drawn at the right end
+// of a host renderer (the view's bottom margin, viz/scene_view.h), so it never covers the
+// scene and the translucent passes never touch it.
 
 #include <vtkNew.h>
 
@@ -22,7 +23,7 @@ double roundScaleLength(double limit);
 
 class ScaleBar {
  public:
-  explicit ScaleBar(vtkRenderer* renderer);
+  ScaleBar(vtkRenderer* measured, vtkRenderer* host);
   ~ScaleBar();
   ScaleBar(const ScaleBar&) = delete;
   ScaleBar& operator=(const ScaleBar&) = delete;
@@ -31,11 +32,13 @@ class ScaleBar {
   void update();
   // Bar and label colour (white on the studio's dark background, dark in print).
   void setColor(double r, double g, double b);
+  // Hidden where a length at the focal plane means nothing (the eye's view).
+  void setVisible(bool on);
 
  private:
   static void onStart(vtkObject*, unsigned long, void* clientData, void*);
   vtkRenderer* renderer_;
-  vtkNew<vtkRenderer> overlay_;  // own layer: kept out of the scene's depth peeling
+  vtkRenderer* host_;
   vtkNew<vtkPoints> points_;
   vtkNew<vtkActor2D> bar_;
   vtkNew<vtkTextActor> label_;

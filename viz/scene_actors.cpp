@@ -122,7 +122,7 @@ void addHoe(const Scene& scene, SceneLayer& layer) {
   }
 }
 
-void addProjector(const Scene& scene, SceneLayer& layer) {
+void addProjector(const Scene& scene, SceneLayer& layer, SceneLayer& light) {
   const Projector& p = scene.projector;
   const Frame pf = frameOf(p.pose);
   layer.add(makeActor(box(24.0, 16.0, 36.0, {0, 0, -18.5}), colors::kProjectorBody, 1.0, pf), "projector");
@@ -145,46 +145,40 @@ void addProjector(const Scene& scene, SceneLayer& layer) {
     if (!(t > 0.0 && t * local.norm() < 2000.0)) t = 100.0;
     corners.push_back(t * local);
   }
-  auto faces = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, 0);
-  for (const auto& c : corners) pts->InsertNextPoint(c.x(), c.y(), c.z());
-  vtkNew<vtkCellArray> tris;
-  for (vtkIdType i = 0; i < 4; ++i) {
-    const vtkIdType tri[3] = {0, 1 + i, 1 + (i + 1) % 4};
-    tris->InsertNextCell(3, tri);
-  }
-  faces->SetPoints(pts);
-  faces->SetPolys(tris);
-  auto cone = makeActor(faces, colors::kProjectorFrustum, 0.22, pf);
-  cone->GetProperty()->LightingOff();
-  layer.add(cone, "projector", /*pickable=*/false);  // clicks go through the light to what it hits
-  std::vector<Eigen::Vector3d> edge_pts{corners[0], {0, 0, 0},  corners[1], corners[2],
-                                        {0, 0, 0},  corners[3], corners[0], corners[1]};
-  auto edges = makeActor(polylineData(edge_pts, false), colors::kProjectorFrustum, 0.9, pf);
+  // The projection is drawn as a faint outline only (edges from the exit pupil and the rim on
+  // the HOE plane): it locates the light without covering the ray fans drawn inside it.
+  std::vector<Eigen::Vector3d> edge_pts{corners[0], {0, 0, 0},  corners[1], corners[2], {0, 0, 0},
+                                        corners[3], corners[0], corners[1], corners[2], corners[3]};
+  auto edges = makeActor(polylineData(edge_pts, false), colors::kProjectorFrustum, kFrustumOpacity, pf);
   edges->GetProperty()->LightingOff();
-  edges->GetProperty()->SetLineWidth(1.5);
-  layer.add(edges, "projector");
-  auto rim = makeActor(polylineData({corners[2], corners[3]}, false), colors::kProjectorFrustum, 0.9, pf);
-  rim->GetProperty()->LightingOff();
-  layer.add(rim, "projector");
+  edges->GetProperty()->SetLineWidth(1.0);
+  light.add(edges, "projector", /*pickable=*/false);  // clicks go through the light to what it hits
 }
 
 void addEye(const Scene& scene, SceneLayer& layer) {
   const EyePlacement e = placeEye(scene);
   const Frame ef = frameAlong(e.rotation_center, rotationFromDeg({scene.eye.gaze_deg[0], scene.eye.gaze_deg[1], 0.0}));
   const double r = e.eyeball_radius_mm;
-  layer.add(makeActor(sphereCap(r, 180.0), colors::kEyeball, 1.0, ef), "eye");
-  // Iris (12 mm across, anatomical average) and pupil as caps just outside the globe.
+  // A muted, half-transparent globe: the pupil in front and the fovea marked on the back
+  // (trace overlay) both stay visible, and the ball does not outshine the rays.
+  auto globe = makeActor(sphereCap(r, 180.0), colors::kEyeball, kEyeballOpacity, ef);
+  globe->GetProperty()->SetSpecular(0.0);
+  globe->GetProperty()->SetAmbient(0.35);
+  globe->GetProperty()->SetDiffuse(0.55);
+  layer.add(globe, "eye");
+  // Iris (12 mm across, anatomical average) and pupil (the scene's pupil diameter) as caps
+  // just outside the globe; the pupil is the dark disc the rays aim at.
   const double iris_deg = std::asin(std::min(1.0, 6.0 / r)) / kDeg;
   const double pupil_deg = std::asin(std::min(1.0, e.pupil_radius_mm / r)) / kDeg;
   layer.add(makeActor(sphereCap(r + 0.05, iris_deg), colors::kIris, 1.0, ef), "eye");
-  layer.add(makeActor(sphereCap(r + 0.1, pupil_deg), colors::kPupil, 1.0, ef), "eye");
+  auto pupil = makeActor(sphereCap(r + 0.1, pupil_deg), colors::kPupil, 1.0, ef);
+  pupil->GetProperty()->LightingOff();
+  layer.add(pupil, "eye");
   // Optical axis from the rotation centre along the gaze, 30 mm past the HOE plane.
   const double len = scene.eye.relief_mm + r + 30.0;
-  auto axis = makeActor(polylineData({{0, 0, 0}, {0, 0, len}}, false), colors::kOpticalAxis, 1.0, ef);
+  auto axis = makeActor(polylineData({{0, 0, 0}, {0, 0, len}}, false), colors::kOpticalAxis, 0.8, ef);
   axis->GetProperty()->LightingOff();
-  axis->GetProperty()->SetLineWidth(2.0);
+  axis->GetProperty()->SetLineWidth(1.5);
   layer.add(axis, "eye");
 }
 
@@ -208,6 +202,15 @@ void addFovealDisplay(const Scene& scene, SceneLayer& layer) {
   y_to_z << 1, 0, 0, 0, 0, -1, 0, 1, 0;
   const Frame cf = frameAlong(e.pupil_center + ic.eye_distance_mm * e.gaze, y_to_z);
   layer.add(makeActor(output(disc.GetPointer()), colors::kCombiner, 0.35, cf), "foveal_display");
+  std::vector<Eigen::Vector3d> rim;  // its edge, in the disc's plane (local x, -z of cf's y axis)
+  for (int i = 0; i < 64; ++i) {
+    const double phi = 2.0 * kPi * i / 64;
+    rim.emplace_back(radius * std::cos(phi), 0.0, radius * std::sin(phi));
+  }
+  auto edge = makeActor(polylineData(rim, true), colors::kCombiner, 0.9, cf);
+  edge->GetProperty()->LightingOff();
+  edge->GetProperty()->SetLineWidth(1.5);
+  layer.add(edge, "foveal_display");
 }
 
 void addLens(const Scene& scene, SceneLayer& layer) {
@@ -238,8 +241,21 @@ void addLens(const Scene& scene, SceneLayer& layer) {
   normals->SetInputConnection(revolve->GetOutputPort());
   normals->ConsistencyOn();
   normals->AutoOrientNormalsOff();
-  auto actor = makeActor(output(normals.GetPointer()), colors::kLens, l.enabled ? 0.6 : 0.15, frameOf(l.pose));
+  const Frame lf = frameOf(l.pose);
+  auto actor = makeActor(output(normals.GetPointer()), colors::kLens, l.enabled ? 0.75 : 0.2, lf);
+  actor->GetProperty()->SetSpecular(0.5);
+  actor->GetProperty()->SetSpecularPower(30.0);
   layer.add(actor, "beam_shaping_lens");
+  // Its rim as a solid ring, so the thin lens reads from any side.
+  std::vector<Eigen::Vector3d> ring;
+  for (int i = 0; i < 64; ++i) {
+    const double phi = 2.0 * kPi * i / 64;
+    ring.emplace_back(rim * std::cos(phi), rim * std::sin(phi), 0.0);
+  }
+  auto edge = makeActor(polylineData(ring, true), colors::kLensRim, l.enabled ? 1.0 : 0.35, lf);
+  edge->GetProperty()->LightingOff();
+  edge->GetProperty()->SetLineWidth(2.0);
+  layer.add(edge, "beam_shaping_lens");
 }
 
 // Translation stages as their travel: a bar along the driven element's local axis from the
@@ -274,9 +290,9 @@ void addStages(const Scene& scene, SceneLayer& layer) {
 
 }  // namespace
 
-void buildSceneActors(const Scene& scene, SceneLayer& layer) {
+void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light) {
   addHoe(scene, layer);
-  addProjector(scene, layer);
+  addProjector(scene, layer, light);
   addEye(scene, layer);
   addFovealDisplay(scene, layer);
   addLens(scene, layer);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include <vtkActor.h>
 #include <vtkActor2DCollection.h>
 #include <vtkAxesActor.h>
@@ -13,7 +15,10 @@
 #include <vtkCaptionActor2D.h>
 #include <vtkCellPicker.h>
 #include <vtkCubeSource.h>
+#include <vtkDataSet.h>
+#include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGenericRenderWindowInteractor.h>
+#include <vtkMatrix4x4.h>
 #include <vtkOrientationMarkerWidget.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProp.h>
@@ -24,6 +29,8 @@
 #include <vtkTextProperty.h>
 
 #include "model/scene/scene_geometry.h"
+#include "model/units.h"
+#include "viz/element_labels.h"
 #include "viz/scale_bar.h"
 #include "viz/scene_actors.h"
 #include "viz/scene_elements.h"
@@ -51,7 +58,20 @@ SceneView::SceneView(QWidget* parent) : VtkGlWidget(parent) {
   axesWidget_->SetEnabled(1);
   axesWidget_->InteractiveOff();
 
-  scaleBar_ = std::make_unique<ScaleBar>(ren);
+  // The margins: the colour bar's strip on the right, the scale bar's at the bottom.
+  legend_ = vtkSmartPointer<vtkRenderer>::New();
+  footer_ = vtkSmartPointer<vtkRenderer>::New();
+  for (vtkRenderer* margin : {legend_.GetPointer(), footer_.GetPointer()}) {
+    margin->InteractiveOff();
+    margin->SetBackgroundAlpha(1.0);  // opaque in the blitted framebuffer
+    renderWindow()->AddRenderer(margin);
+  }
+  applyMarginColors();
+  scaleBar_ = std::make_unique<ScaleBar>(ren, footer_);
+  labels_ = std::make_unique<ElementLabels>(ren);
+  applyMarginColors();
+  layer(QStringLiteral("seen")).setVisible(false);  // the eye's view only
+  layoutViewports();
 
   picker_ = vtkSmartPointer<vtkCellPicker>::New();
   picker_->SetTolerance(0.004);
@@ -74,7 +94,91 @@ constexpr double kScreenBackground[2][3] = {{0.10, 0.11, 0.13}, {0.24, 0.27, 0.3
 constexpr double kPrintBackground[2][3] = {{1.0, 1.0, 1.0}, {0.90, 0.92, 0.95}};
 constexpr double kScreenText[3] = {0.92, 0.92, 0.92};
 constexpr double kPrintText[3] = {0.10, 0.10, 0.12};
+constexpr double kScreenMargin[3] = {0.13, 0.14, 0.17};
+constexpr double kPrintMargin[3] = {1.0, 1.0, 1.0};
+// Layers the eye's view hides: the light seen edge-on, fans converging on the camera, the
+// eye's own marks around it and the handles.
+const char* const kHiddenInEyeView[] = {"frustum", "rays", "eye_marks", "handles"};
 }  // namespace
+
+void SceneView::applyMarginColors() {
+  const double* c = printLook_ ? kPrintMargin : kScreenMargin;
+  legend_->SetBackground(c[0], c[1], c[2]);
+  footer_->SetBackground(c[0], c[1], c[2]);
+  const double* text = printLook_ ? kPrintText : kScreenText;
+  if (labels_) labels_->setColor(text[0], text[1], text[2], printLook_ ? 1.0 : 0.08);
+}
+
+void SceneView::layoutViewports() {
+  const double dpr = devicePixelRatioF();
+  const double w = std::max(1.0, width() * dpr), h = std::max(1.0, height() * dpr);
+  // Margins in device pixels, at most a third of the widget each way.
+  const double fx = 1.0 - std::min(1.0 / 3.0, kLegendWidth_px * dpr / w);
+  const double fy = std::min(1.0 / 3.0, kFooterHeight_px * dpr / h);
+  renderer()->SetViewport(0.0, fy, fx, 1.0);
+  legend_->SetViewport(fx, 0.0, 1.0, 1.0);
+  footer_->SetViewport(0.0, 0.0, fx, fy);
+  const double axes_px = 110.0 * dpr;
+  axesWidget_->SetViewport(0.0, fy, std::min(fx, axes_px / w), std::min(1.0, fy + axes_px / h));
+}
+
+void SceneView::resizeGL(int w, int h) {
+  VtkGlWidget::resizeGL(w, h);
+  layoutViewports();
+  // A camera the user has not moved since it was framed is framed again for the new size
+  // (the first frame happens before the widget has one).
+  if (autoFramed_ && hasScene_) {
+    if (eyeView_)
+      showStandardView(StandardView::EyeView);
+    else
+      resetCamera();
+  }
+}
+
+void SceneView::wheelEvent(QWheelEvent* e) {
+  autoFramed_ = false;
+  VtkGlWidget::wheelEvent(e);
+}
+
+void SceneView::paintGL() {
+  layoutViewports();
+  VtkGlWidget::paintGL();
+}
+
+vtkRenderer* SceneView::legendRenderer() const {
+  return legend_;
+}
+
+void SceneView::setLabelsVisible(bool on) {
+  labels_->setVisible(on);
+  requestRender();
+}
+
+bool SceneView::labelsVisible() const {
+  return labels_->isVisible();
+}
+
+int SceneView::labelsShown() const {
+  return labels_->shownCount();
+}
+
+void SceneView::setEyeViewMode(bool on) {
+  if (on == eyeView_) return;
+  eyeView_ = on;
+  if (on) {
+    eyeViewHidden_.clear();
+    for (const char* name : kHiddenInEyeView) {
+      SceneLayer& l = layer(name);
+      eyeViewHidden_[name] = l.isVisible();
+      l.setVisible(false);
+    }
+  } else {
+    for (const auto& [name, was] : eyeViewHidden_) layer(name).setVisible(was);
+    eyeViewHidden_.clear();
+  }
+  layer(QStringLiteral("seen")).setVisible(on);
+  scaleBar_->setVisible(!on);  // a length at the focal plane means nothing from the pupil
+}
 
 void SceneView::setPrintLook(bool on) {
   if (on == printLook_) return;
@@ -85,7 +189,8 @@ void SceneView::setPrintLook(bool on) {
   ren->SetBackground2(bg[1][0], bg[1][1], bg[1][2]);
   const double* text = on ? kPrintText : kScreenText;
   scaleBar_->setColor(on ? text[0] : 1.0, on ? text[1] : 1.0, on ? text[2] : 1.0);
-  vtkActor2DCollection* overlays = ren->GetActors2D();
+  applyMarginColors();
+  vtkActor2DCollection* overlays = legend_->GetActors2D();
   overlays->InitTraversal();
   while (vtkActor2D* a = overlays->GetNextActor2D())
     if (auto* bar = vtkScalarBarActor::SafeDownCast(a)) {
@@ -93,10 +198,16 @@ void SceneView::setPrintLook(bool on) {
       bar->GetLabelTextProperty()->SetColor(text[0], text[1], text[2]);
       if (vtkTextProperty* note = bar->GetAnnotationTextProperty()) note->SetColor(text[0], text[1], text[2]);
     }
+  // Handles: hidden in print; the eye's view hides them too and keeps their state to restore.
   SceneLayer& handles = layer(QStringLiteral("handles"));
   if (on) {
-    handlesWereVisible_ = handles.isVisible();
-    handles.setVisible(false);
+    handlesWereVisible_ = eyeView_ ? eyeViewHidden_[QStringLiteral("handles")] : handles.isVisible();
+    if (eyeView_)
+      eyeViewHidden_[QStringLiteral("handles")] = false;
+    else
+      handles.setVisible(false);
+  } else if (eyeView_) {
+    eyeViewHidden_[QStringLiteral("handles")] = handlesWereVisible_;
   } else {
     handles.setVisible(handlesWereVisible_);
   }
@@ -120,8 +231,11 @@ void SceneView::setScene(const Scene& scene, bool reset) {
   scene_ = scene;
   hasScene_ = true;
   SceneLayer& l = sceneLayer();
+  SceneLayer& light = layer(QStringLiteral("frustum"));
   l.clear();
-  buildSceneActors(scene_, l);
+  light.clear();
+  buildSceneActors(scene_, l, light);
+  labels_->setScene(scene_);
   applyHoeShift();
   updateHighlight();
   if (first || reset) showStandardView(StandardView::Isometric);
@@ -236,17 +350,37 @@ void SceneView::showStandardView(StandardView view) {
       dir = Eigen::Vector3d(0.8, 0.6, 1.0).normalized();
       break;
     case StandardView::EyeView: {
+      setEyeViewMode(true);
       const EyePlacement e = placeEye(scene_);
       const Eigen::Vector3d at = e.pupil_center + 0.2 * e.gaze, focus = e.pupil_center + 100.0 * e.gaze;
       cam->SetPosition(at.x(), at.y(), at.z());
       cam->SetFocalPoint(focus.x(), focus.y(), focus.z());
       cam->SetViewUp(0, 1, 0);
-      cam->SetViewAngle(100.0);  // about the periphery the HOE serves
+      // The view angle takes in the whole plate as the eye sees it, with a 10 % margin: the
+      // largest angle off the gaze of the plate's corners, horizontally or vertically scaled
+      // by the viewport's aspect (VTK's view angle is the vertical one).
+      const Frame hf = frameOf(scene_.hoe.pose);
+      const Eigen::Vector3d right = e.gaze.cross(Eigen::Vector3d::UnitY()).normalized(), above = right.cross(e.gaze);
+      const int* size = renderer()->GetSize();
+      const double aspect = size[1] > 0 ? static_cast<double>(size[0]) / size[1] : 1.0;
+      double half_tan = 0.0;
+      for (double sx : {-0.5, 0.5})
+        for (double sy : {-0.5, 0.5}) {
+          const Eigen::Vector3d c =
+              hf.toBench({sx * scene_.hoe.size_mm[0], sy * scene_.hoe.size_mm[1], 0.0}) + hoeShift_ - at;
+          const double depth = c.dot(e.gaze);
+          if (depth <= 1e-6) continue;
+          half_tan = std::max({half_tan, std::abs(c.dot(above)) / depth, std::abs(c.dot(right)) / depth / aspect});
+        }
+      const double angle = half_tan > 0.0 ? 2.0 * std::atan(1.1 * half_tan) / kDeg : 100.0;
+      cam->SetViewAngle(std::clamp(angle, 30.0, 150.0));
+      autoFramed_ = true;
       renderer()->ResetCameraClippingRange();
       requestRender();
       return;
     }
   }
+  setEyeViewMode(false);
   cam->SetFocalPoint(hoe.x(), hoe.y(), hoe.z());
   const Eigen::Vector3d from = hoe + 300.0 * dir;
   cam->SetPosition(from.x(), from.y(), from.z());
@@ -256,16 +390,79 @@ void SceneView::showStandardView(StandardView view) {
 
 void SceneView::resetCamera() {
   vtkRenderer* ren = renderer();
-  // Frame the scene layer only (ignores the highlight and other overlays).
-  double b[6];
-  ren->ComputeVisiblePropBounds(b);
-  if (b[0] <= b[1]) ren->ResetCamera(b);
-  ren->GetActiveCamera()->Zoom(1.25);  // the bounding sphere frames loosely
+  vtkCamera* cam = ren->GetActiveCamera();
+  // The bench: the bounds of every element of the scene layer (not the light, the fans, the
+  // handles or the selection box).
+  // The bench: the points of every element prop of the scene layer (not the light, the fans,
+  // the handles or the selection box) where they are drawn, at most ~400 per prop.
+  std::vector<Eigen::Vector3d> corners;
+  Eigen::AlignedBox3d box;
+  for (const QString& id : elementIds(scene_))
+    for (vtkProp* p : sceneLayer().propsOf(id)) {
+      auto* actor = vtkActor::SafeDownCast(p);
+      vtkDataSet* data = actor && actor->GetMapper() ? actor->GetMapper()->GetInputAsDataSet() : nullptr;
+      if (!data || data->GetNumberOfPoints() == 0) continue;
+      vtkMatrix4x4* m = actor->GetMatrix();
+      const vtkIdType n = data->GetNumberOfPoints(), stride = std::max<vtkIdType>(1, n / 400);
+      for (vtkIdType i = 0; i < n; i += stride) {
+        double q[4] = {0, 0, 0, 1}, w[4];
+        data->GetPoint(i, q);
+        q[3] = 1.0;
+        m->MultiplyPoint(q, w);
+        corners.emplace_back(w[0], w[1], w[2]);
+        box.extend(corners.back());
+      }
+    }
+  if (box.isEmpty()) {
+    ren->ResetCamera();
+    ren->ResetCameraClippingRange();
+    requestRender();
+    return;
+  }
+  // Fit the box's corners into the viewport with a margin, from the current direction: the
+  // camera distance at which every corner's projection lies inside, then centre the
+  // projected extent (a few rounds, as centring changes the distance a little).
+  double pos[3], fp[3], vu[3];
+  cam->GetPosition(pos);
+  cam->GetFocalPoint(fp);
+  cam->GetViewUp(vu);
+  const Eigen::Vector3d back =
+      (Eigen::Vector3d(pos[0], pos[1], pos[2]) - Eigen::Vector3d(fp[0], fp[1], fp[2])).normalized();
+  const Eigen::Vector3d right = Eigen::Vector3d(vu[0], vu[1], vu[2]).cross(back).normalized(), up = back.cross(right);
+  const int* size = ren->GetSize();
+  const double aspect = size[1] > 0 ? static_cast<double>(size[0]) / size[1] : 1.0;
+  const double tv = std::tan(cam->GetViewAngle() / 2.0 * kDeg) * 0.82, th = tv * aspect;  // 9 % margin each side
+  Eigen::Vector3d centre = box.center();
+  double distance = 1.0;
+  for (int round = 0; round < 4; ++round) {
+    distance = 1.0;
+    for (const Eigen::Vector3d& corner : corners) {
+      const Eigen::Vector3d c = corner - centre;
+      const double toward = c.dot(back);
+      distance = std::max({distance, toward + std::abs(c.dot(right)) / th, toward + std::abs(c.dot(up)) / tv});
+    }
+    double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
+    for (const Eigen::Vector3d& corner : corners) {
+      const Eigen::Vector3d c = corner - centre;
+      const double depth = distance - c.dot(back);
+      u0 = std::min(u0, c.dot(right) / depth);
+      u1 = std::max(u1, c.dot(right) / depth);
+      v0 = std::min(v0, c.dot(up) / depth);
+      v1 = std::max(v1, c.dot(up) / depth);
+    }
+    centre += distance * (0.5 * (u0 + u1) * right + 0.5 * (v0 + v1) * up);
+  }
+  const Eigen::Vector3d from = centre + distance * back;
+  cam->SetFocalPoint(centre.x(), centre.y(), centre.z());
+  cam->SetPosition(from.x(), from.y(), from.z());
+  cam->SetViewUp(up.x(), up.y(), up.z());
+  autoFramed_ = true;
   ren->ResetCameraClippingRange();
   requestRender();
 }
 
 void SceneView::zoomCamera(double factor) {
+  autoFramed_ = false;
   renderer()->GetActiveCamera()->Zoom(factor);
   renderer()->ResetCameraClippingRange();
   requestRender();
@@ -276,6 +473,7 @@ double SceneView::scaleBarLengthMm() const {
 }
 
 void SceneView::mousePressEvent(QMouseEvent* e) {
+  autoFramed_ = false;  // the user takes the camera
   if (e->button() == Qt::LeftButton) {
     pressPos_ = e->position();
     pressed_ = true;

@@ -1,8 +1,13 @@
 #pragma once
 // The studio's 3D view of the bench: a VtkGlWidget with layers of actors. The "scene" layer
-// holds the elements (viz/scene_actors.h); later features add their own layers (ray fans,
-// handles) with layer(name). Clicking an element (press and release without dragging) emits
-// elementPicked(id); setSelectedElement() draws a highlight box around it.
+// holds the elements and "frustum" the projector's light (viz/scene_actors.h); later
+// features add their own layers (ray fans, handles) with layer(name). Clicking an element
+// (press and release without dragging) emits elementPicked(id); setSelectedElement() draws
+// a highlight box around it.
+// Viewport layout: the scene renderer takes the window but for a right margin (the legend
+// renderer: the colour bar) and a bottom margin (the scale bar), so neither ever covers the
+// bench. Element labels (viz/element_labels.h) can be toggled. The camera frames the
+// bench's elements tightly in the scene viewport at start and on Reset.
 
 #include <QHash>
 #include <QPointF>
@@ -22,10 +27,12 @@
 class vtkActor;
 class vtkOrientationMarkerWidget;
 class vtkCellPicker;
+class vtkRenderer;
 
 namespace fovea::viz {
 
 class ScaleBar;
+class ElementLabels;
 
 enum class StandardView { Isometric, Top, Side, EyeView };
 
@@ -60,11 +67,31 @@ class SceneView : public VtkGlWidget {
   // The camera ray through a widget position (logical pixels): origin and unit direction.
   std::pair<Eigen::Vector3d, Eigen::Vector3d> viewRay(const QPointF& widgetPos);
 
+  // The standard views. The eye's view puts the camera in the pupil along the gaze, its view
+  // angle fitted to the HOE, and hides what the eye cannot see as such (the projector's
+  // frustum, the ray fans, the eye's own marks, handles); the "seen" layer (the plate's area
+  // whose light enters the pupil, trace_overlay.h) shows only there. Any other standard view
+  // leaves it.
   void showStandardView(StandardView view);
+  bool eyeViewMode() const { return eyeView_; }
+  // Enters or leaves the eye's view's layer visibility without moving the camera (the report
+  // restores a saved camera with it).
+  void setEyeViewMode(bool on);
+  // Frames the bench's elements (scene layer) in the scene viewport from the current
+  // direction.
   void resetCamera();
   // Zooms the camera by `factor` (> 1 closer) about its focal point.
   void zoomCamera(double factor);
   double scaleBarLengthMm() const;
+  // The renderer of the right margin, where the colour bar lives.
+  vtkRenderer* legendRenderer() const;
+  // Right and bottom margins in device pixels (the legend and scale-bar strips).
+  static constexpr int kLegendWidth_px = 128;
+  static constexpr int kFooterHeight_px = 40;
+  // Element labels (projector, HOE, eye, micro-OLED, combiner, lens); on by default.
+  void setLabelsVisible(bool on);
+  bool labelsVisible() const;
+  int labelsShown() const;
   // The look of a printed figure: a light background, dark scale bar and colour-bar text,
   // no selection highlight and no interaction handles. Off restores the studio's look.
   void setPrintLook(bool on);
@@ -78,10 +105,15 @@ class SceneView : public VtkGlWidget {
  protected:
   void mousePressEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
+  void resizeGL(int w, int h) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void paintGL() override;
 
  private:
   void updateHighlight();
   void applyHoeShift();
+  void layoutViewports();
+  void applyMarginColors();
 
   Scene scene_;
   bool hasScene_ = false;
@@ -90,7 +122,13 @@ class SceneView : public VtkGlWidget {
   vtkSmartPointer<vtkActor> highlight_;
   vtkSmartPointer<vtkOrientationMarkerWidget> axesWidget_;
   vtkSmartPointer<vtkCellPicker> picker_;
+  vtkSmartPointer<vtkRenderer> legend_;
+  vtkSmartPointer<vtkRenderer> footer_;
   std::unique_ptr<ScaleBar> scaleBar_;
+  std::unique_ptr<ElementLabels> labels_;
+  bool eyeView_ = false;
+  bool autoFramed_ = false;                // the camera is as the last framing left it (refit on resize)
+  std::map<QString, bool> eyeViewHidden_;  // layers hidden by the eye's view: visibility before
   QPointF pressPos_;
   bool pressed_ = false;
   Eigen::Vector3d hoeShift_ = Eigen::Vector3d::Zero();

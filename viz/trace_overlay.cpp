@@ -31,6 +31,8 @@ namespace {
 
 constexpr double kDash_mm = 1.2;         // dash and gap length of rays missing the pupil
 constexpr double kAwayLength_mm = 30.0;  // drawn length of rays that do not head into the eye
+constexpr double kRayWidth_px = 3.0;
+constexpr double kMissOpacity = 0.55;
 constexpr std::array<double, 3> kPupilGreen{0.25, 0.95, 0.35};
 constexpr std::array<double, 3> kFoveaOrange{1.00, 0.55, 0.10};
 
@@ -187,6 +189,49 @@ void addSphereCap(SceneLayer& layer, const Eigen::Vector3d& centre, double radiu
   layer.add(actor, id, false);
 }
 
+// A quad mesh over the projector grid: the plate points of the pixels offset by `offset`,
+// each coloured by sum/count through the efficiency colours; a quad is drawn where its four
+// pixels hit the plate and have a count. Returns the number of quads.
+int addPixelMesh(SceneLayer& layer, const std::array<int, 2>& grid, const std::vector<Eigen::Vector3d>& where,
+                 const std::vector<char>& hit, const std::vector<double>& sum, const std::vector<int>& count,
+                 const Eigen::Vector3d& offset) {
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> eta;
+  eta->SetName("efficiency");
+  for (std::size_t i = 0; i < where.size(); ++i) {
+    const Eigen::Vector3d p = where[i] + offset;
+    points->InsertNextPoint(p.data());
+    eta->InsertNextValue(count[i] ? sum[i] / count[i] : 0.0);
+  }
+  vtkNew<vtkCellArray> quads;
+  const int nx = grid[0], ny = grid[1];
+  int cells = 0;
+  for (int y = 0; y + 1 < ny; ++y)
+    for (int x = 0; x + 1 < nx; ++x) {
+      const vtkIdType q[4] = {y * nx + x, y * nx + x + 1, (y + 1) * nx + x + 1, (y + 1) * nx + x};
+      bool ok = true;
+      for (vtkIdType id : q) ok = ok && hit[static_cast<std::size_t>(id)] && count[static_cast<std::size_t>(id)];
+      if (!ok) continue;
+      quads->InsertNextCell(4, q);
+      ++cells;
+    }
+  if (cells == 0) return 0;
+  data->SetPoints(points);
+  data->SetPolys(quads);
+  data->GetPointData()->SetScalars(eta);
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputData(data);
+  mapper->SetLookupTable(efficiencyLookupTable());
+  mapper->UseLookupTableScalarRangeOn();
+  mapper->InterpolateScalarsBeforeMappingOn();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->LightingOff();
+  layer.add(actor, "hoe");
+  return cells;
+}
+
 }  // namespace
 
 bool wavelengthShown(const TraceOverlayOptions& o, double nm) {
@@ -197,11 +242,17 @@ bool wavelengthShown(const TraceOverlayOptions& o, double nm) {
 TraceOverlay::TraceOverlay(SceneView* view) : view_(view) {
   colorBar_ = efficiencyColorBar();
   colorBar_->VisibilityOff();
-  view_->renderer()->AddViewProp(colorBar_);
+  // In the view's right margin (its own renderer), title and labels inside the strip.
+  colorBar_->SetPosition(0.30, 0.18);
+  colorBar_->SetWidth(0.55);
+  colorBar_->SetHeight(0.62);
+  colorBar_->SetMaximumWidthInPixels(200);
+  colorBar_->SetBarRatio(0.32);
+  view_->legendRenderer()->AddViewProp(colorBar_);
 }
 
 TraceOverlay::~TraceOverlay() {
-  view_->renderer()->RemoveViewProp(colorBar_);
+  view_->legendRenderer()->RemoveViewProp(colorBar_);
 }
 
 vtkScalarBarActor* TraceOverlay::colorBar() const {
@@ -209,7 +260,7 @@ vtkScalarBarActor* TraceOverlay::colorBar() const {
 }
 
 void TraceOverlay::clear() {
-  for (const char* name : {"rays", "eye_marks", "effmap"}) view_->layer(name).clear();
+  for (const char* name : {"rays", "eye_marks", "effmap", "seen"}) view_->layer(name).clear();
   colorBar_->VisibilityOff();
   view_->setHoeDisplayShift(Eigen::Vector3d::Zero());
   stats_ = {};
@@ -221,9 +272,11 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
   SceneLayer& rays = view_->layer("rays");
   SceneLayer& marks = view_->layer("eye_marks");
   SceneLayer& effmap = view_->layer("effmap");
+  SceneLayer& seen = view_->layer("seen");
   rays.clear();
   marks.clear();
   effmap.clear();
+  seen.clear();
   stats_ = {};
   const Frame nominal = frameOf(scene.hoe.pose);
   const Eigen::Vector3d shift_bench = shift[0] * nominal.x() + shift[1] * nominal.y();
@@ -267,15 +320,25 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
         dashed.addDashed(r.hoe_point, end, rgb);
       }
     }
-    if (!solid.empty()) rays.add(solid.actor(2.0), {}, false);
-    if (!dashed.empty()) rays.add(dashed.actor(2.0), {}, false);
+    // Solid fans drawn as lit tubes that read at any zoom; misses dashed and faded.
+    if (!solid.empty()) {
+      auto a = solid.actor(kRayWidth_px);
+      a->GetProperty()->SetRenderLinesAsTubes(true);
+      rays.add(a, {}, false);
+    }
+    if (!dashed.empty()) {
+      auto a = dashed.actor(kRayWidth_px - 1.0);
+      a->GetProperty()->SetOpacity(kMissOpacity);
+      rays.add(a, {}, false);
+    }
   }
 
-  if (o.efficiency_map && grid[0] > 1 && grid[1] > 1 && !trace.ray_list.empty()) {
-    // Per pixel: plate point and mean efficiency over the shown wavelengths.
+  if (grid[0] > 1 && grid[1] > 1 && !trace.ray_list.empty()) {
+    // Per pixel: plate point and mean efficiency over the shown wavelengths, of every ray
+    // (the efficiency map) and of the rays entering the pupil (what the eye sees).
     const std::size_t blocks = trace.ray_list.size() / per;
-    std::vector<double> sum(per, 0.0);
-    std::vector<int> count(per, 0);
+    std::vector<double> sum(per, 0.0), sum_seen(per, 0.0);
+    std::vector<int> count(per, 0), count_seen(per, 0);
     std::vector<char> hit(per, 0);
     std::vector<Eigen::Vector3d> where(per, Eigen::Vector3d::Zero());
     for (std::size_t b = 0; b < blocks; ++b)
@@ -287,44 +350,17 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
         if (!wavelengthShown(o, r.wavelength_nm)) continue;
         sum[i] += r.efficiency;
         ++count[i];
+        if (r.in_pupil) {
+          sum_seen[i] += r.efficiency;
+          ++count_seen[i];
+        }
       }
     const Frame plate{nominal.origin + shift_bench, nominal.axes};
-    for (double side : {-1.0, 1.0}) {
-      auto data = vtkSmartPointer<vtkPolyData>::New();
-      vtkNew<vtkPoints> points;
-      vtkNew<vtkDoubleArray> eta;
-      eta->SetName("efficiency");
-      for (std::size_t i = 0; i < per; ++i) {
-        const Eigen::Vector3d p = where[i] + side * 0.95 * plate.z();
-        points->InsertNextPoint(p.data());
-        eta->InsertNextValue(count[i] ? sum[i] / count[i] : 0.0);
-      }
-      vtkNew<vtkCellArray> quads;
-      const int nx = grid[0], ny = grid[1];
-      int cells = 0;
-      for (int y = 0; y + 1 < ny; ++y)
-        for (int x = 0; x + 1 < nx; ++x) {
-          const vtkIdType q[4] = {y * nx + x, y * nx + x + 1, (y + 1) * nx + x + 1, (y + 1) * nx + x};
-          bool ok = true;
-          for (vtkIdType id : q) ok = ok && hit[static_cast<std::size_t>(id)] && count[static_cast<std::size_t>(id)];
-          if (!ok) continue;
-          quads->InsertNextCell(4, q);
-          ++cells;
-        }
-      stats_.effmap_cells = cells;
-      data->SetPoints(points);
-      data->SetPolys(quads);
-      data->GetPointData()->SetScalars(eta);
-      auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-      mapper->SetInputData(data);
-      mapper->SetLookupTable(efficiencyLookupTable());
-      mapper->UseLookupTableScalarRangeOn();
-      mapper->InterpolateScalarsBeforeMappingOn();
-      auto actor = vtkSmartPointer<vtkActor>::New();
-      actor->SetMapper(mapper);
-      actor->GetProperty()->LightingOff();
-      effmap.add(actor, "hoe");
-    }
+    if (o.efficiency_map)
+      for (double side : {-1.0, 1.0})
+        stats_.effmap_cells = addPixelMesh(effmap, grid, where, hit, sum, count, side * 0.95 * plate.z());
+    // The eye's side of the plate is the one facing the eye (-z of the HOE, scene.h).
+    addPixelMesh(seen, grid, where, hit, sum_seen, count_seen, -1.05 * plate.z());
   }
   colorBar_->SetVisibility(o.rays || o.efficiency_map);
   view_->requestRender();

@@ -1,15 +1,18 @@
 #pragma once
 // What the live trace draws into the 3D view (seed Fig. S5 in 3-D):
 //  - ray fans projector -> HOE -> eye pupil plane, coloured by diffraction efficiency
-//    (efficiency_colors.h; gray below 0.1), solid when the ray enters the pupil and dashed
-//    when it misses it (or leaves away from the eye); a colour bar;
+//    (efficiency_colors.h; gray below 0.1), solid 3 px tubes when the ray enters the pupil,
+//    dashed and faded when it misses it (or leaves away from the eye); a colour bar;
 //  - the pupil outline (green) and the fovea on the back of the eyeball (orange, the eye's
 //    fovea_radius_deg around the optical axis seen from the rotation centre);
 //  - optionally the efficiency map: the plate's area lit by the projector, coloured by the
 //    efficiency of the ray that lands there (mean over the shown wavelengths), drawn on
 //    both faces of the plate;
+//  - what the eye sees (layer "seen", shown by the eye's view only): the plate's area whose
+//    rays enter the pupil, coloured by their mean efficiency, on the plate's eye side;
 //  - the plate shifted by the "HOE follows gaze" travel (SceneView::setHoeDisplayShift).
-// Layers: "rays", "eye_marks", "effmap". Per-wavelength toggles hide a wavelength's rays.
+// Layers: "rays", "eye_marks", "effmap", "seen". Per-wavelength toggles hide a wavelength's
+// rays. The colour bar lives in the view's right margin (SceneView::legendRenderer).
 
 #include <array>
 #include <vector>

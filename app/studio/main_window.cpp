@@ -184,6 +184,16 @@ void MainWindow::createMenus() {
   addView(tr("&Side"), tr("Ctrl+2"), SV::Side);
   addView(tr("&Eye's View"), tr("Ctrl+3"), SV::EyeView);
   viewMenu_->addAction(tr("&Reset Camera"), QKeySequence(tr("Home")), this, [this] { view_->resetCamera(); });
+  labelsAction_ = viewMenu_->addAction(tr("Element &Labels"));
+  labelsAction_->setObjectName("labelsAction");
+  labelsAction_->setShortcut(QKeySequence(tr("Ctrl+L")));
+  labelsAction_->setCheckable(true);
+  labelsAction_->setChecked(view_->labelsVisible());
+  labelsAction_->setToolTip(tr("Names of the projector, HOE, eye, micro-OLED, combiner and lens in the 3-D view"));
+  connect(labelsAction_, &QAction::toggled, this, [this](bool on) {
+    view_->setLabelsVisible(on);
+    if (persistSettings_) QSettings().setValue("view/labels", on);
+  });
   viewMenu_->addAction(tr("Reset &Layout"), this, &MainWindow::resetLayout);
   viewMenu_->addSeparator();
   panelsMenu_ = viewMenu_->addMenu(tr("&Panels"));
@@ -378,6 +388,7 @@ void MainWindow::restoreSettings() {
   restoreGeometry(s.value("window/geometry").toByteArray());
   restoreState(s.value("window/state").toByteArray(), kDockLayoutVersion);
   recent_ = s.value("recentFiles").toStringList();
+  labelsAction_->setChecked(s.value("view/labels", true).toBool());
 }
 
 void MainWindow::saveSettings() {

@@ -65,6 +65,7 @@ class MainWindow : public QMainWindow {
   widgets::SceneTree* sceneTree() const { return tree_; }
   widgets::PropertyEditor* propertyEditor() const { return properties_; }
   widgets::MessageLog* messageLog() const { return log_; }
+  QAction* labelsAction() const { return labelsAction_; }
   // The live bench (devices/bench): the virtual one when no stage controller is plugged in.
   widgets::DevicesPanel* devicesPanel() const { return devices_; }
   QDockWidget* devicesDock() const { return devicesDock_; }
@@ -108,6 +109,7 @@ class MainWindow : public QMainWindow {
   QMenu* viewMenu_ = nullptr;
   QMenu* panelsMenu_ = nullptr;
   QMenu* recentMenu_ = nullptr;
+  QAction* labelsAction_ = nullptr;  // View ▸ Element Labels (QSettings "view/labels")
   QString selected_;
   QStringList recent_;
   bool persistSettings_ = false;

@@ -244,6 +244,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   viz::SceneView* view = window.sceneView();
   // Printed figures: light background, no handles or selection box (restored at the end).
   const bool wasPrintLook = view->printLook();
+  const bool wasEyeView = view->eyeViewMode();
   view->setPrintLook(true);
   vtkNew<vtkCamera> saved;
   saved->DeepCopy(view->renderer()->GetActiveCamera());
@@ -356,6 +357,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
     view->setHoeDisplayShift(shownShift);
   view->renderer()->GetActiveCamera()->DeepCopy(saved);
   view->renderer()->ResetCameraClippingRange();
+  view->setEyeViewMode(wasEyeView);
   view->setPrintLook(wasPrintLook);
   view->requestRender();
   if (!gazes.figures.isEmpty()) c.sections << gazes;

@@ -14,7 +14,9 @@ QImage captureWithOpenGl(QWidget* window) {
   const double dpr = image.devicePixelRatio();
   for (QOpenGLWidget* gl : window->findChildren<QOpenGLWidget*>()) {
     if (!gl->isVisible()) continue;
-    const QImage content = gl->grabFramebuffer();
+    // Opaque, as the screen shows it: the framebuffer's alpha (text and translucent passes
+    // leave it below 1) must not let the widget grab underneath show through.
+    const QImage content = gl->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
     if (content.isNull()) continue;
     const QRect target(gl->mapTo(window, QPoint(0, 0)), gl->size());
     painter.drawImage(QRectF(target.topLeft() * 1.0, QSizeF(target.size()) * 1.0), content,

@@ -66,13 +66,15 @@ nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis
   nlohmann::json j;
   j["axis"] = axis;
   const ShiftMethod m = r.method;
-  j["method"] = m == ShiftMethod::Hoe ? "hoe" : m == ShiftMethod::Source ? "source" : "none";
+  const bool source = m == ShiftMethod::Source || m == ShiftMethod::SourceAxial;
+  j["method"] = m == ShiftMethod::Hoe ? "hoe" : source ? "source" : "none";
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& s : r.samples)
     arr.push_back(
         {{"gaze_deg", s.gaze_deg},
          {"hoe_shift_mm", m == ShiftMethod::Hoe ? s.shift_mm : 0.0},
-         {"source_shift_mm", m == ShiftMethod::Source ? s.shift_mm : 0.0},
+         {"source_shift_mm", source ? s.shift_mm : 0.0},
+         {"source_z_mm", source ? s.shift_mm : 0.0},
          {"fov_deg", fovSampleJson(s.fov)},
          {"fov_extent_deg", {{"horizontal", s.fov.extent_horizontal_deg}, {"vertical", s.fov.extent_vertical_deg}}},
          {"mean_efficiency", s.fov.mean_efficiency},
@@ -87,19 +89,33 @@ nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis
 }
 
 nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod m, GazeAxis ax) {
+  const char* shift_axis = m == ShiftMethod::Hoe           ? (ax == GazeAxis::Yaw ? "HOE local x" : "HOE local y")
+                           : m == ShiftMethod::Source      ? "projector along bench z"
+                           : m == ShiftMethod::SourceAxial ? "projector along its optical axis"
+                                                           : "none";
   return {{"gaze_range_deg", eb.gaze_range_deg},
+          {"gaze_coverage_deg", eb.gaze_range_deg},
           {"travel_mm", eb.travel_mm},
           {"eyebox_mm", eb.width_mm},
           {"eyebox", eyeBoxJson(eb)},
-          {"shift_axis", m == ShiftMethod::Hoe      ? (ax == GazeAxis::Yaw ? "HOE local x" : "HOE local y")
-                         : m == ShiftMethod::Source ? "projector along bench z"
-                                                    : "none"}};
+          {"shift_axis", shift_axis}};
 }
 
-nlohmann::json compareShiftJson(const EyeBox& hoe, const EyeBox& source, const EyeBox* fixed, GazeAxis ax) {
+nlohmann::json sourceShiftSamplesJson(const std::vector<GazeSample>& samples, GazeAxis ax) {
+  nlohmann::json arr = nlohmann::json::array();
+  for (const GazeSample& s : samples)
+    arr.push_back({{"gaze_deg", s.gaze_deg},
+                   {"source_z_mm", s.shift_mm},
+                   {"fov_deg", axisFov(s.fov, ax)},
+                   {"pupil_position_mm", s.pupil_position_mm}});
+  return arr;
+}
+
+nlohmann::json compareShiftJson(const EyeBox& hoe, const EyeBox& source, const EyeBox* fixed, GazeAxis ax,
+                                ShiftMethod source_method) {
   nlohmann::json j;
   j["hoe_shift"] = compareShiftMethodJson(hoe, ShiftMethod::Hoe, ax);
-  j["source_shift"] = compareShiftMethodJson(source, ShiftMethod::Source, ax);
+  j["source_shift"] = compareShiftMethodJson(source, source_method, ax);
   j["eyebox_ratio"] = source.width_mm > 0 ? nlohmann::json(hoe.width_mm / source.width_mm) : nlohmann::json(nullptr);
   if (fixed) {
     j["static"] = compareShiftMethodJson(*fixed, ShiftMethod::None, ax);

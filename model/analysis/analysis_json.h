@@ -24,7 +24,10 @@ nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis
 nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod method, GazeAxis axis);
 // The whole compare-shift document: both methods and "eyebox_ratio"; with the static eye box
 // (nothing moving) also "static" and each method's "gain_mm" over it.
-nlohmann::json compareShiftJson(const EyeBox& hoe, const EyeBox& source, const EyeBox* fixed, GazeAxis axis);
+nlohmann::json compareShiftJson(const EyeBox& hoe, const EyeBox& source, const EyeBox* fixed, GazeAxis axis,
+                                ShiftMethod source_method = ShiftMethod::Source);
+// The source method's per-gaze samples: gaze_deg, source_z_mm (its optimal shift), fov_deg.
+nlohmann::json sourceShiftSamplesJson(const std::vector<GazeSample>& samples, GazeAxis axis);
 nlohmann::json eyeBoxJson(const EyeBox& eb);
 nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& samples, const std::string& parameter,
                                      double nominal_value);

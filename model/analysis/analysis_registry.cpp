@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "model/analysis/fit_analysis.h"
 #include "model/analysis/study_analyses.h"
 #include "model/analysis/tolerance_analysis.h"
 
@@ -25,7 +26,7 @@ namespace {
 std::vector<AnalysisDefinition> buildRegistry() {
   return {traceAnalysis(),          sweepAnalysis(),        compareShiftAnalysis(), sensitivityAnalysis(),
           resolutionAnalysis(),     optimizeLensAnalysis(), selectivityAnalysis(),  gratingSweepAnalysis(),
-          kogelnikVsRcwaAnalysis(), toleranceAnalysis()};
+          kogelnikVsRcwaAnalysis(), toleranceAnalysis(),    fitAnalysis()};
 }
 }  // namespace
 

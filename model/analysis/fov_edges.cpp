@@ -9,6 +9,10 @@ namespace fovea {
 
 namespace {
 
+const std::array<double, 2>& spanAngle(const ProbeRay& r, FovAngle a) {
+  return a == FovAngle::Footprint ? r.footprint_deg : r.field_deg;
+}
+
 struct Sample {
   double s = 0;  // coordinate along the scan line (tan)
   bool lit = false;
@@ -23,8 +27,15 @@ struct Span {
 class LineScan {
  public:
   // axis 0: the row (tan_x varies, tan_y = fixed, yaw read); 1: the column.
-  LineScan(const RayProbe& probe, double lambda_nm, double threshold, int axis, double fixed, long long& traced)
-      : probe_(probe), lambda_(lambda_nm), threshold_(threshold), axis_(axis), fixed_(fixed), traced_(traced) {}
+  LineScan(const RayProbe& probe, double lambda_nm, double threshold, FovAngle angle, int axis, double fixed,
+           long long& traced)
+      : probe_(probe),
+        lambda_(lambda_nm),
+        threshold_(threshold),
+        angle_(angle),
+        axis_(axis),
+        fixed_(fixed),
+        traced_(traced) {}
 
   Sample at(double s) const {
     ++traced_;
@@ -32,7 +43,7 @@ class LineScan {
     Sample out;
     out.s = s;
     out.lit = r.in_pupil && r.efficiency >= threshold_;
-    if (out.lit) out.angle = r.field_deg[axis_];
+    if (out.lit) out.angle = spanAngle(r, angle_)[axis_];
     return out;
   }
 
@@ -58,6 +69,7 @@ class LineScan {
  private:
   const RayProbe& probe_;
   double lambda_, threshold_;
+  FovAngle angle_;
   int axis_;
   double fixed_;
   long long& traced_;
@@ -177,9 +189,10 @@ EdgeFovResult edgeFov(const RayProbe& probe, const std::vector<double>& waveleng
     Span h, v;
     if (c.found) {
       c = refineCentre(probe, lambda, o.efficiency_threshold, c, out.rays_traced);
-      const LineScan row(probe, lambda, o.efficiency_threshold, 0, c.y, out.rays_traced);
-      const LineScan column(probe, lambda, o.efficiency_threshold, 1, c.x, out.rays_traced);
-      const Sample centre_row{c.x, true, c.ray.field_deg[0]}, centre_column{c.y, true, c.ray.field_deg[1]};
+      const LineScan row(probe, lambda, o.efficiency_threshold, o.angle, 0, c.y, out.rays_traced);
+      const LineScan column(probe, lambda, o.efficiency_threshold, o.angle, 1, c.x, out.rays_traced);
+      const std::array<double, 2>& a = spanAngle(c.ray, o.angle);
+      const Sample centre_row{c.x, true, a[0]}, centre_column{c.y, true, a[1]};
       h = widestRun(row, box[0], box[1], c.x, centre_row, o.scan_samples, o.tolerance_deg);
       v = widestRun(column, box[2], box[3], c.y, centre_column, o.scan_samples, o.tolerance_deg);
     }

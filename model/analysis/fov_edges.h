@@ -35,6 +35,7 @@
 namespace fovea {
 
 struct EdgeFovOptions {
+  FovAngle angle = FovAngle::Arrival;  // trace_evaluator.h
   double efficiency_threshold = 0.1;
   double tolerance_deg = 0.005;            // each edge's field angle to this
   int scan_samples = 49;                   // bracketing samples along each scan line

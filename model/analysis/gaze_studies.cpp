@@ -14,6 +14,19 @@ double axisFov(const FovSample& f, GazeAxis axis) {
   return axis == GazeAxis::Yaw ? f.horizontal_deg : f.vertical_deg;
 }
 
+double eyeBoxThresholdDeg(double reference_fov_deg, const GazeStudyOptions& options) {
+  return reference_fov_deg -
+         (options.criterion == EyeBoxCriterion::CentreFov ? kCentreFovSlackDeg : options.tolerance_deg);
+}
+
+Scene withSourceAlongAxis(const Scene& scene, double shift_mm) {
+  Scene out = scene;
+  const Eigen::Vector3d axis = rotationFromDeg(scene.projector.pose.rotation_deg) * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d p = toVec(scene.projector.pose.position_mm) + shift_mm * axis;
+  out.projector.pose.position_mm = {p.x(), p.y(), p.z()};
+  return out;
+}
+
 FovQuery gazeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double shift_mm) {
   FovQuery q;
   q.gaze_deg = axis == GazeAxis::Yaw ? std::array<double, 2>{gaze_deg, 0.0} : std::array<double, 2>{0.0, gaze_deg};
@@ -22,6 +35,8 @@ FovQuery gazeQuery(double gaze_deg, GazeAxis axis, ShiftMethod method, double sh
         axis == GazeAxis::Yaw ? std::array<double, 2>{shift_mm, 0.0} : std::array<double, 2>{0.0, shift_mm};
   else if (method == ShiftMethod::Source)
     q.source_shift_mm = shift_mm;
+  else if (method == ShiftMethod::SourceAxial)
+    q.source_axial_shift_mm = shift_mm;
   return q;
 }
 
@@ -140,7 +155,7 @@ StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator
   r.axis = axis;
   r.method = method;
   r.samples = std::move(samples);
-  const double threshold = axisFov(reference.fov, axis) - options.tolerance_deg;
+  const double threshold = eyeBoxThresholdDeg(axisFov(reference.fov, axis), options);
   auto good = [&](const GazeSample& s) { return axisFov(s.fov, axis) >= threshold; };
 
   // Walk out from zero gaze on each side; refine the first failure by bisection.

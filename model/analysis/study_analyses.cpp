@@ -25,6 +25,35 @@ std::vector<ParameterSpec> gazeRangeParameters(double from, double to, const std
       choice("axis", "Axis", {"yaw", "pitch"}, "yaw", "yaw: horizontal, HOE local x; pitch: vertical, HOE local y")};
 }
 
+ParameterSpec sourceShiftParameter() {
+  return choice("source-shift", "Source shift", {"bench-z", "axial"}, "bench-z",
+                "how the point source moves: bench-z, along bench z (ours); axial, along the projector's own optical "
+                "axis, + towards the HOE (the seed's z_s, A.4)");
+}
+
+ShiftMethod sourceMethodFrom(const nlohmann::json& v) {
+  return textOf(v, "source-shift") == "axial" ? ShiftMethod::SourceAxial : ShiftMethod::Source;
+}
+
+// The seed's FOV definition is only computed by the exact estimator.
+std::optional<ParameterProblem> checkFovDefinition(const nlohmann::json& v) {
+  if (textOf(v, "fov-definition") == "seed" && textOf(v, "fov-method") != "edges")
+    return ParameterProblem{"fov-definition", "'seed' needs --fov-method edges (footprint angles of single rays)"};
+  return std::nullopt;
+}
+
+std::optional<ParameterProblem> checkGazeStudy(const nlohmann::json& v) {
+  if (auto p = checkGazeRange(v)) return p;
+  return checkFovDefinition(v);
+}
+
+// The definitions a gaze study's document states it used.
+void addDefinitions(nlohmann::json& out, const nlohmann::json& v) {
+  out["fov_method"] = textOf(v, "fov-method");
+  out["fov_definition"] = textOf(v, "fov-definition");
+  out["eyebox_criterion"] = textOf(v, "eyebox-criterion");
+}
+
 OptionGroup gazeGroup(bool repeatable) {
   return {"gaze-deg", {"gaze-yaw", "gaze-pitch"}, "YAW[,PITCH] gaze in degrees", repeatable};
 }
@@ -37,7 +66,13 @@ std::vector<ParameterSpec> studyParameters() {
           number("tolerance-deg", "Eye-box tolerance", "deg", 3.0, 0.0, 90.0, 2,
                  "eye-box criterion: FOV within this of the zero-gaze FOV"),
           choice("fov-method", "FOV estimator", {"edges", "dense"}, "edges",
-                 "edges: the field's edges root-found to 0.005 deg (fov_edges.h); dense: counted on the rays grid")};
+                 "edges: the field's edges root-found to 0.005 deg (fov_edges.h); dense: counted on the rays grid"),
+          choice("eyebox-criterion", "Eye-box criterion", {"tolerance", "centre-fov"}, "tolerance",
+                 "tolerance: FOV within tolerance-deg of the zero-gaze FOV (ours); centre-fov: FOV at least the "
+                 "zero-gaze FOV (the seed's A.3)"),
+          choice("fov-definition", "FOV definition", {"ours", "seed"}, "ours",
+                 "ours: span of the lit rays' arrival directions; seed: span of their plate points seen from the "
+                 "pupil centre, the lit footprint (C.2, Fig. S5; needs fov-method edges)")};
 }
 
 std::optional<std::array<double, 2>> gazeFrom(const nlohmann::json& v) {
@@ -62,12 +97,14 @@ FovEvaluator evaluatorFrom(const nlohmann::json& v) {
   TraceEvaluatorOptions t;
   t.rays = integerOf(v, "rays");
   t.fov_method = parseFovMethod(textOf(v, "fov-method")).value_or(FovMethod::Edges);
+  t.fov_angle = parseFovDefinition(textOf(v, "fov-definition")).value_or(FovAngle::Arrival);
   return traceEvaluator(t);
 }
 
 GazeStudyOptions gazeStudyOptionsFrom(const nlohmann::json& v) {
   GazeStudyOptions g;
   g.tolerance_deg = numberOf(v, "tolerance-deg");
+  g.criterion = textOf(v, "eyebox-criterion") == "centre-fov" ? EyeBoxCriterion::CentreFov : EyeBoxCriterion::Tolerance;
   return g;
 }
 
@@ -119,12 +156,13 @@ AnalysisDefinition traceAnalysis() {
 }
 
 ShiftMethod sweepMethodFrom(const nlohmann::json& v) {
-  return textOf(v, "method") == "source" ? ShiftMethod::Source : ShiftMethod::Hoe;
+  return textOf(v, "method") == "source" ? sourceMethodFrom(v) : ShiftMethod::Hoe;
 }
 
 nlohmann::json sweepDocument(const GazeSweepResult& r, const nlohmann::json& v) {
   nlohmann::json out = sweepResultJson(r, textOf(v, "axis"));
-  out["fov_method"] = textOf(v, "fov-method");
+  addDefinitions(out, v);
+  out["source_shift"] = textOf(v, "source-shift");
   return out;
 }
 
@@ -135,11 +173,12 @@ AnalysisDefinition sweepAnalysis() {
   d.description = "For each gaze, the lateral HOE shift that maximises the FOV (supplement A.3), and the eye box.";
   d.parameters = gazeRangeParameters(-20, 20, "gaze step (> 0)");
   d.parameters.push_back(choice("method", "Method", {"hoe", "source"}, "hoe",
-                                "hoe: move the HOE laterally; source: move the projector along bench z"));
+                                "hoe: move the HOE laterally; source: move the projector point source (source-shift)"));
+  d.parameters.push_back(sourceShiftParameter());
   for (auto& p : studyParameters()) d.parameters.push_back(p);
   d.plots = {"fov-vs-gaze", "travel-vs-gaze"};
   d.cached = true;
-  d.check = checkGazeRange;
+  d.check = checkGazeStudy;
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
     const auto r =
@@ -155,18 +194,21 @@ std::optional<nlohmann::json> compareShiftStudy(const Scene& scene, const nlohma
                                                 const StudyControl& control) {
   const FovEvaluator eval = evaluatorFrom(v);
   EyeBox boxes[3];  // hoe, source, static
+  std::vector<GazeSample> source_samples;
   int done = 0;
-  for (ShiftMethod m : {ShiftMethod::Hoe, ShiftMethod::Source, ShiftMethod::None}) {
+  for (ShiftMethod m : {ShiftMethod::Hoe, sourceMethodFrom(v), ShiftMethod::None}) {
     StudyControl third;
     third.cancel = control.cancel;
     if (control.on_progress) third.on_progress = [&control, done](double f) { control.on_progress((done + f) / 3.0); };
     const auto r = sweepGaze(scene, eval, numberOf(v, "gaze-from"), numberOf(v, "gaze-to"), numberOf(v, "gaze-step"),
                              axisFrom(v), m, gazeStudyOptionsFrom(v), third);
     if (!r.ok()) return std::nullopt;
+    if (done == 1) source_samples = r.value->samples;
     boxes[done++] = r.value->eyebox;
   }
-  nlohmann::json out = compareShiftJson(boxes[0], boxes[1], &boxes[2], axisFrom(v));
-  out["fov_method"] = textOf(v, "fov-method");
+  nlohmann::json out = compareShiftJson(boxes[0], boxes[1], &boxes[2], axisFrom(v), sourceMethodFrom(v));
+  out["source_shift"]["samples"] = sourceShiftSamplesJson(source_samples, axisFrom(v));
+  addDefinitions(out, v);
   return out;
 }
 
@@ -176,9 +218,10 @@ AnalysisDefinition compareShiftAnalysis() {
   d.title = "Compare shift: HOE vs point source";
   d.description = "Dynamic eye box: moving the HOE vs moving the projector point source (supplement A.4).";
   d.parameters = gazeRangeParameters(-40, 40, "coarse step before the borders are bisected");
+  d.parameters.push_back(sourceShiftParameter());
   for (auto& p : studyParameters()) d.parameters.push_back(p);
   d.cached = true;
-  d.check = checkGazeRange;
+  d.check = checkGazeStudy;
   d.run = compareShiftStudy;
   return d;
 }
@@ -200,6 +243,7 @@ AnalysisDefinition sensitivityAnalysis() {
   for (auto& p : studyParameters()) d.parameters.push_back(p);
   d.plots = {"sensitivity"};
   d.cached = true;
+  d.check = checkFovDefinition;
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
     const std::string path = textOf(v, "parameter");
@@ -215,7 +259,7 @@ AnalysisDefinition sensitivityAnalysis() {
                                     integerOf(v, "steps"), control);
     if (!r.ok()) return std::nullopt;
     nlohmann::json out = sensitivityResultJson(*r.value, path, nominal);
-    out["fov_method"] = textOf(v, "fov-method");
+    addDefinitions(out, v);
     return out;
   };
   return d;

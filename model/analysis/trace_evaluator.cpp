@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -100,6 +101,13 @@ ContinuousFov continuousFovOf(const std::vector<const Ray*>& rays, double effici
   return out;
 }
 
+// The scene as the query sees it: the projector moved along its axis for an axial source shift.
+const Scene& queriedScene(const Scene& scene, const FovQuery& q, std::optional<Scene>& moved) {
+  if (q.source_axial_shift_mm == 0.0) return scene;
+  moved = withSourceAlongAxis(scene, q.source_axial_shift_mm);
+  return *moved;
+}
+
 }  // namespace
 
 Eigen::Vector3d fieldDirection(const std::array<double, 2>& field_deg) {
@@ -136,12 +144,24 @@ std::optional<FovMethod> parseFovMethod(const std::string& name) {
   return std::nullopt;
 }
 
+const char* fovDefinitionName(FovAngle a) {
+  return a == FovAngle::Arrival ? "ours" : "seed";
+}
+
+std::optional<FovAngle> parseFovDefinition(const std::string& name) {
+  if (name == "ours") return FovAngle::Arrival;
+  if (name == "seed") return FovAngle::Footprint;
+  return std::nullopt;
+}
+
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
   // One memoising pipeline per concurrent caller (the gaze studies evaluate in parallel). Only
   // rays entering the pupil matter here (FOV, efficiencies, uniformity), so the others skip the
   // coupled-wave step (cull_to_pupil: exact for everything read below).
   if (options.fov_method == FovMethod::Edges) {
-    return [options](const Scene& scene, const FovQuery& q) {
+    return [options](const Scene& nominal, const FovQuery& q) {
+      std::optional<Scene> moved;
+      const Scene& scene = queriedScene(nominal, q, moved);
       RayProbeSetup setup;
       setup.gaze_deg = q.gaze_deg;
       setup.hoe_shift_mm = q.hoe_shift_mm;
@@ -150,6 +170,7 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
       EdgeFovOptions e;
       e.efficiency_threshold = options.efficiency_threshold;
       e.tolerance_deg = options.edge_tolerance_deg;
+      e.angle = options.fov_angle;
       const std::vector<double> wavelengths =
           options.wavelength_nm ? std::vector<double>{*options.wavelength_nm} : scene.projector.wavelengths_nm;
       const EdgeFovResult r = edgeFov(probe, wavelengths, e);
@@ -165,8 +186,12 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
       return f;
     };
   }
+  if (options.fov_angle != FovAngle::Arrival)
+    throw std::invalid_argument("the seed's FOV definition (footprint angles) needs the edges FOV estimator");
   auto pool = std::make_shared<TracePipelinePool>();
-  return [options, pool](const Scene& scene, const FovQuery& q) {
+  return [options, pool](const Scene& nominal, const FovQuery& q) {
+    std::optional<Scene> moved;
+    const Scene& scene = queriedScene(nominal, q, moved);
     TraceOptions t;
     t.gaze_deg = q.gaze_deg;
     t.hoe_shift_mm = q.hoe_shift_mm;

@@ -30,12 +30,22 @@ enum class FovMethod { Dense, Edges };
 const char* fovMethodName(FovMethod m);  // "dense", "edges"
 std::optional<FovMethod> parseFovMethod(const std::string& name);
 
+// Which angle of a lit ray spans the FOV: Arrival, its direction entering the eye (ours: the
+// visual angle); Footprint, the direction of its plate point seen from the pupil centre (the
+// seed's, ProbeRay::footprint_deg). They agree when the Maxwellian focus sits on the pupil centre.
+enum class FovAngle { Arrival, Footprint };
+
+const char* fovDefinitionName(FovAngle a);  // "ours", "seed"
+std::optional<FovAngle> parseFovDefinition(const std::string& name);
+
 struct TraceEvaluatorOptions {
   int rays = 12000;                     // rays per wavelength over the projector field (Dense)
   std::optional<double> wavelength_nm;  // default: all projector wavelengths
   double efficiency_threshold = 0.1;
   FovMethod fov_method = FovMethod::Dense;
   double edge_tolerance_deg = 0.005;  // Edges: each edge's field angle to this
+  // Which angle spans the FOV (fov_edges.h): Footprint (the seed's) needs the Edges estimator.
+  FovAngle fov_angle = FovAngle::Arrival;
 };
 
 struct ContinuousFov {
@@ -54,6 +64,7 @@ inline bool traceEvaluatorAvailable() {
   return true;
 }
 
+// Throws std::invalid_argument for the Footprint angle with the Dense estimator.
 FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options = {});
 
 }  // namespace fovea

@@ -93,10 +93,12 @@ ProbeRay RayProbe::trace(double tan_x, double tan_y, double wavelength_nm) const
   out.exits = exits;
   if (!exits) return out;
   // Pupil stage.
-  const PupilCrossing c = crossPupil(eye_, plate_.toBench(p), out_dir);
+  const Eigen::Vector3d hit = plate_.toBench(p);
+  const PupilCrossing c = crossPupil(eye_, hit, out_dir);
   if (!c.in_pupil) return out;
   out.in_pupil = true;
   out.field_deg = fieldAngleDeg(eye_axes_, out_dir);
+  out.footprint_deg = fieldAngleDeg(eye_axes_, (eye_.pupil_center - hit).normalized());
   return out;
 }
 

@@ -35,6 +35,10 @@ struct ProbeRay {
   bool in_pupil = false;
   double efficiency = 0;                  // summed over the layers (as TracedRay::efficiency)
   std::array<double, 2> field_deg{0, 0};  // visual angle (yaw, pitch) when in_pupil
+  // When in_pupil: the direction (yaw, pitch, eye frame) in which the eye's pupil centre sees
+  // the ray's plate point, whatever the ray's own direction: the lit footprint on the plate as
+  // seen from the pupil (how the seed measures the peripheral FOV, C.2 and Fig. S5).
+  std::array<double, 2> footprint_deg{0, 0};
 };
 
 class RayProbe {

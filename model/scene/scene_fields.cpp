@@ -175,4 +175,11 @@ std::string fieldLabel(const Scene& scene, const std::string& path) {
                                                                    : std::string();
 }
 
+const FieldInfo* fieldInfoAt(const Scene& scene, const std::string& path, std::string* unit) {
+  const auto at = locate(scene, path);
+  if (!at) return nullptr;
+  if (unit) *unit = at->field.unit;
+  return at->field.info;
+}
+
 }  // namespace fovea

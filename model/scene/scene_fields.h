@@ -270,4 +270,8 @@ std::variant<double*, int*> numberAt(Scene& scene, const std::string& path);
 // "eye.gaze_deg[0]" -> "Gaze yaw"); empty when the path names no field.
 std::string fieldLabel(const Scene& scene, const std::string& path);
 
+// The table entry of the field whose value (or component) `path` addresses and its resolved
+// unit; nullptr when the path names no field.
+const FieldInfo* fieldInfoAt(const Scene& scene, const std::string& path, std::string* unit = nullptr);
+
 }  // namespace fovea

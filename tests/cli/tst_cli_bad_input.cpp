@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -23,25 +24,14 @@ CliOutput runCli(const QStringList& args, const QByteArray& stdin_data = {}) {
 }
 
 fs::path tmpDir() {
-  const auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_bad_input";
-  fs::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir("cli_bad_input");
 }
-
-std::string readAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string prototype() {
-  return readAll(fs::path(FOVEA_SOURCE_DIR) / "resources/scenes/prototype-bench.json");
-}
+using fovea::testing::prototypeSceneText;
+using fovea::testing::readFileText;
 
 // The prototype with `insert` right after its "notes": { (on line 5).
 QString sceneWith(const std::string& name, const std::string& insert) {
-  std::string text = prototype();
+  std::string text = prototypeSceneText();
   const std::string anchor = "\"notes\": {";
   text.replace(text.find(anchor), anchor.size(), anchor + insert);
   const fs::path p = tmpDir() / name;
@@ -126,7 +116,7 @@ class TestCliBadInput : public QObject {
 
   // validate --json printed nothing for invalid UTF-8 (the message held the raw bytes).
   void validateJsonAlwaysPrintsJson() {
-    std::string text = prototype();
+    std::string text = prototypeSceneText();
     text.replace(text.find("Optical bench prototype"), 7,
                  "Opt\xC3\x28\xFF"
                  "cal");
@@ -136,13 +126,13 @@ class TestCliBadInput : public QObject {
     QCOMPARE(r.code, 1);
     const auto j = nlohmann::json::parse(r.out.toStdString());
     QCOMPARE(j["valid"].get<bool>(), false);
-    const std::size_t at = prototype().find("Optical bench prototype") + 3;
+    const std::size_t at = prototypeSceneText().find("Optical bench prototype") + 3;
     QCOMPARE(QString::fromStdString(j["errors"][0]),
              QString("utf8.json: line 4, column 15: invalid UTF-8 at byte offset %1").arg(at));
   }
 
   void duplicateKeysAreRejected() {
-    std::string text = prototype();
+    std::string text = prototypeSceneText();
     text.replace(text.find("\"version\": 1,"), 13, "\"version\": 2, \"version\": 1,");
     const fs::path p = tmpDir() / "dup.json";
     std::ofstream(p) << text;
@@ -173,8 +163,8 @@ class TestCliBadInput : public QObject {
     const fs::path dir = tmpDir() / "stale";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::ofstream(dir / "s.json") << prototype();
-    std::ofstream(dir / ".s.json.tmp-k9Xq2Z") << prototype().substr(0, 1000);  // a save killed mid-write
+    std::ofstream(dir / "s.json") << prototypeSceneText();
+    std::ofstream(dir / ".s.json.tmp-k9Xq2Z") << prototypeSceneText().substr(0, 1000);  // a save killed mid-write
     const CliOutput r = runCli({"validate", QString::fromStdString((dir / "s.json").string())});
     QCOMPARE(r.code, 0);
     QVERIFY2(r.err.contains("warning: s.json: removed .s.json.tmp-k9Xq2Z, the temporary file of an interrupted save"),
@@ -186,14 +176,14 @@ class TestCliBadInput : public QObject {
     const fs::path dir = tmpDir() / "link";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::string compact = prototype();
+    std::string compact = prototypeSceneText();
     compact.replace(compact.find("\"version\": 1"), 12, "\"version\":1");  // not canonical
     std::ofstream(dir / "target.json") << compact;
     fs::create_symlink("target.json", dir / "link.json");
     const CliOutput r = runCli({"format", "-i", QString::fromStdString((dir / "link.json").string())});
     QVERIFY2(r.code == 0, r.err.constData());
     QVERIFY(fs::is_symlink(fs::symlink_status(dir / "link.json")));
-    QVERIFY(readAll(dir / "target.json").find("\"version\": 1") != std::string::npos);
+    QVERIFY(readFileText(dir / "target.json").find("\"version\": 1") != std::string::npos);
   }
 
   // n1 = 0 gave efficiency 1 and zero order 1 at this extreme; both are 0 (the probe is absorbed).

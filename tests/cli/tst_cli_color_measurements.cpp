@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 using Run = fovea::testing::CliOutput;
@@ -16,9 +17,7 @@ Run cli(const QStringList& args) {
   return fovea::testing::runFoveaCli(args, 60000);
 }
 QString tmp(const char* name) {
-  const QString dir = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp");
-  QDir().mkpath(dir);
-  return dir + "/cli_colormeas_" + name;
+  return QString::fromStdString((fovea::testing::testTmpDir("") / (std::string("cli_colormeas_") + name)).string());
 }
 // Two repeats of noiseless readings of gamma-2.2 / 2.5 displays.
 QString writeReadings(const char* name, const std::string& corrupt_line = {}) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 using Run = fovea::testing::CliOutput;
@@ -15,9 +16,7 @@ Run cli(const QStringList& args) {
   return fovea::testing::runFoveaCli(args, 60000);
 }
 QString tmp(const char* name) {
-  const QString dir = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp");
-  QDir().mkpath(dir);
-  return dir + "/cli_stage_" + name;
+  return QString::fromStdString((fovea::testing::testTmpDir("") / (std::string("cli_stage_") + name)).string());
 }
 std::vector<std::string> lines(const QString& path) {
   std::ifstream in(path.toStdString());

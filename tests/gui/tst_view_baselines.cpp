@@ -9,6 +9,9 @@
 
 #include <QPainter>
 
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+
 #include <filesystem>
 
 #include "app/embedded_scene.h"
@@ -16,6 +19,7 @@
 #include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
 #include "tests/gui/image_compare.h"
+#include "viz/element_labels.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
@@ -144,6 +148,49 @@ class TestViewBaselines : public QObject {
     view.showStandardView(viz::StandardView::Isometric);
     const QString e = check(view.renderToImage(), "view-effmap-iso-gaze20.png");
     QVERIFY2(e.isEmpty(), qPrintable(e));
+  }
+
+  void legibleLayoutLabelsAndEyesView() {
+    viz::SceneView view;
+    view.resize(960, 640);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    const Scene scene = defaultScene();
+    view.setScene(scene, true);
+    viz::TraceOverlay overlay(&view);
+    const auto r = traced(scene);
+    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, {});
+    view.renderToImage();
+    // The colour bar lives in the right margin, the scene viewport leaves it free.
+    QVERIFY(view.legendRenderer()->HasViewProp(overlay.colorBar()));
+    QVERIFY(!view.renderer()->HasViewProp(overlay.colorBar()));
+    const double* vp = view.renderer()->GetViewport();
+    QCOMPARE(std::lround((1.0 - vp[2]) * view.width()), long(viz::SceneView::kLegendWidth_px));
+    QCOMPARE(std::lround(vp[1] * view.height()), long(viz::SceneView::kFooterHeight_px));
+    // Framed: every element's label anchor is inside the scene viewport.
+    const QRectF scenePart(0, 0, vp[2] * view.width(), (1.0 - vp[1]) * view.height());
+    const auto labels = viz::elementLabels(scene);
+    QCOMPARE(int(labels.size()), 6);  // projector, HOE, eye, micro-OLED, combiner, lens
+    for (const auto& l : labels) {
+      const auto at = view.widgetPositionOf(l.anchor_mm);
+      QVERIFY2(at && scenePart.contains(*at), qPrintable(l.text));
+    }
+    QCOMPARE(view.labelsShown(), 6);
+    view.setLabelsVisible(false);
+    view.renderToImage();
+    QCOMPARE(view.labelsShown(), 0);
+    view.setLabelsVisible(true);
+    // The eye's view: no fans or frustum, the seen part of the plate instead; leaving it
+    // restores them.
+    QVERIFY(view.layer("rays").isVisible() && !view.layer("seen").isVisible());
+    QVERIFY(view.layer("seen").size() > 0);
+    view.showStandardView(viz::StandardView::EyeView);
+    QVERIFY(view.eyeViewMode());
+    QVERIFY(!view.layer("rays").isVisible() && !view.layer("frustum").isVisible());
+    QVERIFY(view.layer("seen").isVisible());
+    view.showStandardView(viz::StandardView::Top);
+    QVERIFY(!view.eyeViewMode());
+    QVERIFY(view.layer("rays").isVisible() && view.layer("frustum").isVisible() && !view.layer("seen").isVisible());
   }
 
   void retinaView() {

@@ -14,26 +14,16 @@
 
 #include "model/io/save_temporaries.h"
 #include "model/scene/scene_io.h"
+#include "tests/test_files.h"
 
 using namespace fovea;
 namespace fs = std::filesystem;
 
 namespace {
 fs::path freshDir(const char* name) {
-  const auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "save_temporaries" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir(std::string("save_temporaries/") + name, true);
 }
-std::string readAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-std::string prototypeText() {
-  return readAll(fs::path(FOVEA_SOURCE_DIR) / "resources/scenes/prototype-bench.json");
-}
+using fovea::testing::readFileText;
 }  // namespace
 
 class TestSaveTemporaries : public QObject {
@@ -42,7 +32,7 @@ class TestSaveTemporaries : public QObject {
   void staleTemporariesAreRemovedAtLoad() {
     const fs::path dir = freshDir("stale");
     const fs::path scene = dir / "bench.json";
-    std::ofstream(scene) << prototypeText();
+    std::ofstream(scene) << fovea::testing::prototypeSceneText();
     std::ofstream(dir / ".bench.json.tmp-AbC123") << "{\"half\":";  // a killed save
     std::ofstream(dir / ".other.json.tmp-AbC123") << "x";           // another file's: kept
     std::ofstream(dir / ".bench.json.tmp-toolong7") << "x";         // not a mkstemp name: kept
@@ -72,12 +62,12 @@ class TestSaveTemporaries : public QObject {
     fs::create_symlink("real/scene.json", dir / "link.json");
     writeFileAtomic(dir / "link.json", "new\n");
     QVERIFY(fs::is_symlink(fs::symlink_status(dir / "link.json")));
-    QCOMPARE(readAll(dir / "real/scene.json"), std::string("new\n"));
+    QCOMPARE(readFileText(dir / "real/scene.json"), std::string("new\n"));
     QCOMPARE(saveTarget(dir / "link.json"), dir / "real/scene.json");
     // A dangling link gets its target created.
     fs::create_symlink("real/new.json", dir / "dangling.json");
     writeFileAtomic(dir / "dangling.json", "created\n");
-    QCOMPARE(readAll(dir / "real/new.json"), std::string("created\n"));
+    QCOMPARE(readFileText(dir / "real/new.json"), std::string("created\n"));
     QVERIFY(fs::is_symlink(fs::symlink_status(dir / "dangling.json")));
   }
 

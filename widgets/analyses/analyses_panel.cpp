@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "widgets/analyses/analysis_summary.h"
+#include "widgets/analyses/fit_form_extras.h"
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
@@ -99,6 +100,7 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
     const AnalysisSpec* s = findAnalysis(r.id);
     status_->setText(tr("%1 finished in %2 s.").arg(s ? s->title : r.id).arg(r.seconds, 0, 'f', 1));
     showSummary(r);
+    if (fitExtras_ && r.id == "fit") fitExtras_->setResult(r);
     emit resultReady(r);
   });
   connect(runner_, &AnalysisRunner::failed, this, [this](const QString&, const QString& message) {
@@ -135,6 +137,7 @@ void AnalysesPanel::rebuildForm() {
   rememberForm();
   while (form_->rowCount() > 0) form_->removeRow(0);
   fields_.clear();
+  fitExtras_ = nullptr;  // deleted with its row
   const AnalysisSpec* spec = findAnalysis(currentAnalysis());
   if (!spec) return;
   description_->setText(spec->description);
@@ -213,6 +216,14 @@ void AnalysesPanel::rebuildForm() {
     form_->addRow(p.label, row ? row : field);
     fields_.insert(p.key, field);
   }
+  if (spec->id == "fit") {
+    fitExtras_ = new FitFormExtras(
+        document_, [this](const QString& key) { return parameters().value(key); },
+        [this](const QString& key, const QVariant& value) { setParameter(key, value); }, formHost_);
+    fitExtras_->setResult(lastResult("fit"));
+    connect(fitExtras_, &FitFormExtras::applied, status_, &QLabel::setText);
+    form_->addRow(QString(), fitExtras_);
+  }
   cliButton_->setEnabled(spec->hasCliTwin);
   if (results_.contains(spec->id))
     showSummary(results_[spec->id]);
@@ -227,8 +238,8 @@ AnalysisParams AnalysesPanel::parameters() const {
       p[it.key()] = d->value();
     else if (auto* i = qobject_cast<QSpinBox*>(it.value()))
       p[it.key()] = i->value();
-    else if (auto* c = qobject_cast<QComboBox*>(it.value()))
-      p[it.key()] = c->currentText();
+    else if (auto* c = qobject_cast<QComboBox*>(it.value()))  // an empty text field is unset
+      p[it.key()] = c->isEditable() && c->currentText().trimmed().isEmpty() ? QVariant() : QVariant(c->currentText());
     else if (auto* e = qobject_cast<QLineEdit*>(it.value()))
       p[it.key()] = e->text().trimmed().isEmpty() ? QVariant() : QVariant(e->text().trimmed());
   }

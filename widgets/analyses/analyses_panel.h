@@ -20,6 +20,7 @@ class QTextBrowser;
 
 namespace fovea::widgets {
 
+class FitFormExtras;
 class SceneDocument;
 
 class AnalysesPanel : public QWidget {
@@ -46,6 +47,8 @@ class AnalysesPanel : public QWidget {
   // cliUnavailableReason() says why (no twin, or the scene must be saved first).
   QString cliCommand() const;
   QString cliUnavailableReason() const;
+  // The extra controls of the "fit" form while it is shown (nullptr otherwise).
+  FitFormExtras* fitExtras() const { return fitExtras_; }
 
  signals:
   void resultReady(const fovea::widgets::AnalysisResult& result);
@@ -72,6 +75,7 @@ class AnalysesPanel : public QWidget {
   QTextBrowser* summary_ = nullptr;
   QMap<QString, AnalysisParams> edited_;  // per analysis, the values last in the form
   QMap<QString, AnalysisResult> results_;
+  FitFormExtras* fitExtras_ = nullptr;  // the "fit" form's file chooser, paths and Apply (fit_form_extras.h)
 };
 
 }  // namespace fovea::widgets

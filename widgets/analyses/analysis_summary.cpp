@@ -160,6 +160,24 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
     if (jsonNumber(y, {"invalid_units"}) > 0)
       extra = QString("<p><i>%1 units broke the scene rules and count as failed.</i></p>")
                   .arg(g(jsonNumber(y, {"invalid_units"}), 8));
+  } else if (id == "fit") {
+    t.add("χ² before → after", g(jsonNumber(r, {"chi2_initial"})) + " → " + g(jsonNumber(r, {"chi2"})) +
+                                   QString(" (%1 dof)").arg(g(jsonNumber(r, {"dof"}))));
+    for (const auto& p : r.value("parameters", nlohmann::json::array())) {
+      const double sigma = jsonNumber(p, {"uncertainty"});
+      t.add(QString::fromStdString(p.value("path", std::string())),
+            QString("%1 ± %2 %3 (was %4)")
+                .arg(g(jsonNumber(p, {"fitted"}), 6), std::isfinite(sigma) ? g(sigma, 3) : QStringLiteral("?"),
+                     QString::fromStdString(p.value("unit", std::string())), g(jsonNumber(p, {"initial"}), 6)));
+    }
+    for (const auto& w : r.value("warnings", nlohmann::json::array()))
+      extra += "<p><i>" +
+               QString::fromStdString((w.value("parameter", std::string()).empty()
+                                           ? std::string()
+                                           : w.value("parameter", std::string()) + ": ") +
+                                      w.value("message", std::string()))
+                   .toHtmlEscaped() +
+               "</i></p>";
   } else {
     return {};
   }

@@ -1,0 +1,92 @@
+// fovea-cli fit SCENE --targets TARGETS.json --free PATHS... [--starts N] [--seed S] [--max-evals N]
+//   [--write-scene OUT.json] --json: fits scene numbers to target observables (docs/fitting.md).
+// The options are those of the registry's "fit" analysis (model/analysis/fit_analysis.cpp),
+// written by hand because --free takes several values (each may also hold several specs
+// separated by spaces, as the studio's "Copy CLI" writes them).
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/study_cli.h"
+#include "model/analysis/fit_analysis.h"
+#include "model/io/save_temporaries.h"
+#include "model/scene/scene_io.h"
+
+namespace fovea::cli {
+namespace {
+
+struct Args {
+  std::string scene, targets, write_scene;
+  std::vector<std::string> free;
+  int starts = 3, seed = 1, max_evals = 0;
+  bool json = false;
+};
+
+// A number of the document for people: 6 significant digits, "-" for null.
+std::string shown(const nlohmann::json& v) {
+  if (!v.is_number()) return "-";
+  std::ostringstream o;
+  o << std::setprecision(6) << v.get<double>();
+  return o.str();
+}
+
+void printTable(const nlohmann::json& r) {
+  std::cout << "chi2 " << shown(r["chi2_initial"]) << " -> " << shown(r["chi2"]) << " (" << r["dof"] << " dof, "
+            << r["evaluations"] << " evaluations)\n";
+  for (const auto& p : r["parameters"])
+    std::cout << "  " << p["path"].get<std::string>() << " = " << shown(p["fitted"]) << " +- "
+              << shown(p["uncertainty"]) << " " << p["unit"].get<std::string>() << " (was " << shown(p["initial"])
+              << ")\n";
+  for (const auto& t : r["targets"])
+    std::cout << "  " << t["id"].get<std::string>() << ": model " << shown(t["model"]) << ", value "
+              << shown(t["value"]) << " +- " << shown(t["sigma"]) << " " << t["unit"].get<std::string>() << " ("
+              << shown(t["normalised"]) << " sigma)\n";
+  for (const auto& w : r["warnings"]) {
+    const std::string who = w["parameter"].get<std::string>();
+    std::cerr << "warning: " << (who.empty() ? "" : who + ": ") << w["message"].get<std::string>() << "\n";
+  }
+}
+
+void install(CLI::App& app) {
+  const analysis::AnalysisDefinition& def = *analysis::findAnalysisDefinition("fit");
+  auto* cmd = app.add_subcommand("fit", def.title + ": " + def.description);
+  auto a = std::make_shared<Args>();
+  cmd->add_option("SCENE", a->scene, "scene file (default: the embedded prototype bench)");
+  cmd->add_option("--targets", a->targets, "targets file (JSON, docs/fitting.md)")->required();
+  cmd->add_option("--free", a->free, "scene paths to fit: PATH, PATH=LO:HI or PATH=+-D (one or more)")
+      ->required()
+      ->expected(1, -1);
+  cmd->add_option("--starts", a->starts, def.parameter("starts")->help);
+  cmd->add_option("--seed", a->seed, def.parameter("seed")->help);
+  cmd->add_option("--max-evals", a->max_evals, def.parameter("max-evals")->help);
+  cmd->add_option("--write-scene", a->write_scene, "write the fitted scene to this file");
+  cmd->add_flag("--json", a->json, "print the fit document (JSON)");
+  cmd->callback([a, &def] {
+    std::string free;
+    for (const auto& f : a->free) free += (free.empty() ? "" : " ") + f;
+    nlohmann::json values{
+        {"targets", a->targets}, {"free", free}, {"starts", a->starts}, {"seed", a->seed}, {"max-evals", a->max_evals}};
+    for (const auto& p : analysis::validateValues(def, values)) usageError(p.text("--"));
+    const Scene scene = loadSceneOrExit(a->scene);
+    if (!a->write_scene.empty())
+      if (const auto why = cannotWriteFile(a->write_scene)) usageError("--write-scene: " + *why);
+    const nlohmann::json out = runStudy(def, scene, values);
+    if (!a->write_scene.empty()) {
+      try {
+        saveSceneFileAtomic(analysis::sceneWithFittedValues(scene, out), a->write_scene);
+      } catch (const std::exception& e) {
+        inputError("--write-scene: " + std::string(e.what()));
+      }
+    }
+    if (a->json)
+      printJson(out);
+    else
+      printTable(out);
+  });
+}
+
+const Registrar reg{"fit", &install};
+
+}  // namespace
+}  // namespace fovea::cli

@@ -1,0 +1,242 @@
+#include "model/analysis/fit_solver.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include <nlopt.hpp>
+
+#include "model/analysis/fit_uncertainty.h"
+#include "model/analysis/tolerance_spec.h"  // counterUniform
+
+namespace fovea {
+
+namespace {
+
+// Normalised residuals of a parameter vector; nothing when the scene rules refuse it or a
+// target has no value there.
+std::optional<std::vector<double>> residualsAt(const Scene& scene, const std::vector<FitTarget>& targets,
+                                               const std::vector<FreeParameter>& free, const std::vector<double>& p,
+                                               const ObservableSettings& settings) {
+  try {
+    const std::vector<double> m = evaluateTargets(sceneWithValues(scene, free, p), targets, settings);
+    std::vector<double> r(m.size());
+    for (std::size_t i = 0; i < m.size(); ++i) r[i] = (m[i] - targets[i].value) / targets[i].sigma;
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+double chi2Of(const std::vector<double>& r) {
+  double s = 0;
+  for (const double x : r) s += x * x;
+  return s;
+}
+
+const char* statusText(nlopt::result r) {
+  switch (r) {
+    case nlopt::SUCCESS:
+      return "success";
+    case nlopt::STOPVAL_REACHED:
+      return "stopval reached";
+    case nlopt::FTOL_REACHED:
+      return "ftol reached";
+    case nlopt::XTOL_REACHED:
+      return "xtol reached";
+    case nlopt::MAXEVAL_REACHED:
+      return "max evaluations";
+    case nlopt::MAXTIME_REACHED:
+      return "max time";
+    case nlopt::FORCED_STOP:
+      return "stopped";
+    case nlopt::ROUNDOFF_LIMITED:
+      return "roundoff limited";
+    default:
+      return "failed";
+  }
+}
+
+struct Problem {
+  const Scene* scene;
+  const std::vector<FitTarget>* targets;
+  const std::vector<FreeParameter>* free;
+  const FitOptions* options;
+  const StudyControl* control;
+  ProgressCounter* progress;
+};
+
+std::vector<double> fromUnit(const std::vector<FreeParameter>& free, const std::vector<double>& u) {
+  std::vector<double> p(u.size());
+  for (std::size_t j = 0; j < u.size(); ++j)
+    p[j] = free[j].lower + std::clamp(u[j], 0.0, 1.0) * (free[j].upper - free[j].lower);
+  return p;
+}
+
+FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
+  const std::size_t n = u.size();
+  FitStart s;
+  s.from = fromUnit(*pb.free, u);
+  struct Data {
+    const Problem* pb;
+    int evals = 0;
+    nlopt::opt* opt = nullptr;
+  } data{&pb, 0, nullptr};
+  nlopt::opt opt(n >= 2 ? nlopt::LN_BOBYQA : nlopt::LN_COBYLA, static_cast<unsigned>(n));
+  data.opt = &opt;
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  opt.set_xtol_abs(pb.options->xtol);
+  opt.set_ftol_abs(1e-12);
+  opt.set_stopval(1e-14);
+  opt.set_maxeval(max_evals);
+  opt.set_initial_step(pb.options->initial_step);
+  opt.set_min_objective(
+      [](unsigned, const double* x, double*, void* raw) -> double {
+        auto* d = static_cast<Data*>(raw);
+        if (d->pb->control->cancelled()) d->opt->force_stop();
+        ++d->evals;
+        d->pb->progress->add();
+        const std::vector<double> point(x, x + d->pb->free->size());
+        const auto r = residualsAt(*d->pb->scene, *d->pb->targets, *d->pb->free, fromUnit(*d->pb->free, point),
+                                   d->pb->options->observables);
+        return r ? chi2Of(*r) : kFitPenaltyChi2;
+      },
+      &data);
+  double f = 0;
+  nlopt::result res = nlopt::FAILURE;
+  try {
+    res = opt.optimize(u, f);
+  } catch (const nlopt::roundoff_limited&) {
+    res = nlopt::ROUNDOFF_LIMITED;
+  } catch (const nlopt::forced_stop&) {
+    res = nlopt::FORCED_STOP;
+  }
+  if (data.evals < max_evals) pb.progress->add(static_cast<std::size_t>(max_evals - data.evals));
+  s.to = fromUnit(*pb.free, u);
+  s.chi2 = f;
+  s.evaluations = data.evals;
+  s.status = statusText(res);
+  return s;
+}
+
+}  // namespace
+
+StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget>& targets,
+                                 const std::vector<FreeParameter>& free, const FitOptions& options,
+                                 const StudyControl& control) {
+  if (free.empty()) throw std::invalid_argument("fit: no free parameter");
+  if (targets.empty()) throw std::invalid_argument("fit: no target");
+  if (options.starts < 1) throw std::invalid_argument("fit: starts must be >= 1");
+  const std::size_t n = free.size();
+  FitResult out;
+  out.algorithm = n >= 2 ? "LN_BOBYQA" : "LN_COBYLA";
+  std::vector<double> p0(n);
+  for (std::size_t j = 0; j < n; ++j) p0[j] = free[j].initial;
+  // The scene's own values must give every target (else the message names the one that fails).
+  const std::vector<double> m0 = evaluateTargets(scene, targets, options.observables);
+  const int max_evals = options.max_evaluations > 0 ? options.max_evaluations : 40 * static_cast<int>(n + 2);
+  ProgressCounter progress(control, static_cast<std::size_t>(options.starts * max_evals) + 2 * n + 1);
+  const Problem pb{&scene, &targets, &free, &options, &control, &progress};
+  auto starts = runSamples<FitStart>(
+      static_cast<std::size_t>(options.starts),
+      [&](std::size_t k) {
+        std::vector<double> u(n);
+        for (std::size_t j = 0; j < n; ++j)
+          u[j] = k == 0 ? (free[j].initial - free[j].lower) / (free[j].upper - free[j].lower)
+                        : counterUniform(options.seed, k, 0, j);
+        return runStart(pb, u, max_evals);
+      },
+      StudyControl{nullptr, control.cancel});
+  if (!starts.ok() || control.cancelled()) return {};
+  out.starts = *starts.value;
+  std::size_t best = 0;
+  for (std::size_t k = 0; k < out.starts.size(); ++k) {
+    out.evaluations += out.starts[k].evaluations;
+    if (out.starts[k].chi2 < out.starts[best].chi2) best = k;
+  }
+  const std::vector<double> p = out.starts[best].to;
+
+  // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a bound).
+  struct Column {
+    std::optional<std::vector<double>> plus, minus;
+    double step = 0;
+  };
+  auto columns = runSamples<Column>(
+      n,
+      [&](std::size_t j) {
+        Column c;
+        const double h = options.jacobian_step * (free[j].upper - free[j].lower);
+        std::vector<double> a = p, b = p;
+        a[j] = std::min(p[j] + h, free[j].upper);
+        b[j] = std::max(p[j] - h, free[j].lower);
+        c.plus = residualsAt(scene, targets, free, a, options.observables);
+        c.minus = residualsAt(scene, targets, free, b, options.observables);
+        c.step = a[j] - b[j];
+        progress.add(2);
+        return c;
+      },
+      StudyControl{nullptr, control.cancel});
+  if (!columns.ok()) return {};
+  const auto rp = residualsAt(scene, targets, free, p, options.observables);
+  progress.add();
+  if (!rp) throw std::runtime_error("fit: the best point gives no value for a target");
+  UncertaintyInput ui;
+  ui.jacobian = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(targets.size()), static_cast<Eigen::Index>(n));
+  ui.rcond = options.rcond;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Column& c = (*columns.value)[j];
+    const double window = free[j].upper - free[j].lower;
+    ui.windows.push_back(window);
+    ui.at_bound.push_back(p[j] - free[j].lower < 1e-6 * window || free[j].upper - p[j] < 1e-6 * window);
+    // A refused side falls back to the one-sided difference with the optimum.
+    const std::vector<double>& hi = c.plus ? *c.plus : *rp;
+    const std::vector<double>& lo = c.minus ? *c.minus : *rp;
+    double step = c.step;
+    if (!c.plus || !c.minus) step = 0.5 * c.step;
+    if (step <= 0 || (!c.plus && !c.minus)) continue;  // no column: this parameter reads as undetermined
+    for (std::size_t i = 0; i < targets.size(); ++i)
+      ui.jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (hi[i] - lo[i]) / step;
+  }
+  const UncertaintyResult u = analyseUncertainty(ui);
+  out.chi2 = chi2Of(*rp);
+  out.dof = static_cast<int>(targets.size()) - static_cast<int>(n);
+  const double scale = out.dof > 0 ? std::sqrt(out.chi2 / out.dof) : std::numeric_limits<double>::quiet_NaN();
+  out.covariance = u.covariance;
+  out.correlation = u.correlation;
+  out.relative_singular_values = u.relative_singular_values;
+  for (std::size_t j = 0; j < n; ++j) {
+    FitParameterResult r;
+    r.parameter = free[j];
+    r.fitted = p[j];
+    r.uncertainty = u.sigma[j];
+    if (u.sigma[j] && out.dof > 0) r.uncertainty_scaled = *u.sigma[j] * scale;
+    r.determined = u.determined[j];
+    r.at_bound = ui.at_bound[j];
+    out.parameters.push_back(r);
+    if (!u.warnings[j].empty()) out.warnings.push_back({free[j].path, u.warnings[j]});
+  }
+  if (out.dof < 0)
+    out.warnings.push_back({"", "fewer targets (" + std::to_string(targets.size()) + ") than free parameters (" +
+                                    std::to_string(n) + "): some directions cannot be determined"});
+  if (out.starts[best].status == "max evaluations")
+    out.warnings.push_back({"", "the best start stopped at its evaluation budget (raise max evaluations)"});
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    FitTargetResult t;
+    t.target = targets[i];
+    t.initial_model = m0[i];
+    t.model = targets[i].value + (*rp)[i] * targets[i].sigma;
+    out.targets.push_back(t);
+    const double r0 = (m0[i] - targets[i].value) / targets[i].sigma;
+    out.chi2_initial += r0 * r0;
+  }
+  out.fitted_scene = sceneWithValues(scene, free, p);
+  StudyOutcome<FitResult> done;
+  done.status = StudyStatus::Completed;
+  done.value = std::move(out);
+  return done;
+}
+
+}  // namespace fovea

@@ -1,0 +1,116 @@
+#include "model/analysis/fit_targets.h"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace fovea {
+
+namespace {
+
+const std::set<std::string> kTargetKeys{"id", "observable", "value", "sigma", "unit", "source"};
+
+FitTarget parseTarget(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object()) throw std::invalid_argument(where + ": must be an object");
+  FitTarget t;
+  auto text = [&](const char* key, bool required) {
+    if (!j.contains(key)) {
+      if (required) throw std::invalid_argument(where + ": missing \"" + key + "\"");
+      return std::string();
+    }
+    if (!j[key].is_string() || j[key].get<std::string>().empty())
+      throw std::invalid_argument(where + ": \"" + key + "\" must be a non-empty string");
+    return j[key].get<std::string>();
+  };
+  auto number = [&](const char* key) {
+    if (!j.contains(key)) throw std::invalid_argument(where + ": missing \"" + key + "\"");
+    if (!j[key].is_number() || !std::isfinite(j[key].get<double>()))
+      throw std::invalid_argument(where + ": \"" + key + "\" must be a finite number, got " + j[key].dump());
+    return j[key].get<double>();
+  };
+  t.id = text("id", true);
+  const std::string at = "target \"" + t.id + "\"";
+  t.observable = text("observable", true);
+  const ObservableDefinition* def = findObservable(t.observable);
+  if (!def)
+    throw std::invalid_argument(at + ": unknown observable \"" + t.observable + "\" (known: " + observableNames() +
+                                ")");
+  t.value = number("value");
+  t.sigma = number("sigma");
+  if (!(t.sigma > 0)) throw std::invalid_argument(at + ": \"sigma\" must be > 0, got " + j["sigma"].dump());
+  if (j.contains("unit") && !j["unit"].is_string())
+    throw std::invalid_argument(at + ": \"unit\" must be a string, got " + j["unit"].dump());
+  t.unit = j.value("unit", def->unit);
+  if (t.unit != def->unit)
+    throw std::invalid_argument(at + ": \"unit\" of " + t.observable + " is \"" + def->unit + "\", got \"" + t.unit +
+                                "\"");
+  t.source = text("source", false);
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& [key, value] : j.items())
+    if (!kTargetKeys.count(key)) params[key] = value;
+  try {
+    t.parameters = completeObservableParameters(*def, params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(at + ": " + e.what());
+  }
+  return t;
+}
+
+}  // namespace
+
+std::vector<FitTarget> parseFitTargets(const nlohmann::json& j) {
+  const nlohmann::json* list = &j;
+  if (j.is_object()) {
+    if (j.value("format", std::string()) != kFitTargetsFormat)
+      throw std::invalid_argument(std::string("targets: \"format\" must be \"") + kFitTargetsFormat + "\"");
+    if (j.value("version", 0) != 1) throw std::invalid_argument("targets: \"version\" must be 1");
+    if (!j.contains("targets")) throw std::invalid_argument("targets: missing \"targets\" (the list of targets)");
+    list = &j["targets"];
+  }
+  if (!list->is_array()) throw std::invalid_argument("targets: must be a list of targets");
+  if (list->empty()) throw std::invalid_argument("targets: the list is empty");
+  std::vector<FitTarget> out;
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    out.push_back(parseTarget((*list)[i], "targets[" + std::to_string(i) + "]"));
+    if (!ids.insert(out.back().id).second)
+      throw std::invalid_argument("targets[" + std::to_string(i) + "]: duplicate id \"" + out.back().id + "\"");
+  }
+  return out;
+}
+
+nlohmann::json fitTargetJson(const FitTarget& t) {
+  nlohmann::json j{{"id", t.id}, {"observable", t.observable}};
+  for (const auto& [k, v] : t.parameters.items()) j[k] = v;
+  j["value"] = t.value;
+  j["sigma"] = t.sigma;
+  j["unit"] = t.unit;
+  if (!t.source.empty()) j["source"] = t.source;
+  return j;
+}
+
+nlohmann::json fitTargetsJson(const std::vector<FitTarget>& targets, const std::string& notes) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& t : targets) list.push_back(fitTargetJson(t));
+  nlohmann::json j{{"format", kFitTargetsFormat}, {"version", 1}};
+  if (!notes.empty()) j["notes"] = notes;
+  j["targets"] = list;
+  return j;
+}
+
+std::vector<double> evaluateTargets(const Scene& scene, const std::vector<FitTarget>& targets,
+                                    const ObservableSettings& settings) {
+  ObservableContext ctx(scene, settings);
+  std::vector<double> out;
+  out.reserve(targets.size());
+  for (const auto& t : targets) {
+    try {
+      out.push_back(findObservable(t.observable)->evaluate(ctx, t.parameters));
+    } catch (const std::exception& e) {
+      throw std::runtime_error("target \"" + t.id + "\" (" + t.observable + "): " + e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace fovea

@@ -1,0 +1,111 @@
+// The studio's "Fit to measurements" (analysis "fit"): a run from the Analyses dock on a
+// targets file made by our own forward model from a perturbed prototype fills the residual
+// plot (one row per target, the fitted residuals small), and "Apply fitted values" sets every
+// fitted value as one undo step that Undo takes back. Screenshots at 1366x768 and 1920x1080.
+#include <QtTest>
+
+#include <QComboBox>
+#include <QDockWidget>
+#include <QFile>
+#include <QPushButton>
+#include <QUndoStack>
+
+#include "app/embedded_scene.h"
+#include "app/studio/analysis_features.h"
+#include "app/studio/main_window.h"
+#include "model/analysis/fit_targets.h"
+#include "model/scene/scene_io.h"
+#include "model/scene/scene_parameters.h"
+#include "widgets/analyses/analyses_panel.h"
+#include "widgets/analyses/fit_form_extras.h"
+#include "widgets/plots/plots_panel.h"
+#include "widgets/scene_document.h"
+
+using namespace fovea;
+using namespace fovea::widgets;
+
+namespace {
+QString tmpDir() {
+  const QString d = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/gui_fit_panel";
+  QDir().mkpath(d);
+  return d;
+}
+
+// Targets from the prototype with the eye relief at 21.5 mm and the green n1 at 0.0165.
+QString writeTargets() {
+  const Scene nominal = *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
+  const Scene built = withParameter(withParameter(nominal, "eye.relief_mm", 21.5), "hoe_layers[1].n1", 0.0165);
+  std::vector<FitTarget> t = parseFitTargets(nlohmann::json::parse(R"([
+    {"id": "eff", "observable": "mean_efficiency", "shift": "none", "wavelength_nm": 532, "value": 0, "sigma": 0.002},
+    {"id": "xp-10", "observable": "x_p_mm", "gaze_deg": -10, "wavelength_nm": 532, "value": 0, "sigma": 0.02},
+    {"id": "fov-v", "observable": "fov_deg", "shift": "none", "direction": "vertical", "wavelength_nm": 532,
+     "value": 0, "sigma": 0.05}])"));
+  const std::vector<double> v = evaluateTargets(built, t);
+  for (std::size_t i = 0; i < t.size(); ++i) t[i].value = v[i];
+  const QString path = tmpDir() + "/targets.json";
+  QFile f(path);
+  if (!f.open(QIODevice::WriteOnly)) qFatal("cannot write %s", qPrintable(path));
+  f.write(QByteArray::fromStdString(fitTargetsJson(t, "synthetic").dump(2)));
+  return path;
+}
+}  // namespace
+
+class TestFitPanel : public QObject {
+  Q_OBJECT
+ private slots:
+  void fitRunsPlotsAndAppliesAsOneUndoStep() {
+    const QString targets = writeTargets();
+    studio::MainWindow window;
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.findChild<QDockWidget*>("AnalysesDock")->raise();
+    AnalysesPanel* panel = window.analysisFeatures()->analysesPanel();
+    PlotsPanel* plots = window.analysisFeatures()->plotsPanel();
+    panel->selectAnalysis("fit");
+    FitFormExtras* extras = panel->fitExtras();
+    QVERIFY(extras);
+    QVERIFY(panel->setParameter("targets", targets));
+    extras->addFreeParameter("eye.relief_mm");
+    extras->addFreeParameter("hoe_layers[1].n1");
+    extras->addFreeParameter("eye.relief_mm");  // once only
+    QCOMPARE(panel->parameters().value("free").toString(), QString("eye.relief_mm hoe_layers[1].n1"));
+    QVERIFY(panel->setParameter("starts", 1));
+    QVERIFY(!window.findChild<QPushButton*>("applyFit")->isEnabled());
+    QVERIFY(window.findChild<QComboBox*>("scenePaths")->count() > 100);  // the scene's real-valued numbers
+    QSignalSpy ready(panel, &AnalysesPanel::resultReady);
+    QVERIFY(panel->run());
+    QTRY_COMPARE_WITH_TIMEOUT(ready.count(), 1, 120000);
+    QVERIFY(window.findChild<QPushButton*>("applyFit")->isEnabled());
+    const auto r = panel->lastResult("fit");
+    QVERIFY(r && r->json);
+    QVERIFY((*r->json)["chi2"].get<double>() < 0.01);
+    QVERIFY(plots->filledPlots().contains("fit-residuals"));
+    const PlotData residuals = plots->plot("fit-residuals");
+    QCOMPARE(residuals.rows.size(), 3);
+    for (const auto& row : residuals.rows) QVERIFY(std::abs(row[9].toDouble()) < 0.1);  // normalised, fitted
+    QVERIFY(std::abs(residuals.rows[1][8].toDouble()) > 5);                             // before the fit
+    QTest::qWait(300);
+    QVERIFY(window.captureWindow().save(tmpDir() + "/fit-1366x768-analyses.png"));
+
+    // Apply: both values, one undo step; Undo restores the prototype.
+    SceneDocument* doc = window.document();
+    const int steps = doc->undoStack()->count();
+    window.findChild<QPushButton*>("applyFit")->click();
+    QCOMPARE(doc->undoStack()->count(), steps + 1);
+    QVERIFY(std::abs(parameterValue(doc->scene(), "eye.relief_mm") - 21.5) < 0.05);
+    QVERIFY(std::abs(parameterValue(doc->scene(), "hoe_layers[1].n1") - 0.0165) < 1e-4);
+    QVERIFY(panel->statusText().contains("Applied 2 fitted values"));
+    doc->undoStack()->undo();
+    QCOMPARE(parameterValue(doc->scene(), "eye.relief_mm"), 22.0);
+    QCOMPARE(parameterValue(doc->scene(), "hoe_layers[1].n1"), 0.015);
+
+    window.resize(1920, 1080);
+    window.findChild<QDockWidget*>("PlotsDock")->raise();
+    QTest::qWait(400);
+    QVERIFY(window.captureWindow().save(tmpDir() + "/fit-1920x1080-plots.png"));
+  }
+};
+
+QTEST_MAIN(TestFitPanel)
+#include "tst_fit_panel.moc"

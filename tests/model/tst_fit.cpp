@@ -1,0 +1,242 @@
+// Fitting a scene to target observables (model/analysis/fit_*.h): the targets format and its
+// refusals, the free-parameter spelling, the covariance against the closed form of a linear
+// model, and the synthetic recovery of the issue's "Done when": perturb the prototype in a few
+// parameters, compute the targets with our own forward model, fit from the unperturbed scene,
+// every parameter back within its reported uncertainty.
+#include <QtTest>
+
+#include <chrono>
+#include <cmath>
+
+#include <Eigen/LU>
+
+#include "app/embedded_scene.h"
+#include "model/analysis/fit_json.h"
+#include "model/analysis/fit_parameters.h"
+#include "model/analysis/fit_solver.h"
+#include "model/analysis/fit_targets.h"
+#include "model/analysis/fit_uncertainty.h"
+#include "model/scene/scene_io.h"
+#include "model/scene/scene_parameters.h"
+
+using namespace fovea;
+
+namespace {
+Scene prototype() {
+  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
+}
+
+template <class F>
+QString refusal(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return QString::fromStdString(e.what());
+  }
+  return {};
+}
+
+FitTarget target(const std::string& id, const std::string& observable, nlohmann::json params, double sigma) {
+  nlohmann::json j = params;
+  j["id"] = id;
+  j["observable"] = observable;
+  j["value"] = 0.0;
+  j["sigma"] = sigma;
+  return parseFitTargets(nlohmann::json::array({j})).front();
+}
+}  // namespace
+
+class TestFit : public QObject {
+  Q_OBJECT
+ private slots:
+  void targetsFormat() {
+    const nlohmann::json file = nlohmann::json::parse(R"js({
+      "format": "fovea-fit-targets", "version": 1, "notes": "two targets",
+      "targets": [
+        {"id": "fov", "observable": "fov_deg", "gaze_deg": 10, "direction": "vertical", "value": 78.0,
+         "sigma": 0.5, "unit": "deg", "source": "seed A.3 (measured)"},
+        {"id": "xp", "observable": "x_p_mm", "gaze_deg": -20, "value": -3.44, "sigma": 0.1, "source": "seed A.4"}
+      ]})js");
+    const std::vector<FitTarget> t = parseFitTargets(file);
+    QCOMPARE(t.size(), std::size_t(2));
+    QCOMPARE(t[0].parameters["direction"].get<std::string>(), std::string("vertical"));
+    QCOMPARE(t[0].parameters["shift"].get<std::string>(), std::string("optimal"));  // default filled in
+    QCOMPARE(t[1].unit, std::string("mm"));                                         // the observable's
+    QCOMPARE(t[1].parameters["gaze_deg"].get<double>(), -20.0);
+    // The file form reads back to the same targets.
+    const std::vector<FitTarget> back = parseFitTargets(fitTargetsJson(t, "again"));
+    QCOMPARE(back[1].parameters, t[1].parameters);
+    QCOMPARE(back[0].source, t[0].source);
+    // A bare list is a targets file too.
+    QCOMPARE(parseFitTargets(file["targets"]).size(), std::size_t(2));
+
+    auto refused = [&](const char* key, nlohmann::json v) {
+      nlohmann::json f = file;
+      if (v.is_null())
+        f["targets"][0].erase(key);
+      else
+        f["targets"][0][key] = v;
+      return refusal([&] { parseFitTargets(f); });
+    };
+    const QString unknown = refused("observable", "fov");
+    QVERIFY2(unknown.contains("unknown observable \"fov\"") && unknown.contains("fov_deg, ") &&
+                 unknown.contains("x_p_mm") && unknown.contains("cpd"),
+             qPrintable(unknown));
+    QVERIFY(refused("sigma", 0).contains("\"sigma\" must be > 0"));
+    QVERIFY(refused("sigma", nullptr).contains("missing \"sigma\""));
+    QVERIFY(refused("unit", "mm").contains("\"unit\" of fov_deg is \"deg\""));
+    QVERIFY(refused("direction", "sideways").contains("direction: must be one of horizontal, vertical, diagonal"));
+    QVERIFY(refused("gaze", 3).contains("gaze: not a parameter of fov_deg"));
+    QVERIFY(refused("gaze_deg", 95).contains("gaze_deg: must lie in [-80, 80] deg"));
+    QVERIFY(refused("value", "90").contains("\"value\" must be a finite number"));
+    nlohmann::json twice = file;
+    twice["targets"][1]["id"] = "fov";
+    QVERIFY(refusal([&] { parseFitTargets(twice); }).contains("duplicate id \"fov\""));
+    QVERIFY(refusal([&] { parseFitTargets(nlohmann::json::array()); }).contains("empty"));
+  }
+
+  void freeParameterSpelling() {
+    const Scene s = prototype();
+    const FreeParameter d = parseFreeParameter(s, "eye.relief_mm");
+    QCOMPARE(d.initial, 22.0);
+    QCOMPARE(d.lower, 17.0);  // +-5 mm default window
+    QCOMPARE(d.upper, 27.0);
+    QCOMPARE(d.unit, std::string("mm"));
+    const FreeParameter a = parseFreeParameter(s, "projector.position_mm[0]=85:95");
+    QCOMPARE(a.lower, 85.0);
+    QCOMPARE(a.upper, 95.0);
+    const FreeParameter w = parseFreeParameter(s, "hoe.rotation_deg[0]=+-2");
+    QCOMPARE(w.lower, -2.0);
+    QCOMPARE(w.upper, 2.0);
+    const FreeParameter n1 = parseFreeParameter(s, "hoe_layers[1].n1");  // +-25 % of 0.015
+    QVERIFY(std::abs(n1.lower - 0.01125) < 1e-12 && std::abs(n1.upper - 0.01875) < 1e-12);
+    const FreeParameter shrink = parseFreeParameter(s, "hoe_layers[0].shrinkage_percent");  // 0: +-1
+    QCOMPARE(shrink.upper, 1.0);
+    QVERIFY(refusal([&] { parseFreeParameter(s, "projector.pixels[0]"); }).contains("integer field cannot be fitted"));
+    QVERIFY(refusal([&] { parseFreeParameter(s, "eye.colour"); }).contains("eye.colour"));
+    QVERIFY(refusal([&] { parseFreeParameter(s, "eye.relief_mm=30:40"); }).contains("outside the bounds"));
+    QVERIFY(refusal([&] { parseFreeParameter(s, "eye.relief_mm=5:1"); }).contains("LO < HI"));
+    QVERIFY(refusal([&] { parseFreeParameter(s, "eye.relief_mm=a:b"); }).contains("not a finite number"));
+    QVERIFY(refusal([&] { parseFreeParameter(s, "hoe_layers[1].n1=-1:1"); }).contains("field's range"));
+    QVERIFY(refusal([&] { parseFreeParameters(s, {"eye.relief_mm", "eye.relief_mm=20:24"}); }).contains("twice"));
+  }
+
+  void covarianceOfALinearModel() {
+    // r = J p: (J^T J)^-1 exactly, whatever the windows the SVD scales by.
+    UncertaintyInput in;
+    in.jacobian.resize(3, 2);
+    in.jacobian << 1, 0, 1, 1, 0, 2;
+    in.at_bound = {false, false};
+    const Eigen::MatrixXd jtj = in.jacobian.transpose() * in.jacobian;
+    const Eigen::MatrixXd expected = jtj.inverse();
+    for (const auto& w : {std::vector<double>{1, 1}, std::vector<double>{10, 0.1}}) {
+      in.windows = w;
+      const UncertaintyResult u = analyseUncertainty(in);
+      QVERIFY((u.covariance - expected).cwiseAbs().maxCoeff() < 1e-12);
+      QVERIFY(std::abs(*u.sigma[1] - std::sqrt(expected(1, 1))) < 1e-12);
+      QVERIFY(std::abs(u.correlation(0, 1) - expected(0, 1) / std::sqrt(expected(0, 0) * expected(1, 1))) < 1e-12);
+      QVERIFY(u.determined[0] && u.determined[1]);
+    }
+    // A parameter no target depends on: undetermined, no uncertainty, the other one unaffected.
+    in.jacobian.col(1).setZero();
+    in.windows = {1, 1};
+    const UncertaintyResult z = analyseUncertainty(in);
+    QVERIFY(!z.determined[1] && !z.sigma[1]);
+    QVERIFY(z.warnings[1].find("undetermined") != std::string::npos);
+    QVERIFY(z.determined[0] && std::abs(*z.sigma[0] - 1 / std::sqrt(2.0)) < 1e-12);
+    QVERIFY(z.relative_singular_values[1] == 0.0);
+  }
+
+  void recoversPerturbedParameters() {
+    // Perturb 4 parameters, compute 6 targets with our forward model (green laser, edge FOV),
+    // fit from the prototype: each parameter back within its reported uncertainty.
+    const Scene nominal = prototype();
+    const std::vector<std::pair<std::string, double>> truth{{"eye.relief_mm", 21.5},
+                                                            {"hoe.size_mm[1]", 35.2},
+                                                            {"hoe_layers[1].n1", 0.0165},
+                                                            {"projector.pixel_beam.waist_fwhm_um", 690.0}};
+    Scene built = nominal;
+    for (const auto& [path, v] : truth) built = withParameter(built, path, v);
+    std::vector<FitTarget> t{
+        target("fov-h", "fov_deg", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.05),
+        target("fov-v", "fov_deg", {{"shift", "none"}, {"direction", "vertical"}, {"wavelength_nm", 532}}, 0.05),
+        target("eff", "mean_efficiency", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.002),
+        target("spot", "rms_spot_um", nlohmann::json::object(), 2.0),
+        target("xp+10", "x_p_mm", {{"gaze_deg", 10}, {"wavelength_nm", 532}}, 0.02),
+        target("xp-10", "x_p_mm", {{"gaze_deg", -10}, {"wavelength_nm", 532}}, 0.02)};
+    const std::vector<double> measured = evaluateTargets(built, t);
+    for (std::size_t i = 0; i < t.size(); ++i) t[i].value = measured[i];
+    std::vector<std::string> specs;
+    for (const auto& [path, v] : truth) specs.push_back(path);
+    const std::vector<FreeParameter> free = parseFreeParameters(nominal, specs);
+    FitOptions o;
+    o.starts = 2;
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = fitScene(nominal, t, free, o);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    QVERIFY(r.ok());
+    const FitResult& f = *r.value;
+    qInfo("fit: %d evaluations in %.1f s, chi2 %.3g -> %.3g", f.evaluations, s, f.chi2_initial, f.chi2);
+    QVERIFY(f.chi2_initial > 100);  // the perturbation is seen
+    QVERIFY2(f.chi2 < 0.1, qPrintable(QString::number(f.chi2)));
+    QCOMPARE(f.dof, 2);
+    for (std::size_t j = 0; j < truth.size(); ++j) {
+      const FitParameterResult& p = f.parameters[j];
+      qInfo("%s: %.6g +- %.3g (true %.6g, start %.6g)", p.parameter.path.c_str(), p.fitted, *p.uncertainty,
+            truth[j].second, p.parameter.initial);
+      QVERIFY(p.determined && p.uncertainty && *p.uncertainty > 0);
+      // The uncertainty is small against the perturbation (the targets do determine it) ...
+      QVERIFY(*p.uncertainty < 0.2 * std::abs(truth[j].second - p.parameter.initial));
+      // ... and the fit is back within it.
+      QVERIFY2(std::abs(p.fitted - truth[j].second) < *p.uncertainty, p.parameter.path.c_str());
+    }
+    QVERIFY(f.warnings.empty());
+    QCOMPARE(parameterValue(f.fitted_scene, "eye.relief_mm"), f.parameters[0].fitted);
+    const nlohmann::json j = fitResultJson(f, o);
+    QCOMPARE(j["parameters"].size(), std::size_t(4));
+    QCOMPARE(j["targets"][4]["id"].get<std::string>(), std::string("xp+10"));
+    QVERIFY(std::abs(j["correlation"][1][1].get<double>() - 1.0) < 1e-12);
+  }
+
+  void warnsOfUndeterminedParameters() {
+    // Efficiency on Bragg depends on n1 d only (tanh^2(pi n1 d / lambda), Kogelnik 1969): one
+    // efficiency target cannot separate n1 from the thickness.
+    const Scene nominal = prototype();
+    std::vector<FitTarget> t{target("eff", "mean_efficiency", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.002)};
+    t[0].value = evaluateTargets(withParameter(nominal, "hoe_layers[1].n1", 0.016), t)[0];
+    FitOptions o;
+    o.starts = 1;
+    const auto r =
+        fitScene(nominal, t, parseFreeParameters(nominal, {"hoe_layers[1].n1", "hoe_layers[1].thickness_um"}), o);
+    QVERIFY(r.ok());
+    QVERIFY(r.value->chi2 < 0.01);
+    QVERIFY(!r.value->parameters[0].determined && !r.value->parameters[1].determined);
+    QVERIFY(!r.value->parameters[0].uncertainty);
+    int undetermined = 0;
+    for (const auto& w : r.value->warnings) undetermined += w.message.find("undetermined") != std::string::npos;
+    QCOMPARE(undetermined, 2);
+  }
+
+  void cancelled() {
+    const Scene nominal = prototype();
+    std::vector<FitTarget> t{target("eff", "mean_efficiency", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.002)};
+    std::atomic<bool> stop{true};
+    StudyControl c;
+    c.cancel = &stop;
+    QVERIFY(!fitScene(nominal, t, parseFreeParameters(nominal, {"hoe_layers[1].n1"}), {}, c).ok());
+  }
+
+  void refusesATargetWithoutValue() {
+    const Scene nominal = prototype();
+    std::vector<FitTarget> t{target("cpd", "cpd", {{"eccentricity_deg", 79}, {"kind", "foveal"}}, 1.0)};
+    try {
+      fitScene(nominal, t, parseFreeParameters(nominal, {"eye.relief_mm"}));
+      QFAIL("no error");
+    } catch (const std::runtime_error& e) {
+      QVERIFY2(QString(e.what()).contains("target \"cpd\" (cpd): no foveal resolution"), e.what());
+    }
+  }
+};
+
+QTEST_GUILESS_MAIN(TestFit)
+#include "tst_fit.moc"

@@ -1,0 +1,33 @@
+#pragma once
+// Files for the test suites: a scratch folder under $FOVEA_TEST_TMP (set by CTest per
+// configuration, /tmp otherwise), a whole file as text, and the shipped prototype scene.
+#include <QtGlobal>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fovea::testing {
+
+// $FOVEA_TEST_TMP/<name>, created; emptied first when `fresh`.
+inline std::filesystem::path testTmpDir(const std::string& name, bool fresh = false) {
+  const auto dir = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / name;
+  if (fresh) std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The file's bytes ("" when it cannot be read: the caller's comparison then fails).
+inline std::string readFileText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+inline std::string prototypeSceneText() {
+  return readFileText(std::filesystem::path(FOVEA_SOURCE_DIR) / "resources/scenes/prototype-bench.json");
+}
+
+}  // namespace fovea::testing
