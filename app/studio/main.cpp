@@ -186,12 +186,9 @@ int main(int argc, char** argv) {
     bool trialsOk = false;
     const int trials = parser.value(reportToleranceOpt).toInt(&trialsOk);
     if (!trialsOk || trials < 0 || trials > 1000000) {
-      err << "fovea-studio: --report-tolerance: expected a whole number in 0 .. 1000000, got "
-             "
-          << parser.value(reportToleranceOpt)
-          << ""
-             ";
-          return 2;
+      err << "fovea-studio: --report-tolerance: expected a whole number in 0 .. 1000000, got \""
+          << parser.value(reportToleranceOpt) << "\"\n";
+      return 2;
     }
     return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays, trials,
                                         parser.value(reportToleranceSpecOpt));
