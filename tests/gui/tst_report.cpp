@@ -256,5 +256,5 @@ class TestReport : public QObject {
   }
 };
 
-QTEST_GUILESS_MAIN(TestReport)
+QTEST_MAIN(TestReport)  // the tolerance section renders its plots (Qt Charts needs a QApplication)
 #include "tst_report.moc"
