@@ -9,7 +9,7 @@ PACKAGES=(
   libvtk9-dev libopencv-dev libeigen3-dev libopenimageio-dev openimageio-tools
   libglm-dev libusb-1.0-0-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev libtbb-dev
-  xvfb xauth libgl1-mesa-dri x11-utils
+  xvfb xauth libgl1-mesa-dri x11-utils xdotool
   poppler-utils python3-numpy python3-matplotlib opencv-doc
   clang-format clang-tidy umockdev libumockdev-dev
   slurmctld slurmd slurm-client munge

@@ -290,6 +290,10 @@ void addStages(const Scene& scene, SceneLayer& layer) {
 
 }  // namespace
 
+void buildEyeActors(const Scene& scene, SceneLayer& layer) {
+  addEye(scene, layer);
+}
+
 void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light) {
   addHoe(scene, layer);
   addProjector(scene, layer, light);

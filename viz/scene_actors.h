@@ -45,5 +45,7 @@ inline constexpr std::array<double, 3> kSelection{1.00, 1.00, 0.00};
 // Adds every element's actors to `layer` and the projector's light (frustum outline) to
 // `light` (both cleared by the caller).
 void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light);
+// Adds the eye's actors only (element "eye"): what a gaze change redraws.
+void buildEyeActors(const Scene& scene, SceneLayer& layer);
 
 }  // namespace fovea::viz

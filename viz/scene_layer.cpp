@@ -23,6 +23,14 @@ void SceneLayer::clear() {
   entries_.clear();
 }
 
+void SceneLayer::removeElement(const QString& elementId) {
+  std::erase_if(entries_, [&](const Entry& e) {
+    if (e.element != elementId) return false;
+    renderer_->RemoveViewProp(e.prop);
+    return true;
+  });
+}
+
 void SceneLayer::setVisible(bool visible) {
   visible_ = visible;
   for (auto& e : entries_) e.prop->SetVisibility(visible);

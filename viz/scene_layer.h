@@ -24,6 +24,8 @@ class SceneLayer {
   const QString& name() const { return name_; }
   void add(vtkProp* prop, const QString& elementId = {}, bool pickable = true);
   void clear();
+  // Removes the props of one element (the rest stay).
+  void removeElement(const QString& elementId);
   void setVisible(bool visible);
   bool isVisible() const { return visible_; }
 

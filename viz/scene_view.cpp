@@ -228,6 +228,18 @@ SceneLayer& SceneView::layer(const QString& name) {
 
 void SceneView::setScene(const Scene& scene, bool reset) {
   const bool first = !hasScene_;
+  // A gaze change (a drag of the gaze slider or the eye's rings) only turns the eye: redraw
+  // its actors alone, the cheap path that keeps the GUI thread free while the hand moves.
+  Scene turned = scene_;
+  turned.eye.gaze_deg = scene.eye.gaze_deg;
+  if (!first && !reset && turned == scene && scene_.eye.gaze_deg != scene.eye.gaze_deg) {
+    scene_ = scene;
+    sceneLayer().removeElement(QStringLiteral("eye"));
+    buildEyeActors(scene_, sceneLayer());
+    updateHighlight();
+    requestRender();
+    return;
+  }
   scene_ = scene;
   hasScene_ = true;
   SceneLayer& l = sceneLayer();

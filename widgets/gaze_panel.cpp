@@ -84,6 +84,10 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   refreshFromScene();
 }
 
+bool GazePanel::isDragging() const {
+  return yaw_->isSliderDown() || pitch_->isSliderDown();
+}
+
 bool GazePanel::followGaze() const {
   return follow_->isChecked();
 }
@@ -139,14 +143,18 @@ void GazePanel::showResult(const std::shared_ptr<const LiveTraceResult>& r, bool
                      .arg(t.mean_efficiency, 0, 'f', 3)
                      .arg(t.rays_in_pupil)
                      .arg(t.rays);
+  const bool coarse = r->detail == TraceDetail::Coarse;
   if (r->settings.follow_gaze)
-    text += QString::fromUtf8("\nHOE travel x_p: %1 mm (x), %2 mm (y)")
+    text += QString::fromUtf8("\nHOE travel x_p: %1 mm (x), %2 mm (y)%3")
                 .arg(r->hoe_shift_mm[0], 0, 'f', 2)
-                .arg(r->hoe_shift_mm[1], 0, 'f', 2);
+                .arg(r->hoe_shift_mm[1], 0, 'f', 2)
+                .arg(r->shift_source.empty() ? QString() : tr(" (%1)").arg(QString::fromStdString(r->shift_source)));
   text += tr("\ntrace %1 ms%2%3")
               .arg(r->compute_ms, 0, 'f', 0)
-              .arg(r->reused_diffraction ? tr(" (gaze stage only)") : QString())
-              .arg(busy ? tr(" · updating…") : QString());
+              .arg(coarse                  ? tr(" · coarse, %1 rays per wavelength").arg(r->settings.coarse_rays)
+                   : r->reused_diffraction ? tr(" (gaze stage only)")
+                                           : QString())
+              .arg(busy || coarse ? tr(" · refining…") : QString());
   readout_->setText(text);
 }
 

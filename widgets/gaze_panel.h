@@ -26,6 +26,8 @@ class GazePanel : public QWidget {
   QSlider* yawSlider() const { return yaw_; }
   QSlider* pitchSlider() const { return pitch_; }
   QCheckBox* followToggle() const { return follow_; }
+  // A slider is held (its drag asks for coarse traces, widgets/live_trace.h).
+  bool isDragging() const;
   bool followGaze() const;
   void setFollowGaze(bool on);
   // Sets the gaze (degrees) as the sliders would: one undoable edit.

@@ -17,15 +17,18 @@ namespace {
 struct Superseded {};
 }  // namespace
 
-// Results of the expensive stages of the last jobs, reused by the next ones. Touched by
-// one job at a time (the pool has one thread), guarded anyway.
+// Results of the expensive stages of the last jobs, reused by the next ones (one diffraction
+// slot per detail, so a drag's coarse traces keep the refined one). Touched by one job at a
+// time (the pool has one thread), guarded anyway.
 struct LiveTrace::Cache {
   std::mutex mutex;
   // diffractScene() depends on everything but the gaze.
-  std::optional<Scene> diffraction_scene;
-  std::array<double, 2> diffraction_shift{0, 0};
-  int diffraction_rays = 0;
-  std::shared_ptr<const std::vector<TracedRay>> diffraction;
+  struct Diffraction {
+    std::optional<Scene> scene;
+    std::array<double, 2> shift{0, 0};
+    int rays = 0;
+    std::shared_ptr<const std::vector<TracedRay>> rays_out;
+  } diffraction[2];
   // x_p for one (scene without gaze, gaze).
   std::optional<Scene> shift_scene;
   std::array<double, 2> shift_gaze{0, 0};
@@ -37,6 +40,15 @@ LiveTrace::LiveTrace(QObject* parent)
     : QObject(parent), cache_(std::make_shared<Cache>()), newest_(std::make_shared<std::atomic<quint64>>(0)) {
   qRegisterMetaType<std::shared_ptr<const LiveTraceResult>>();
   pool_.setMaxThreadCount(1);  // the trace itself is parallel (TBB)
+  refineTimer_ = new QTimer(this);
+  refineTimer_->setSingleShot(true);
+  refineTimer_->setInterval(kRefineIdle_ms);
+  connect(refineTimer_, &QTimer::timeout, this, [this] {
+    if (!refineNext_) return;
+    Job next = std::move(*refineNext_);
+    refineNext_.reset();
+    request(next.scene, next.settings, TraceDetail::Refined);
+  });
 }
 
 LiveTrace::~LiveTrace() {
@@ -44,12 +56,20 @@ LiveTrace::~LiveTrace() {
   pool_.waitForDone();
 }
 
-void LiveTrace::request(const Scene& scene, const LiveTraceSettings& settings) {
+void LiveTrace::request(const Scene& scene, const LiveTraceSettings& settings, TraceDetail detail) {
   ++requests_;
   settings_ = settings;
   const bool wasBusy = isBusy();
-  pending_ = Job{++generation_, scene, settings};
+  pending_ = Job{++generation_, scene, settings, detail, {}, {0, 0}};
   newest_->store(generation_);
+  if (detail == TraceDetail::Coarse) {
+    refineNext_ = Job{0, scene, settings, TraceDetail::Refined, {}, {0, 0}};
+    refineTimer_->start();  // restarted by every move: fires when the hand rests
+  } else {
+    refineTimer_->stop();
+    refineNext_.reset();
+    if (settings.follow_gaze) updateShiftTable(scene);
+  }
   if (!wasBusy) emit busyChanged(true);
   if (!running_ && !startQueued_) {
     startQueued_ = true;
@@ -60,10 +80,29 @@ void LiveTrace::request(const Scene& scene, const LiveTraceSettings& settings) {
   }
 }
 
+void LiveTrace::updateShiftTable(const Scene& scene) {
+  Scene base = scene;
+  base.eye.gaze_deg = {0.0, 0.0};
+  if (tableScene_ && *tableScene_ == base) return;
+  // A new design: its gaze study in the background; the old table serves coarse traces
+  // until the new one is ready (a drag moves the design little).
+  tableScene_ = base;
+  tableTask_ = std::make_unique<devices::FollowGazeTableTask>(base);
+}
+
 void LiveTrace::startPending() {
   if (running_ || !pending_) return;
   Job job = std::move(*pending_);
   pending_.reset();
+  if (tableTask_)
+    if (auto t = tableTask_->table()) {
+      table_ = std::move(t);
+      tableTask_.reset();
+    }
+  if (job.detail == TraceDetail::Coarse) {
+    job.table = table_;
+    if (latest_) job.last_shift = latest_->hoe_shift_mm;
+  }
   running_ = true;
   ++started_;
   std::shared_ptr<Cache> cache = cache_;
@@ -77,8 +116,13 @@ void LiveTrace::startPending() {
 
 void LiveTrace::jobFinished(std::shared_ptr<LiveTraceResult> result) {
   running_ = false;
-  if (result && result->generation == generation_) {
+  // The newest request's result, or a coarse one newer than what is shown (drag: the view
+  // follows at the pace of the jobs rather than waiting for the hand to stop).
+  const bool deliver = result && (result->generation == generation_ ||
+                                  (result->detail == TraceDetail::Coarse && result->generation > deliveredGeneration_));
+  if (deliver) {
     latest_ = result;
+    deliveredGeneration_ = result->generation;
     ++delivered_;
     emit resultReady(latest_);
   } else {
@@ -93,7 +137,7 @@ void LiveTrace::jobFinished(std::shared_ptr<LiveTraceResult> result) {
 bool LiveTrace::waitForIdle(int timeout_ms) {
   QElapsedTimer t;
   t.start();
-  while (isBusy() || startQueued_) {
+  while (isBusy() || startQueued_ || refineTimer_->isActive()) {
     if (t.elapsed() > timeout_ms) return false;
     QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
   }
@@ -103,17 +147,34 @@ bool LiveTrace::waitForIdle(int timeout_ms) {
 std::shared_ptr<LiveTraceResult> LiveTrace::run(const Job& job, Cache& cache, const std::atomic<quint64>& newest) {
   QElapsedTimer timer;
   timer.start();
-  auto stale = [&] { return newest.load() != job.generation; };
+  const bool coarse = job.detail == TraceDetail::Coarse;
+  // A coarse job runs to its end (it is short and its result is shown); a refined one stops
+  // at its next checkpoint once superseded.
+  auto stale = [&] { return !coarse && newest.load() != job.generation; };
   auto result = std::make_shared<LiveTraceResult>();
   result->generation = job.generation;
   result->scene = job.scene;
   result->settings = job.settings;
+  result->detail = job.detail;
   try {
     Scene base = job.scene;  // everything the diffraction depends on
     base.eye.gaze_deg = {0.0, 0.0};
     const auto gaze = job.scene.eye.gaze_deg;
     std::array<double, 2> shift{0.0, 0.0};
-    if (job.settings.follow_gaze && (gaze[0] != 0.0 || gaze[1] != 0.0)) {
+    if (coarse && job.settings.follow_gaze && (gaze[0] != 0.0 || gaze[1] != 0.0)) {
+      // x_p interpolated in the gaze study's table (absolute, as the search's; zero gaze
+      // components keep 0 as the refined trace does), else the last applied one.
+      if (job.table) {
+        const auto& t = *job.table;
+        shift = {gaze[0] != 0.0 ? devices::interpolateClamped(t.gazes_deg, t.shift_x_mm, gaze[0]) : 0.0,
+                 gaze[1] != 0.0 ? devices::interpolateClamped(t.gazes_deg, t.shift_y_mm, gaze[1]) : 0.0};
+        result->shift_source = "gaze-study table";
+      } else {
+        shift = job.last_shift;
+        result->shift_source = "last applied";
+      }
+    } else if (job.settings.follow_gaze && (gaze[0] != 0.0 || gaze[1] != 0.0)) {
+      result->shift_source = "search";
       bool cached = false;
       {
         std::lock_guard lock(cache.mutex);
@@ -146,29 +207,29 @@ std::shared_ptr<LiveTraceResult> LiveTrace::run(const Job& job, Cache& cache, co
     result->hoe_shift_mm = shift;
 
     TraceOptions o;
-    o.rays = job.settings.rays;
+    o.rays = coarse ? job.settings.coarse_rays : job.settings.rays;
     o.hoe_shift_mm = shift;
     o.keep_rays = true;
+    Cache::Diffraction& slot = cache.diffraction[coarse ? 1 : 0];
     std::shared_ptr<const std::vector<TracedRay>> diffracted;
     {
       std::lock_guard lock(cache.mutex);
-      if (cache.diffraction && cache.diffraction_scene && *cache.diffraction_scene == base &&
-          cache.diffraction_shift == shift && cache.diffraction_rays == o.rays)
-        diffracted = cache.diffraction;
+      if (slot.rays_out && slot.scene && *slot.scene == base && slot.shift == shift && slot.rays == o.rays)
+        diffracted = slot.rays_out;
     }
     result->reused_diffraction = diffracted != nullptr;
     if (!diffracted) {
       diffracted = std::make_shared<const std::vector<TracedRay>>(diffractScene(job.scene, o));
       std::lock_guard lock(cache.mutex);
-      cache.diffraction_scene = base;
-      cache.diffraction_shift = shift;
-      cache.diffraction_rays = o.rays;
-      cache.diffraction = diffracted;
+      slot.scene = base;
+      slot.shift = shift;
+      slot.rays = o.rays;
+      slot.rays_out = diffracted;
     }
     if (stale()) return nullptr;
     result->trace = evaluateGaze(job.scene, *diffracted, o);
     result->grid = projectorGrid(job.scene.projector, o.rays);
-    result->cloud = gratingVectorCloud(job.scene, result->trace.ray_list, shift);
+    if (!coarse) result->cloud = gratingVectorCloud(job.scene, result->trace.ray_list, shift);
   } catch (const Superseded&) {
     return nullptr;
   } catch (const std::exception& e) {

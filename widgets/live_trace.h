@@ -11,6 +11,14 @@
 //  - "HOE follows gaze": the lateral HOE shift x_p(alpha) maximising the FOV at the gaze
 //    (model/analysis/gaze_studies.h optimiseShift: yaw -> HOE local x, pitch -> local y,
 //    each searched at the other component zero) is found first, then applied to the trace.
+//  - Coarse while the hand moves (request(..., TraceDetail::Coarse), during a slider or
+//    handle drag): few rays (coarse_rays) and x_p interpolated in the gaze study's table
+//    (devices/bench/follow_gaze_table.h, computed in the background for the scene once it
+//    follows the gaze; until it exists the last applied x_p), no grating-vector cloud. A
+//    coarse job is never abandoned and its result is delivered unless a newer one already
+//    was, so the view follows every move at the job's pace instead of freezing; requests
+//    arriving meanwhile coalesce into one. When no coarse request came for kRefineIdle_ms
+//    the newest scene is traced refined (all rays, x_p searched), replacing the coarse view.
 
 #include <QObject>
 #include <QThreadPool>
@@ -22,15 +30,21 @@
 #include <string>
 #include <vector>
 
+#include "devices/bench/follow_gaze_table.h"
 #include "model/physics/grating_cloud.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene.h"
 
+class QTimer;
+
 namespace fovea::widgets {
+
+enum class TraceDetail { Refined, Coarse };
 
 struct LiveTraceSettings {
   int rays = 4000;           // rays per wavelength of the displayed trace
   int search_rays = 1000;    // rays per wavelength of each x_p search evaluation
+  int coarse_rays = 500;     // rays per wavelength of a coarse (dragging) trace
   bool follow_gaze = false;  // apply x_p(alpha)
   bool operator==(const LiveTraceSettings&) const = default;
 };
@@ -45,7 +59,9 @@ struct LiveTraceResult {
   std::vector<GratingVectorSample> cloud;
   double compute_ms = 0;
   bool reused_diffraction = false;  // only the gaze stage ran
-  std::string error;                // non-empty: the trace failed (message)
+  TraceDetail detail = TraceDetail::Refined;
+  std::string shift_source;  // where x_p came from: "search", "gaze-study table", "last applied"
+  std::string error;         // non-empty: the trace failed (message)
 };
 
 class LiveTrace : public QObject {
@@ -54,8 +70,12 @@ class LiveTrace : public QObject {
   explicit LiveTrace(QObject* parent = nullptr);
   ~LiveTrace() override;  // cancels the running job and waits for it
 
-  // Asks for a trace of `scene`; coalesced (see header comment).
-  void request(const Scene& scene, const LiveTraceSettings& settings);
+  // Asks for a trace of `scene`; coalesced (see header comment). A coarse request schedules
+  // the refined trace kRefineIdle_ms after the last one.
+  void request(const Scene& scene, const LiveTraceSettings& settings, TraceDetail detail = TraceDetail::Refined);
+  static constexpr int kRefineIdle_ms = 150;
+  // Whether the x_p table of the gaze study is ready for the newest scene.
+  bool hasShiftTable() const { return table_.has_value(); }
   const LiveTraceSettings& settings() const { return settings_; }
 
   std::shared_ptr<const LiveTraceResult> latest() const { return latest_; }
@@ -65,6 +85,7 @@ class LiveTrace : public QObject {
 
   // Counters for tests and the status line.
   quint64 requests() const { return requests_; }
+  quint64 newestGeneration() const { return generation_; }
   quint64 jobsStarted() const { return started_; }
   quint64 resultsDelivered() const { return delivered_; }
   quint64 resultsDropped() const { return dropped_; }
@@ -78,6 +99,9 @@ class LiveTrace : public QObject {
     quint64 generation = 0;
     Scene scene;
     LiveTraceSettings settings;
+    TraceDetail detail = TraceDetail::Refined;
+    std::optional<devices::FollowGazeTable> table;  // coarse x_p
+    std::array<double, 2> last_shift{0, 0};         // coarse x_p without a table
   };
   struct Cache;
   void startPending();
@@ -92,7 +116,14 @@ class LiveTrace : public QObject {
   bool running_ = false;
   bool startQueued_ = false;
   quint64 generation_ = 0;
+  void updateShiftTable(const Scene& scene);
   std::shared_ptr<const LiveTraceResult> latest_;
+  quint64 deliveredGeneration_ = 0;
+  QTimer* refineTimer_ = nullptr;
+  std::optional<Job> refineNext_;  // the scene and settings the idle refine traces
+  std::unique_ptr<devices::FollowGazeTableTask> tableTask_;
+  std::optional<Scene> tableScene_;  // the scene (gaze zeroed) the table task computes for
+  std::optional<devices::FollowGazeTable> table_;
   quint64 requests_ = 0, started_ = 0, delivered_ = 0, dropped_ = 0;
 };
 

@@ -47,6 +47,7 @@ void install(CLI::App& app) {
     const nlohmann::json out = cachedStudy("optimize-lens", params, scene, *no_cache, [&] {
       LensOptimizationOptions opt;
       opt.starts_per_lens = analysis::integerOf(values, "starts");
+      opt.max_distance_mm = analysis::optionalNumberOf(values, "max-distance-mm");
       Progress progress("optimize-lens");
       StudyControl control;
       control.on_progress = [&progress](double f) { progress.update(f); };

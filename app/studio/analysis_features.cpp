@@ -14,6 +14,7 @@
 #include <QProgressDialog>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QStatusBar>
 #include <QThread>
 #include <QUndoStack>
 
@@ -225,6 +226,10 @@ void AnalysisFeatures::showPreferences() {
   dialog.exec();
 }
 
+namespace {
+constexpr int kReportProgressSteps = 1200;
+}  // namespace
+
 bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
                                     int* figures, QList<GazeFigureStats>* gazeFigures, QStringList* sections) {
   ReportOptions options = requested;
@@ -246,13 +251,17 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
       failure = QString::fromUtf8(e.what());
     }
   });
+  // Progress over the whole export: the analyses (0..1000 of the worker's progress), the
+  // figures (1000..1100), writing the file (1100..1200); Cancel stops before the next step.
   std::unique_ptr<QProgressDialog> progress;
   if (window_->isVisible() && window_->isActiveWindow()) {
-    progress =
-        std::make_unique<QProgressDialog>(tr("Computing the report's analyses…"), tr("Cancel"), 0, 1000, window_);
+    progress = std::make_unique<QProgressDialog>(tr("Computing the report's analyses…"), tr("Cancel"), 0,
+                                                 kReportProgressSteps, window_);
+    progress->setObjectName("reportProgress");
     progress->setWindowModality(Qt::WindowModal);
     progress->setMinimumDuration(300);
   }
+  window_->statusBar()->showMessage(tr("Writing the report %1… (computing its analyses)").arg(path));
   worker->start();
   while (!worker->isFinished()) {
     QApplication::processEvents(QEventLoop::AllEvents, 30);
@@ -264,11 +273,20 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   }
   worker->wait();
   delete worker;
-  progress.reset();
   auto fail = [&](const QString& m) {
+    progress.reset();
     if (error) *error = m;
     window_->messageLog()->error(tr("Report not written: %1").arg(m));
+    window_->statusBar()->showMessage(tr("Report not written: %1").arg(m), 8000);
     return false;
+  };
+  auto step = [&](int value, const QString& label) {  // false: cancelled
+    window_->statusBar()->showMessage(tr("Writing the report %1… (%2)").arg(path, label));
+    if (!progress) return true;
+    progress->setLabelText(label);
+    progress->setValue(value);
+    QApplication::processEvents();
+    return !progress->wasCanceled();
   };
   if (!failure.isEmpty()) return fail(failure);
   if (!data) return fail(tr("cancelled"));
@@ -277,6 +295,7 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   if (data->tolerance.is_null())
     if (const auto r = analyses_->lastResult("tolerance"); r && r->json && r->sceneText == sceneText)
       data->tolerance = *r->json;
+  if (!step(1000, tr("composing the figures"))) return fail(tr("cancelled"));
 
   // Plots filled in the studio for this very scene (or scene-independent ones) join the report.
   QList<widgets::PlotData> extra;
@@ -289,15 +308,19 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
       }
     }
   const ReportContent content = composeReport(*window_, *data, extra, Preferences::instance().units());
+  if (!step(1100, tr("writing %1").arg(QFileInfo(path).fileName()))) return fail(tr("cancelled"));
   QString writeError;
   if (!writeReport(content, path, &writeError, pages)) return fail(writeError);
+  step(kReportProgressSteps, tr("done"));
+  progress.reset();
+  window_->statusBar()->showMessage(tr("Report saved to %1").arg(path), 10000);
   if (figures) *figures = content.figureCount();
   if (gazeFigures) *gazeFigures = content.gazeFigures;
   if (sections) {
     sections->clear();
     for (const ReportSection& sec : content.sections) *sections << sec.heading;
   }
-  window_->messageLog()->info(tr("Report written to %1 (%n figure(s))", "", content.figureCount()).arg(path));
+  window_->messageLog()->info(tr("Report saved to %1 (%n figure(s))", "", content.figureCount()).arg(path));
   for (const QString& p : data->problems) window_->messageLog()->warning(tr("report: %1").arg(p));
   return true;
 }

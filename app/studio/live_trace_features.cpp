@@ -1,8 +1,15 @@
 #include "app/studio/live_trace_features.h"
 
 #include <QDockWidget>
+#include <QSlider>
 #include <QStatusBar>
+#include <QStyle>
+#include <QStyleOptionSlider>
+#include <QTimer>
 
+#include <cstdio>
+
+#include "app/studio/latency_probe.h"
 #include "app/studio/main_window.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
@@ -19,6 +26,7 @@ namespace fovea::studio {
 LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), window_(window) {
   widgets::SceneDocument* doc = window->document();
   trace_ = new widgets::LiveTrace(this);
+  probe_ = LatencyProbe::createIfRequested(this);
   overlay_ = std::make_unique<viz::TraceOverlay>(window->sceneView());
   gaze_ = new widgets::GazePanel(doc, window);
   display_ = new widgets::DisplayPanel(window);
@@ -58,6 +66,20 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
   });
   display_->setWavelengths(doc->scene().projector.wavelengths_nm);
   requestTrace();
+  if (probe_)  // where a scripted drag grabs the yaw slider (scripts/measure-drag-latency.sh)
+    QTimer::singleShot(6000, this, [this] {
+      QSlider* s = gaze_->yawSlider();
+      QStyleOptionSlider opt;
+      opt.initFrom(s);
+      opt.orientation = s->orientation();
+      opt.minimum = s->minimum();
+      opt.maximum = s->maximum();
+      opt.sliderPosition = s->sliderPosition();
+      opt.sliderValue = s->value();
+      const QRect handle = s->style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, s);
+      const QPoint c = s->mapToGlobal(handle.center()), end = s->mapToGlobal(QPoint(s->width() - 4, 0));
+      std::fprintf(stderr, "yaw-slider: %d %d %d\n", c.x(), c.y(), end.x());
+    });
 }
 
 LiveTraceFeatures::~LiveTraceFeatures() = default;
@@ -66,12 +88,23 @@ void LiveTraceFeatures::requestTrace() {
   widgets::LiveTraceSettings s;
   s.rays = display_->traceRays();
   s.follow_gaze = gaze_->followGaze();
-  trace_->request(window_->document()->scene(), s);
+  // While the hand moves a slider or a handle: coarse traces, refined when it rests.
+  const bool dragging = gaze_->isDragging() || handles_->isDragging();
+  trace_->request(window_->document()->scene(), s,
+                  dragging ? widgets::TraceDetail::Coarse : widgets::TraceDetail::Refined);
+  if (probe_ && dragging) probe_->noteRequest(trace_->newestGeneration());
 }
 
 void LiveTraceFeatures::showResult(const std::shared_ptr<const widgets::LiveTraceResult>& r) {
   gaze_->showResult(r, trace_->isBusy());
   redraw();
+  if (probe_ && r) {
+    const quint64 gen = r->generation;
+    const char* detail = r->detail == widgets::TraceDetail::Coarse ? "coarse" : "refined";
+    connect(
+        window_->sceneView(), &QOpenGLWidget::frameSwapped, probe_,
+        [this, gen, detail, ms = r->compute_ms] { probe_->noteDrawn(gen, detail, ms); }, Qt::SingleShotConnection);
+  }
 }
 
 void LiveTraceFeatures::redraw() {
@@ -83,7 +116,8 @@ void LiveTraceFeatures::redraw() {
     overlay_->show(r->scene, r->trace, r->grid, r->hoe_shift_mm, o);
   }
   retina_->setResult(r, o.hidden_wavelengths_nm);
-  if (r) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);
+  // Coarse (dragging) traces carry no grating-vector cloud: the last refined one stays.
+  if (r && r->detail == widgets::TraceDetail::Refined) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);
 }
 
 bool LiveTraceFeatures::applyShowList(const QStringList& names, QString* error) {

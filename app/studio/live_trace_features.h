@@ -28,6 +28,7 @@ struct LiveTraceResult;
 namespace fovea::studio {
 
 class MainWindow;
+class LatencyProbe;
 
 class LiveTraceFeatures : public QObject {
   Q_OBJECT
@@ -66,6 +67,7 @@ class LiveTraceFeatures : public QObject {
   viz::KSpaceView* kspace_ = nullptr;
   widgets::HandleController* handles_ = nullptr;
   std::unique_ptr<viz::TraceOverlay> overlay_;
+  LatencyProbe* probe_ = nullptr;  // FOVEA_LATENCY_LOG only
   QDockWidget* retinaDock_ = nullptr;
   QDockWidget* kspaceDock_ = nullptr;
 };

@@ -184,6 +184,7 @@ nlohmann::json lensOptimizationJson(const LensOptimization& r) {
   j["decenter_mm"] = r.best.placement.decenter_mm;
   j["rms_spot_um"] = {{"before", r.rms_before_um}, {"after", r.rms_after_um}};
   j["improvement_percent"] = r.improvement_percent;
+  j["distance_bound_mm"] = r.distance_bound_mm;
   nlohmann::json cands = nlohmann::json::array();
   for (const auto& c : r.candidates)
     cands.push_back({{"part", c.lens.part},

@@ -407,6 +407,7 @@ StudyOutcome<LensOptimization> optimizeBeamShapingLens(const Scene& scene, const
       }
     }
   if (!std::isfinite(min_throw)) min_throw = 100.0;
+  const double distance_bound = std::min(min_throw - 15.0, options.max_distance_mm.value_or(min_throw));
 
   const int starts = std::max(1, options.starts_per_lens);
   const std::size_t jobs = catalog.size() * static_cast<std::size_t>(starts);
@@ -416,7 +417,7 @@ StudyOutcome<LensOptimization> optimizeBeamShapingLens(const Scene& scene, const
         const StockLens& lens = catalog[job / starts];
         const int k = static_cast<int>(job % starts);
         const double d_lo = lens.center_thickness_mm / 2 + 3.0;
-        const double d_hi = std::max(d_lo + 1.0, min_throw - 15.0);
+        const double d_hi = std::max(d_lo + 1.0, distance_bound);
         const double dec = lens.diameter_mm / 4;
         std::vector<double> lb{d_lo, -dec, -40.0}, ub{d_hi, dec, 40.0};
         static constexpr double kTilts[] = {0.0, 15.0, -15.0, 30.0, -30.0};
@@ -471,6 +472,7 @@ StudyOutcome<LensOptimization> optimizeBeamShapingLens(const Scene& scene, const
   result.rms_after_um = best->rms_spot_um;
   result.pose = lensPose(scene, best->placement);
   result.improvement_percent = 100.0 * (result.rms_before_um - result.rms_after_um) / result.rms_before_um;
+  result.distance_bound_mm = distance_bound;
   out.status = StudyStatus::Completed;
   out.value = std::move(result);
   return out;

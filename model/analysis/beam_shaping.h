@@ -96,6 +96,7 @@ struct LensOptimization {
   double rms_before_um = 0;  // unshaped beam
   double rms_after_um = 0;
   double improvement_percent = 0;               // 100 (before - after) / before
+  double distance_bound_mm = 0;                 // farthest lens distance the search allowed (first lens)
   std::vector<LensCandidateResult> candidates;  // best placement per catalogue lens
 };
 
@@ -103,6 +104,10 @@ struct LensOptimizationOptions {
   SpotOptions spots;
   int starts_per_lens = 5;    // local BOBYQA runs from spread starting points
   int max_evaluations = 300;  // per start
+  // Farthest lens distance from the projector along its axis (mm); default: 15 mm short of
+  // the shortest chief-ray throw to the HOE. A form-factor limit ("a lens in front of the
+  // projector", A.2.1) is a smaller value.
+  std::optional<double> max_distance_mm;
 };
 
 // Minimises the RMS spot over catalogue lens, distance, decentre and tilt: NLopt BOBYQA

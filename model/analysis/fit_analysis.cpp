@@ -50,8 +50,8 @@ AnalysisDefinition fitAnalysis() {
   d.cli_generated = false;
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
-    if (v["targets"].is_null()) throw std::invalid_argument("targets: choose a targets file");
-    if (v["free"].is_null()) throw std::invalid_argument("free: choose at least one parameter to fit");
+    if (v.at("targets").is_null()) throw std::invalid_argument("targets: choose a targets file");
+    if (v.at("free").is_null()) throw std::invalid_argument("free: choose at least one parameter to fit");
     const std::string path = textOf(v, "targets");
     const nlohmann::json file = readJsonFile(path);  // its errors name the file
     std::vector<FitTarget> t;

@@ -40,7 +40,8 @@ const FovEvaluator& ObservableContext::evaluator(std::optional<double> wavelengt
 const GazeSample& ObservableContext::optimalShift(double gaze_deg, GazeAxis axis, ShiftMethod method,
                                                   std::optional<double> wavelength_nm,
                                                   const GazeStudyOptions& options) {
-  const std::string k = keyOf({gaze_deg, double(axis), double(method), options.tolerance_deg}, laserKey(wavelength_nm));
+  const std::string k =
+      keyOf({gaze_deg, double(axis), double(method), options.plateau_tolerance_deg}, laserKey(wavelength_nm));
   auto it = shifts_.find(k);
   if (it == shifts_.end())
     it = shifts_.emplace(k, optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options)).first;
@@ -50,8 +51,9 @@ const GazeSample& ObservableContext::optimalShift(double gaze_deg, GazeAxis axis
 const GazeSweepResult& ObservableContext::sweep(double from_deg, double to_deg, double step_deg, GazeAxis axis,
                                                 ShiftMethod method, std::optional<double> wavelength_nm,
                                                 const GazeStudyOptions& options) {
-  const std::string k =
-      keyOf({from_deg, to_deg, step_deg, double(axis), double(method), options.tolerance_deg}, laserKey(wavelength_nm));
+  const std::string k = keyOf(
+      {from_deg, to_deg, step_deg, double(axis), double(method), options.tolerance_deg, double(options.criterion)},
+      laserKey(wavelength_nm));
   auto it = sweeps_.find(k);
   if (it == sweeps_.end()) {
     auto r = sweepGaze(scene_, evaluator(wavelength_nm), from_deg, to_deg, step_deg, axis, method, options);
@@ -77,7 +79,9 @@ GazeAxis axisOf(const nlohmann::json& p) {
 }
 ShiftMethod methodOf(const nlohmann::json& p) {
   const std::string m = txt(p, "method");
-  return m == "source" ? ShiftMethod::Source : m == "none" ? ShiftMethod::None : ShiftMethod::Hoe;
+  if (m == "source") return ShiftMethod::Source;
+  if (m == "source_axial") return ShiftMethod::SourceAxial;
+  return m == "none" ? ShiftMethod::None : ShiftMethod::Hoe;
 }
 
 GazeStudyOptions studyOptions(const ObservableContext& ctx, const nlohmann::json& p) {
@@ -85,6 +89,8 @@ GazeStudyOptions studyOptions(const ObservableContext& ctx, const nlohmann::json
   o.edge_bisections = ctx.settings().shift_bisections;
   o.border_bisections = ctx.settings().border_bisections;
   if (p.contains("tolerance_deg")) o.tolerance_deg = num(p, "tolerance_deg");
+  if (p.contains("plateau_tolerance_deg")) o.plateau_tolerance_deg = num(p, "plateau_tolerance_deg");
+  if (p.contains("criterion") && txt(p, "criterion") == "centre-fov") o.criterion = EyeBoxCriterion::CentreFov;
   return o;
 }
 
@@ -144,14 +150,25 @@ std::vector<ObservableParameter> shiftParams() {
            {"optimal", "fixed", "none"},
            "optimal: the HOE (or source) at x_p of the gaze; fixed: at shift_mm; none: unmoved"},
           {"shift_mm", 0.0, {}, "the shift with shift \"fixed\" (mm)"},
-          {"method", "hoe", {"hoe", "source"}, "what moves: the HOE laterally or the point source along bench z"},
-          {"tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best (gaze_studies.h)"}};
+          {"method",
+           "hoe",
+           {"hoe", "source", "source_axial"},
+           "what moves: the HOE laterally, the point source along bench z, or along the projector's axis (the seed's "
+           "z_s)"},
+          {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best (gaze_studies.h)"}};
 }
 std::vector<ObservableParameter> sweepParams(bool with_end) {
   std::vector<ObservableParameter> v{
-      {"method", "hoe", {"hoe", "source", "none"}, "what moves with the gaze (none: the static eye box)"},
+      {"method",
+       "hoe",
+       {"hoe", "source", "source_axial", "none"},
+       "what moves with the gaze (none: the static eye box)"},
       axisParam(),
-      {"tolerance_deg", 3.0, {}, "eye-box criterion: FOV >= FOV(0) - tolerance_deg"},
+      {"criterion",
+       "tolerance",
+       {"tolerance", "centre-fov"},
+       "eye box: FOV >= FOV(0) - tolerance_deg, or the seed's FOV >= FOV(0) (A.3; gaze_studies.h)"},
+      {"tolerance_deg", 3.0, {}, "eye-box criterion tolerance: FOV >= FOV(0) - tolerance_deg"},
       {"gaze_from", -40.0, {}, "first gaze of the sweep (deg)"},
       {"gaze_to", 40.0, {}, "last gaze of the sweep (deg)"},
       {"gaze_step", 5.0, {}, "coarse gaze step before the borders are bisected (deg)"},
@@ -196,8 +213,8 @@ std::vector<ObservableDefinition> buildTable() {
                            "(method source) that maximises the FOV (gaze_studies.h optimiseShift)",
                            {gazeParam(),
                             axisParam(),
-                            {"method", "hoe", {"hoe", "source"}, "what moves"},
-                            {"tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best"},
+                            {"method", "hoe", {"hoe", "source", "source_axial"}, "what moves"},
+                            {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best"},
                             laserParam()},
                            nullptr};
     d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) {

@@ -162,7 +162,6 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
   // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a bound).
   struct Column {
     std::optional<std::vector<double>> plus, minus;
-    double step = 0;
   };
   auto columns = runSamples<Column>(
       n,
@@ -174,7 +173,6 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
         b[j] = std::max(p[j] - h, free[j].lower);
         c.plus = residualsAt(scene, targets, free, a, options.observables);
         c.minus = residualsAt(scene, targets, free, b, options.observables);
-        c.step = a[j] - b[j];
         progress.add(2);
         return c;
       },
@@ -192,13 +190,14 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
     ui.windows.push_back(window);
     ui.at_bound.push_back(p[j] - free[j].lower < 1e-6 * window || free[j].upper - p[j] < 1e-6 * window);
     // A refused side falls back to the one-sided difference with the optimum.
-    const std::vector<double>& hi = c.plus ? *c.plus : *rp;
-    const std::vector<double>& lo = c.minus ? *c.minus : *rp;
-    double step = c.step;
-    if (!c.plus || !c.minus) step = 0.5 * c.step;
-    if (step <= 0 || (!c.plus && !c.minus)) continue;  // no column: this parameter reads as undetermined
+    const double h = options.jacobian_step * window;
+    const double a = std::min(p[j] + h, free[j].upper), b = std::max(p[j] - h, free[j].lower);
+    const std::vector<double>* hi = c.plus ? &*c.plus : &*rp;
+    const std::vector<double>* lo = c.minus ? &*c.minus : &*rp;
+    const double step = (c.plus ? a : p[j]) - (c.minus ? b : p[j]);
+    if (!(step > 0)) continue;  // no column: this parameter reads as undetermined
     for (std::size_t i = 0; i < targets.size(); ++i)
-      ui.jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (hi[i] - lo[i]) / step;
+      ui.jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = ((*hi)[i] - (*lo)[i]) / step;
   }
   const UncertaintyResult u = analyseUncertainty(ui);
   out.chi2 = chi2Of(*rp);

@@ -64,7 +64,7 @@ std::vector<ParameterSpec> studyParameters() {
   // box measures the optics, not the ray sampling; 12 000 rays per wavelength per trace.
   return {integer("rays", "Rays per wavelength", 12000, 50, 1000000, "rays per wavelength per trace"),
           number("tolerance-deg", "Eye-box tolerance", "deg", 3.0, 0.0, 90.0, 2,
-                 "eye-box criterion: FOV within this of the zero-gaze FOV"),
+                 "eye-box criterion tolerance: FOV within this of the zero-gaze FOV"),
           choice("fov-method", "FOV estimator", {"edges", "dense"}, "edges",
                  "edges: the field's edges root-found to 0.005 deg (fov_edges.h); dense: counted on the rays grid"),
           choice("eyebox-criterion", "Eye-box criterion", {"tolerance", "centre-fov"}, "tolerance",
@@ -296,13 +296,17 @@ AnalysisDefinition optimizeLensAnalysis() {
   d.description =
       "Stock lens, position and Scheimpflug tilt minimising the RMS pixel spot on the HOE (supplement A.2), NLopt "
       "BOBYQA from several starts per catalogue lens.";
-  d.parameters = {integer("starts", "Starts per lens", 5, 1, 50, "optimiser starts per catalogue lens")};
+  ParameterSpec max_distance = positive("max-distance-mm", "Max lens distance", "mm", nullptr, 10000.0, 1,
+                                        "farthest lens position from the projector along its axis");
+  max_distance.unset_meaning = "15 mm short of the HOE";
+  d.parameters = {integer("starts", "Starts per lens", 5, 1, 50, "optimiser starts per catalogue lens"), max_distance};
   d.plots = {"lens-candidates"};
   d.cached = true;
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
     LensOptimizationOptions o;
     o.starts_per_lens = integerOf(v, "starts");
+    o.max_distance_mm = optionalNumberOf(v, "max-distance-mm");
     const auto r = optimizeBeamShapingLens(scene, defaultLensCatalog(), o, control);
     if (!r.ok()) return std::nullopt;
     return lensOptimizationJson(*r.value);

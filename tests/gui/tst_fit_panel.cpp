@@ -31,13 +31,13 @@ QString tmpDir() {
   return d;
 }
 
-// Targets from the prototype with the eye relief at 21.5 mm and the green n1 at 0.0165.
+// Targets from the prototype with the HOE 35.2 mm high and the green n1 at 0.0165.
 QString writeTargets() {
   const Scene nominal = *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-  const Scene built = withParameter(withParameter(nominal, "eye.relief_mm", 21.5), "hoe_layers[1].n1", 0.0165);
+  const Scene built = withParameter(withParameter(nominal, "hoe.size_mm[1]", 35.2), "hoe_layers[1].n1", 0.0165);
   std::vector<FitTarget> t = parseFitTargets(nlohmann::json::parse(R"([
     {"id": "eff", "observable": "mean_efficiency", "shift": "none", "wavelength_nm": 532, "value": 0, "sigma": 0.002},
-    {"id": "xp-10", "observable": "x_p_mm", "gaze_deg": -10, "wavelength_nm": 532, "value": 0, "sigma": 0.02},
+    {"id": "fov-h", "observable": "fov_deg", "shift": "none", "wavelength_nm": 532, "value": 0, "sigma": 0.05},
     {"id": "fov-v", "observable": "fov_deg", "shift": "none", "direction": "vertical", "wavelength_nm": 532,
      "value": 0, "sigma": 0.05}])"));
   const std::vector<double> v = evaluateTargets(built, t);
@@ -66,10 +66,10 @@ class TestFitPanel : public QObject {
     FitFormExtras* extras = panel->fitExtras();
     QVERIFY(extras);
     QVERIFY(panel->setParameter("targets", targets));
-    extras->addFreeParameter("eye.relief_mm");
+    extras->addFreeParameter("hoe.size_mm[1]");
     extras->addFreeParameter("hoe_layers[1].n1");
-    extras->addFreeParameter("eye.relief_mm");  // once only
-    QCOMPARE(panel->parameters().value("free").toString(), QString("eye.relief_mm hoe_layers[1].n1"));
+    extras->addFreeParameter("hoe.size_mm[1]");  // once only
+    QCOMPARE(panel->parameters().value("free").toString(), QString("hoe.size_mm[1] hoe_layers[1].n1"));
     QVERIFY(panel->setParameter("starts", 1));
     QVERIFY(!window.findChild<QPushButton*>("applyFit")->isEnabled());
     QVERIFY(window.findChild<QComboBox*>("scenePaths")->count() > 100);  // the scene's real-valued numbers
@@ -84,7 +84,7 @@ class TestFitPanel : public QObject {
     const PlotData residuals = plots->plot("fit-residuals");
     QCOMPARE(residuals.rows.size(), 3);
     for (const auto& row : residuals.rows) QVERIFY(std::abs(row[9].toDouble()) < 0.1);  // normalised, fitted
-    QVERIFY(std::abs(residuals.rows[1][8].toDouble()) > 5);                             // before the fit
+    QVERIFY(std::abs(residuals.rows[0][8].toDouble()) > 5);                             // before the fit
     QTest::qWait(300);
     QVERIFY(window.captureWindow().save(tmpDir() + "/fit-1366x768-analyses.png"));
 
@@ -93,11 +93,11 @@ class TestFitPanel : public QObject {
     const int steps = doc->undoStack()->count();
     window.findChild<QPushButton*>("applyFit")->click();
     QCOMPARE(doc->undoStack()->count(), steps + 1);
-    QVERIFY(std::abs(parameterValue(doc->scene(), "eye.relief_mm") - 21.5) < 0.05);
+    QVERIFY(std::abs(parameterValue(doc->scene(), "hoe.size_mm[1]") - 35.2) < 0.05);
     QVERIFY(std::abs(parameterValue(doc->scene(), "hoe_layers[1].n1") - 0.0165) < 1e-4);
     QVERIFY(panel->statusText().contains("Applied 2 fitted values"));
     doc->undoStack()->undo();
-    QCOMPARE(parameterValue(doc->scene(), "eye.relief_mm"), 22.0);
+    QCOMPARE(parameterValue(doc->scene(), "hoe.size_mm[1]"), 36.0);
     QCOMPARE(parameterValue(doc->scene(), "hoe_layers[1].n1"), 0.015);
 
     window.resize(1920, 1080);

@@ -4,6 +4,10 @@
 // overlay draws what the trace found (solid rays into the pupil, dashed ones missing it).
 #include <QtTest>
 
+#include <QLabel>
+
+#include <algorithm>
+
 #include <QCheckBox>
 #include <QLineEdit>
 #include <QSlider>
@@ -17,6 +21,7 @@
 
 #include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
+#include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
 #include "viz/element_handles.h"
@@ -85,6 +90,47 @@ class TestTraceViews : public QObject {
     QVERIFY(bench()->kspaceView()->probePoints() > 1000);
     QVERIFY2(bench()->kspaceView()->maxDephasing() < 1e-6,
              qPrintable(QString::number(bench()->kspaceView()->maxDephasing())));
+  }
+
+  void dragShowsCoarseTracesAndEndsRefined() {
+    widgets::GazePanel* gaze = bench()->gazePanel();
+    gaze->setFollowGaze(true);
+    QVERIFY(bench()->waitForTrace());
+    QSlider* yaw = gaze->yawSlider();
+    std::vector<std::shared_ptr<const widgets::LiveTraceResult>> seen;
+    connect(bench()->liveTrace(), &widgets::LiveTrace::resultReady, this,
+            [&](const std::shared_ptr<const widgets::LiveTraceResult>& r) { seen.push_back(r); });
+    // A drag: pressed, 1 deg steps up to 15 deg with the event loop running between moves.
+    yaw->setSliderDown(true);
+    for (int v = 2; v <= 30; v += 2) {
+      yaw->setValue(v);
+      QTest::qWait(15);
+    }
+    QTest::qWait(40);
+    // While the hand moved, coarse traces were drawn (the view never froze on one result).
+    const auto coarse = std::count_if(seen.begin(), seen.end(),
+                                      [](const auto& r) { return r->detail == widgets::TraceDetail::Coarse; });
+    QVERIFY2(coarse >= 1, qPrintable(QString::number(coarse)));
+    for (const auto& r : seen) {
+      if (r->detail != widgets::TraceDetail::Coarse) continue;
+      QCOMPARE(r->grid, projectorGrid(r->scene.projector, r->settings.coarse_rays));
+      QVERIFY(r->shift_source != "search");  // x_p from the table or the last applied one
+      QVERIFY(r->cloud.empty());
+    }
+    QCOMPARE(bench()->liveTrace()->latest()->detail, widgets::TraceDetail::Coarse);
+    yaw->setSliderDown(false);
+    // The hand rests: the refined trace of the final gaze replaces the coarse one.
+    QVERIFY(bench()->waitForTrace());
+    const auto r = bench()->liveTrace()->latest();
+    QCOMPARE(r->detail, widgets::TraceDetail::Refined);
+    QCOMPARE(r->trace.gaze_deg[0], 15.0);
+    QCOMPARE(r->grid, projectorGrid(r->scene.projector, r->settings.rays));
+    QCOMPARE(r->shift_source, std::string("search"));
+    QVERIFY2(r->hoe_shift_mm[0] > 1.0 && r->hoe_shift_mm[0] < 5.0, qPrintable(QString::number(r->hoe_shift_mm[0])));
+    QVERIFY(!r->cloud.empty());
+    QVERIFY(bench()->overlay()->stats().rays_drawn > 0);
+    QVERIFY(!gaze->findChild<QLabel*>("gazeReadout")->text().contains("refining"));
+    QCOMPARE(w->document()->undoStack()->count(), 2);  // follow on, one drag
   }
 
   void sliderMoveChangesTheGaze() {
