@@ -49,6 +49,23 @@ void printJson(const nlohmann::json& j, bool compact) {
   std::cout << sanitize(j).dump(compact ? -1 : 2) << std::endl;
 }
 
+std::pair<int, int> parseShard(const std::string& s) {
+  const auto slash = s.find('/');
+  int k = -1, n = -1;
+  try {
+    if (slash != std::string::npos) {
+      std::size_t a = 0, b = 0;
+      k = std::stoi(s.substr(0, slash), &a);
+      n = std::stoi(s.substr(slash + 1), &b);
+      if (a != slash || b != s.size() - slash - 1) k = -1;
+    }
+  } catch (const std::exception&) {
+    k = -1;
+  }
+  if (k < 0 || n < 1 || k >= n || n > 100000) usageError("--shard: expected K/N with 0 <= K < N, got '" + s + "'");
+  return {k, n};
+}
+
 std::vector<double> parseNumberList(const std::string& text, const std::string& argName, std::size_t minCount,
                                     std::size_t maxCount) {
   std::vector<double> out;

@@ -10,6 +10,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -52,6 +53,9 @@ void printJson(const nlohmann::json& j, bool compact = false);
 // Parses "A" or "A,B" into numbers; throws usageError naming `argName` on failure.
 std::vector<double> parseNumberList(const std::string& text, const std::string& argName, std::size_t minCount,
                                     std::size_t maxCount);
+
+// Parses --shard "K/N" (0 <= K < N <= 100000); throws usageError naming --shard otherwise.
+std::pair<int, int> parseShard(const std::string& text);
 
 // A progress bar on stderr when stderr is a terminal; nothing when piped.
 class Progress {

@@ -11,7 +11,9 @@
 #include <iostream>
 #include <memory>
 #include <random>
+#include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -19,7 +21,11 @@
 #include "app/cli/cli_common.h"
 #include "app/embedded_scene.h"
 #include "model/analysis/gaze_studies.h"
+#include "model/analysis/tolerance_analysis.h"
+#include "model/analysis/tolerance_run.h"
+#include "model/analysis/tolerance_spec.h"
 #include "model/analysis/trace_evaluator.h"
+#include "model/io/json_input.h"
 #include "model/physics/hoe_recording.h"
 #include "model/physics/kogelnik.h"
 #include "model/physics/kogelnik_batch.h"
@@ -349,21 +355,62 @@ nlohmann::json kogelnikVsRcwaJson(bool quick) {
   return {{"points", points.size()}, {"by_rho", rows}};
 }
 
+// One tolerance trial of the shipped spec (resources/tolerance/prototype-tolerance.json: 14
+// parameters, 5 gazes, 532 nm, refind) on one core, and what it predicts for a 1 000-trial run on
+// two cores: the nominal unit once plus 1 000 trials shared by two workers.
+nlohmann::json toleranceTiming(const Scene& scene, bool quick) {
+  nlohmann::json j;
+  auto doc = parseJsonText(analysis::defaultToleranceSpecText());
+  const ToleranceSpec spec = parseToleranceSpec(std::get<nlohmann::json>(doc));
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const int trials = quick ? 8 : 32;
+  const std::clock_t c0 = std::clock();
+  const auto t0 = std::chrono::steady_clock::now();
+  (void)nominalFigures(scene, spec);
+  const std::clock_t c1 = std::clock();
+  const auto t1 = std::chrono::steady_clock::now();
+  (void)runToleranceTrials(scene, spec, 1, {0, static_cast<std::uint64_t>(trials)});
+  const std::clock_t c2 = std::clock();
+  const auto t2 = std::chrono::steady_clock::now();
+  const double cpu_nominal = double(c1 - c0) / CLOCKS_PER_SEC, cpu_trial = double(c2 - c1) / CLOCKS_PER_SEC / trials;
+  j["spec"] = "resources/tolerance/prototype-tolerance.json";
+  j["trials_timed"] = trials;
+  j["trial_ms_cpu_1core"] = 1e3 * cpu_trial;
+  j["trial_ms_wall_1core"] = 1e3 * std::chrono::duration<double>(t2 - t1).count() / trials;
+  j["nominal_ms_cpu"] = 1e3 * cpu_nominal;
+  j["nominal_ms_wall"] = 1e3 * std::chrono::duration<double>(t1 - t0).count();
+  j["predicted_1000_trials_cpu_s"] = cpu_nominal + 1000 * cpu_trial;
+  j["predicted_1000_trials_s_2cores"] = cpu_nominal + 1000 * cpu_trial / 2;
+  return j;
+}
+
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench", "Run time against error: throughput, gaze update, sweeps, ray count, precision, Kogelnik vs RCWA");
   auto quick = std::make_shared<bool>(false), json = std::make_shared<bool>(false);
   cmd->add_flag("--quick", *quick, "small grids and short timings (seconds instead of minutes)");
   cmd->add_flag("--json", *json, "print JSON (keys documented in docs/benchmarks.md)");
+  auto only = std::make_shared<std::string>();
+  cmd->add_option("--only", *only, "run one section only: tolerance (one trial and the 1 000-trial prediction)")
+      ->check(CLI::IsMember({"tolerance"}));
   cmd->callback([=] {
     const Scene scene = loadSceneOrExit("");
     nlohmann::json out;
     out["quick"] = *quick;
+    if (*only == "tolerance") {
+      out["tolerance"] = toleranceTiming(scene, *quick);
+      if (*json) return printJson(out);
+      std::cout << "tolerance trial: " << out["tolerance"]["trial_ms_cpu_1core"].get<double>()
+                << " ms CPU on one core; 1 000 trials predicted "
+                << out["tolerance"]["predicted_1000_trials_s_2cores"].get<double>() << " s on two idle cores\n";
+      return;
+    }
     out["throughput"] = throughput(scene, *quick);
     out["kogelnik_evals_per_s_1core"] = out["throughput"]["kogelnik_evals_per_s_1core"];
     out["rays_vs_fov"] = raysVsFov(scene, *quick);
     out["precision"] = precision(scene, *quick);
     out["kogelnik_vs_rcwa"] = kogelnikVsRcwaJson(*quick);
+    out["tolerance"] = toleranceTiming(scene, *quick);
     if (*json) return printJson(out);
     const auto& t = out["throughput"];
     std::cout << "Kogelnik: " << t["kogelnik_evals_per_s_1core"].get<double>() / 1e6 << " M evals/s on one core (SIMD "

@@ -1,6 +1,8 @@
-// fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--follow-gaze] [--json]
+// fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--follow-gaze]
+//                 [--tolerance-trials N [--tolerance-spec FILE]] [--json]
 // The design report of a scene: title page with the scene summary, 3-D views, the bench at
-// each gaze, retina maps, the analyses' plots and key numbers (app/studio/report_document.h).
+// each gaze, retina maps, the analyses' plots and key numbers, and with --tolerance-trials the
+// Tolerance section (app/studio/report_document.h, report_tolerance.h).
 //
 // Why this command drives `fovea-studio --report` instead of linking the GUI: the report's
 // 3-D figures need VTK's OpenGL rendering inside a Qt window, i.e. an X display (Xvfb when
@@ -33,6 +35,8 @@ struct ReportArgs {
   std::string scene, out;
   std::vector<std::string> gazes;
   int rays = 1500;
+  int tolerance_trials = 0;
+  std::string tolerance_spec;
   bool follow_gaze = false;
   bool json = false;
 };
@@ -110,8 +114,15 @@ void install(CLI::App& app) {
       ->check(CLI::Range(50, 1000000));
   cmd->add_flag("--follow-gaze", a->follow_gaze,
                 "HOE follows gaze: trace each gaze with the FOV-maximising HOE shift x_p (drawn shifted)");
+  cmd->add_option("--tolerance-trials", a->tolerance_trials,
+                  "add the Tolerance section: a tolerance run of N trials (default 0: none)")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--tolerance-spec", a->tolerance_spec,
+                  "the tolerance spec for --tolerance-trials (default: the shipped prototype spec)")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--json", a->json,
-                "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\",\"gaze_figures\"}");
+                "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\",\"gaze_figures\","
+                "\"sections\"}");
   cmd->callback([a] {
     const std::string ext = lower(std::filesystem::path(a->out).extension().string());
     if (ext != ".pdf" && ext != ".html" && ext != ".htm") usageError("--out: the file must end in .pdf or .html");
@@ -121,6 +132,8 @@ void install(CLI::App& app) {
       for (double x : v)
         if (!(std::abs(x) <= 90.0)) usageError("--gaze-deg: angles must lie in -90 .. 90, got '" + g + "'");
     }
+    if (!a->tolerance_spec.empty() && a->tolerance_trials == 0)
+      usageError("--tolerance-spec needs --tolerance-trials N");
     loadSceneOrExit(a->scene);  // exit 1 with every problem before starting the studio
 
     const std::string studio = findStudio();
@@ -142,6 +155,14 @@ void install(CLI::App& app) {
     argv.push_back("--rays");
     argv.push_back(std::to_string(a->rays));
     if (a->follow_gaze) argv.push_back("--follow-gaze");
+    if (a->tolerance_trials > 0) {
+      argv.push_back("--report-tolerance");
+      argv.push_back(std::to_string(a->tolerance_trials));
+      if (!a->tolerance_spec.empty()) {
+        argv.push_back("--report-tolerance-spec");
+        argv.push_back(std::filesystem::absolute(a->tolerance_spec).string());
+      }
+    }
     std::string manifest;
     const int code = runCapturing(argv, manifest);
     if (code == 2) usageError("report: fovea-studio refused the arguments");

@@ -1,12 +1,15 @@
 // fovea-cli sweep SCENE --gaze-from A --gaze-to B --gaze-step S [--axis yaw|pitch] --json:
 // for each gaze the lateral HOE shift maximising the FOV (supplement A.3), and the eye box.
 // Options: the "sweep" analysis of the registry (model/analysis/study_analyses.cpp).
+// --shard K/N --json prints the part of shard K (model/analysis/sweep_shards.h): its slice of the
+// gazes; `fovea-cli merge PARTS... --json` gives the unsharded document.
 #include <iomanip>
 #include <iostream>
 
 #include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
+#include "model/analysis/sweep_shards.h"
 
 namespace fovea::cli {
 namespace {
@@ -16,13 +19,35 @@ void install(CLI::App& app) {
       app.add_subcommand("sweep", "HOE travel vs gaze: the FOV-maximising HOE shift per gaze angle, and the eye box");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false), no_cache = std::make_shared<bool>(false);
+  auto shard = std::make_shared<std::string>();
   cmd->add_option("SCENE", *path, "scene file (default: the embedded prototype bench)");
   const auto options = addAnalysisOptions(cmd, "sweep");
   cmd->add_flag("--json", *json, "print JSON");
   addNoCacheFlag(cmd, *no_cache);
+  cmd->add_option("--shard", *shard,
+                  "run only shard K/N (0-based) of the gazes and print its part for `fovea-cli merge` (not cached)");
   cmd->callback([=] {
     const nlohmann::json values = options->values();
     const Scene scene = loadSceneOrExit(*path);
+    if (!shard->empty()) {
+      const auto [k, n] = parseShard(*shard);
+      Progress progress("sweep");
+      StudyControl control;
+      control.on_progress = [&progress](double f) { progress.update(f); };
+      std::optional<nlohmann::json> part;
+      try {
+        part = analysis::sweepPartJson(scene, values, k, n, control);
+      } catch (const std::invalid_argument& e) {
+        usageError(std::string("--") + e.what());
+      }
+      if (!part) inputError("sweep did not complete");
+      if (*json)
+        printJson(*part, /*compact=*/true);
+      else
+        std::cout << "shard " << k << "/" << n << ": " << (*part)["samples"].size()
+                  << " gazes (use --json for the part)\n";
+      return;
+    }
     const nlohmann::json out =
         cachedStudy("sweep", values, scene, *no_cache, [&] { return runStudy(options->definition(), scene, values); });
     if (*json) {

@@ -231,7 +231,7 @@ constexpr int kReportProgressSteps = 1200;
 }  // namespace
 
 bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
-                                    int* figures, QList<GazeFigureStats>* gazeFigures) {
+                                    int* figures, QList<GazeFigureStats>* gazeFigures, QStringList* sections) {
   ReportOptions options = requested;
   if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
     options.follow_gaze = true;
@@ -290,11 +290,15 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   };
   if (!failure.isEmpty()) return fail(failure);
   if (!data) return fail(tr("cancelled"));
+  // A tolerance result of this very scene from the analyses panel gives the Tolerance section.
+  const std::string sceneText = serializeScene(scene);
+  if (data->tolerance.is_null())
+    if (const auto r = analyses_->lastResult("tolerance"); r && r->json && r->sceneText == sceneText)
+      data->tolerance = *r->json;
   if (!step(1000, tr("composing the figures"))) return fail(tr("cancelled"));
 
   // Plots filled in the studio for this very scene (or scene-independent ones) join the report.
   QList<widgets::PlotData> extra;
-  const std::string sceneText = serializeScene(scene);
   for (const QString& id : plots_->filledPlots())
     for (const QString& a : widgets::plotSources(id)) {
       const auto r = analyses_->lastResult(a);
@@ -312,6 +316,10 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   window_->statusBar()->showMessage(tr("Report saved to %1").arg(path), 10000);
   if (figures) *figures = content.figureCount();
   if (gazeFigures) *gazeFigures = content.gazeFigures;
+  if (sections) {
+    sections->clear();
+    for (const ReportSection& sec : content.sections) *sections << sec.heading;
+  }
   window_->messageLog()->info(tr("Report saved to %1 (%n figure(s))", "", content.figureCount()).arg(path));
   for (const QString& p : data->problems) window_->messageLog()->warning(tr("report: %1").arg(p));
   return true;
@@ -330,6 +338,18 @@ void AnalysisFeatures::exportReportDialog() {
   rays->setValue(Preferences::instance().values().defaultRays);
   form->addRow(tr("Gazes (deg)"), gazes);
   form->addRow(tr("Rays per wavelength"), rays);
+  auto* tolerance = new QSpinBox(&dialog);
+  tolerance->setObjectName("reportToleranceTrials");
+  tolerance->setRange(0, 1000000);
+  tolerance->setSpecialValueText(tr("none"));
+  tolerance->setToolTip(
+      tr("Run the tolerance analysis (the shipped default spec) with this many trials for the "
+         "report's Tolerance section; a tolerance result already computed for this scene in "
+         "the Analyses panel is used as it is."));
+  const auto last = analyses_->lastResult("tolerance");
+  const bool haveTolerance = last && last->json && last->sceneText == serializeScene(window_->document()->scene());
+  tolerance->setValue(0);
+  form->addRow(haveTolerance ? tr("Tolerance trials (a result is there)") : tr("Tolerance trials"), tolerance);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
   connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
   connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
@@ -337,6 +357,8 @@ void AnalysisFeatures::exportReportDialog() {
   if (dialog.exec() != QDialog::Accepted) return;
   ReportOptions options;
   options.rays = rays->value();
+  options.tolerance = tolerance->value() > 0 && !haveTolerance;
+  options.tolerance_trials = std::max(1, tolerance->value());
   for (const QString& part : gazes->text().split(';', Qt::SkipEmptyParts)) {
     std::array<double, 2> gz{};
     if (!parseGaze(part, &gz)) {

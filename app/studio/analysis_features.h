@@ -49,9 +49,11 @@ class AnalysisFeatures : public QObject {
   // Computes and writes a report of the open scene (blocking, with events processed; the
   // analyses run on a worker thread). False with `error` set on failure or cancel.
   // "HOE follows gaze" of the gaze panel applies to the report's traces too. `gazeFigures`
-  // gets what each "bench at the gaze" figure drew.
+  // gets what each "bench at the gaze" figure drew, `sections` the headings of the report's
+  // sections. A tolerance result of the Analyses panel for this scene gives the Tolerance section.
   bool exportReport(const QString& path, const ReportOptions& options, QString* error = nullptr, int* pages = nullptr,
-                    int* figures = nullptr, QList<GazeFigureStats>* gazeFigures = nullptr);
+                    int* figures = nullptr, QList<GazeFigureStats>* gazeFigures = nullptr,
+                    QStringList* sections = nullptr);
 
   void showPreferences();
   void exportReportDialog();

@@ -82,7 +82,13 @@ int main(int argc, char** argv) {
                              "Rays per wavelength: the live trace (200..40000, default 4000) or the report "
                              "(default 1500).",
                              "N", "1500");
+  QCommandLineOption reportToleranceOpt(
+      "report-tolerance", "With --report: add the Tolerance section from N trials (default 0: none).", "N", "0");
+  QCommandLineOption reportToleranceSpecOpt(
+      "report-tolerance-spec", "With --report-tolerance: the tolerance spec (default: the shipped one).", "FILE");
   parser.addOption(reportOpt);
+  parser.addOption(reportToleranceOpt);
+  parser.addOption(reportToleranceSpecOpt);
   parser.addOption(gazeOpt);
   parser.addOption(raysOpt);
   parser.addOption(followOpt);
@@ -176,7 +182,17 @@ int main(int argc, char** argv) {
   if (parser.isSet(viewOpt)) window.sceneView()->showStandardView(views.value(parser.value(viewOpt)));
   if (parser.isSet(zoomOpt)) window.sceneView()->zoomCamera(zoom);
   if (parser.isSet(selectOpt)) window.selectElement(parser.value(selectOpt));
-  if (report) return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays);
+  if (report) {
+    bool trialsOk = false;
+    const int trials = parser.value(reportToleranceOpt).toInt(&trialsOk);
+    if (!trialsOk || trials < 0 || trials > 1000000) {
+      err << "fovea-studio: --report-tolerance: expected a whole number in 0 .. 1000000, got \""
+          << parser.value(reportToleranceOpt) << "\"\n";
+      return 2;
+    }
+    return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays, trials,
+                                        parser.value(reportToleranceSpecOpt));
+  }
   if (!screenshot) {
     window.show();
     window.analysisFeatures()->startSession();  // preferences, autosave, recovery offer after a crash

@@ -52,7 +52,12 @@ std::optional<nlohmann::json> step(const QString& id, const Scene& scene, Analys
 }  // namespace
 
 std::optional<ReportData> computeReportData(const Scene& scene, const QString& scenePath, ReportOptions options,
-                                            const StudyControl& control) {
+                                            const StudyControl& outer) {
+  // With the tolerance analysis the other analyses take the first 60 % of the progress.
+  const double share = options.tolerance ? 0.6 : 1.0;
+  StudyControl control;
+  control.cancel = outer.cancel;
+  if (outer.on_progress) control.on_progress = [&outer, share](double f) { outer.on_progress(share * f); };
   ReportData d;
   d.scene = scene;
   d.scenePath = scenePath;
@@ -136,6 +141,17 @@ std::optional<ReportData> computeReportData(const Scene& scene, const QString& s
     if (cancelled) return std::nullopt;
   }
   progress(1.0);
+
+  // Tolerance (the remaining 40 %).
+  if (options.tolerance) {
+    AnalysisParams tol = defaultParameters(*findAnalysis("tolerance"));
+    if (!options.tolerance_spec.isEmpty()) tol["spec"] = options.tolerance_spec;
+    tol["trials"] = options.tolerance_trials;
+    tol["seed"] = options.tolerance_seed;
+    if (auto j = step("tolerance", scene, tol, outer, share, 1.0, d.problems, &cancelled)) d.tolerance = *j;
+    if (cancelled) return std::nullopt;
+    if (outer.on_progress) outer.on_progress(1.0);
+  }
   return d;
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // What a design report needs computed (any thread, cancellable): a trace at every chosen
 // gaze (with its rays, for the retina maps), the gaze sweep (FOV and HOE travel vs gaze, eye
-// box), the angular resolution at the first gaze, the HOE layers' selectivity and the
-// Kogelnik-vs-RCWA error/time map. Every analysis goes through the studio's analysis
-// catalogue (the same numbers as fovea-cli and the analyses panel; cached studies are
-// reused). An analysis that fails is recorded in `problems` and left out of the report.
+// box), the angular resolution at the first gaze, the HOE layers' selectivity, the
+// Kogelnik-vs-RCWA error/time map and, when requested, the tolerance analysis. Every analysis goes through the studio's
+// analysis catalogue (the same numbers as fovea-cli and the analyses panel; cached studies are reused). An analysis
+// that fails is recorded in `problems` and left out of the report.
 
 #include <QList>
 #include <QString>
@@ -28,6 +28,12 @@ struct ReportOptions {
   bool kogelnik_vs_rcwa = true;
   bool follow_gaze = false;  // "HOE follows gaze": trace each gaze with its FOV-maximising HOE shift x_p
   QString title;             // empty: "Design report: <scene name>"
+  // Run the tolerance analysis for the report (its Tolerance section); a tolerance result the
+  // studio already has for this scene is used without this.
+  bool tolerance = false;
+  int tolerance_trials = 100;
+  QString tolerance_spec;  // empty: the shipped default spec
+  int tolerance_seed = 1;
 };
 
 struct GazeTrace {
@@ -44,6 +50,7 @@ struct ReportData {
   ReportOptions options;
   QList<GazeTrace> traces;
   nlohmann::json sweep, resolution, selectivity, kogelnikVsRcwa;  // null when not computed
+  nlohmann::json tolerance;                                       // null unless requested or given
   QStringList problems;
 };
 

@@ -21,6 +21,7 @@
 
 #include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
+#include "app/studio/report_tolerance.h"
 #include "fovea/version.h"
 #include "model/json_numbers.h"
 #include "model/scene/scene_geometry.h"
@@ -161,6 +162,8 @@ int changedPixels(const QImage& a, const QImage& b) {
   return n;
 }
 
+}  // namespace
+
 void addPlotFigure(QList<ReportFigure>& out, const PlotData& p) {
   if (p.isEmpty()) return;
   ReportFigure f;
@@ -170,8 +173,6 @@ void addPlotFigure(QList<ReportFigure>& out, const PlotData& p) {
   f.tableHtml = p.summaryHtml;
   out << f;
 }
-
-}  // namespace
 
 int ReportContent::figureCount() const {
   int n = 0;
@@ -407,9 +408,12 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   addResult("selectivity", d.selectivity);
   addResult("resolution", d.resolution);
   addResult("kogelnik-vs-rcwa", d.kogelnikVsRcwa);
+  const ReportSection tolerance = toleranceReportSection(d.tolerance, u);
+  for (const widgets::PlotData& p : widgets::plotsFromResult("tolerance", d.tolerance, u)) done << p.id;
   for (const PlotData& p : extraPlots)
     if (!done.contains(p.id)) addPlotFigure(plots.figures, p);
   if (!plots.figures.isEmpty()) c.sections << plots;
+  if (!tolerance.figures.isEmpty()) c.sections << tolerance;
   return c;
 }
 

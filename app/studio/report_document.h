@@ -4,7 +4,8 @@
 // QPdfWriter, A4, numbered pages) or as one self-contained HTML file (every image embedded as
 // a base64 data URI). Sections: title page with the scene summary table; key numbers (FOV,
 // eye box, HOE travel, efficiencies, resolution); 3-D views from the standard angles; the
-// bench at each chosen gaze; retina maps; plots; each figure numbered and captioned.
+// bench at each chosen gaze; retina maps; plots; tolerance (report_tolerance.h) when a tolerance
+// result is there; each figure numbered and captioned.
 
 #include <QDateTime>
 #include <QImage>
@@ -70,6 +71,9 @@ using GazeViewCapture = std::function<QImage(const std::array<double, 2>& gaze_d
 // camera, scene, HOE display shift and live overlay are restored afterwards.
 ReportContent composeReport(MainWindow& window, const ReportData& data, const QList<widgets::PlotData>& extraPlots,
                             const widgets::DisplayUnits& units, const GazeViewCapture& gazeCapture = {});
+
+// Appends the figure of a plot (skipped when it has no points), its summary table under it.
+void addPlotFigure(QList<ReportFigure>& out, const widgets::PlotData& plot);
 
 // The report's HTML. `embedImages`: data URIs (a self-contained file); else "figure-N.png"
 // resource names (used for the PDF's QTextDocument).

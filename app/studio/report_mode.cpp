@@ -9,6 +9,8 @@
 #include <QJsonObject>
 #include <QTextStream>
 
+#include <algorithm>
+
 #include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_data.h"
@@ -16,7 +18,8 @@
 
 namespace fovea::studio {
 
-int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays) {
+int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays, int toleranceTrials,
+                  const QString& toleranceSpec) {
   QTextStream err(stderr);
   const QString ext = QFileInfo(out).suffix().toLower();
   if (ext != "pdf" && ext != "html" && ext != "htm") {
@@ -25,6 +28,9 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
   }
   ReportOptions options;
   options.rays = rays;
+  options.tolerance = toleranceTrials > 0;
+  options.tolerance_trials = std::max(1, toleranceTrials);
+  options.tolerance_spec = toleranceSpec;
   for (const QString& text : gazes) {
     std::array<double, 2> g{};
     if (!parseGaze(text, &g)) {
@@ -44,7 +50,8 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
   QString error;
   int pages = 0, figures = 0;
   QList<GazeFigureStats> gazeFigures;
-  if (!window.analysisFeatures()->exportReport(out, options, &error, &pages, &figures, &gazeFigures)) {
+  QStringList sections;
+  if (!window.analysisFeatures()->exportReport(out, options, &error, &pages, &figures, &gazeFigures, &sections)) {
     err << "fovea-studio: the report was not written: " << error << "\n";
     return 1;
   }
@@ -67,7 +74,8 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
                              {"pages", ext == "pdf" ? QJsonValue(pages) : QJsonValue()},
                              {"figures", figures},
                              {"problems", problems},
-                             {"gaze_figures", gazeJson}};
+                             {"gaze_figures", gazeJson},
+                             {"sections", QJsonArray::fromStringList(sections)}};
   QTextStream(stdout) << QJsonDocument(manifest).toJson(QJsonDocument::Indented);
   return 0;
 }

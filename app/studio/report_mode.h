@@ -1,8 +1,11 @@
 #pragma once
-// `fovea-studio [SCENE] --report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]`: the
+// `fovea-studio [SCENE] --report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]
+// [--report-tolerance N [--report-tolerance-spec FILE]]`: the
 // headless report (what `fovea-cli report` drives). The window is shown (an X display, e.g.
 // Xvfb, gives VTK its OpenGL context), the analyses are computed, the report is written and
-// a JSON manifest {"out","format","pages","figures","problems"} is printed to stdout.
+// a JSON manifest {"out","format","pages","figures","problems","gaze_figures","sections"} is
+// printed to stdout. --report-tolerance N adds the Tolerance section (N trials of the spec, or of
+// the shipped default spec).
 // Exit codes: 0 written, 1 the report could not be written, 2 bad arguments.
 
 #include <QString>
@@ -12,6 +15,7 @@ namespace fovea::studio {
 
 class MainWindow;
 
-int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays);
+int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays, int toleranceTrials = 0,
+                  const QString& toleranceSpec = {});
 
 }  // namespace fovea::studio

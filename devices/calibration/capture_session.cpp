@@ -112,6 +112,12 @@ CaptureSession::CaptureSession(CaptureKind kind, std::vector<CaptureStep> plan, 
     throw std::runtime_error(manifest.string() + ": was captured with a different plan; choose another folder");
   for (const auto& r : j.value("captures", nlohmann::json::array())) records_.push_back(recordFromJson(r));
   for (const auto& m : j.value("measurements", nlohmann::json::array())) measurements_.push_back(m.get<std::string>());
+  if (j.contains("gaze_calibration")) gaze_calibration_ = j["gaze_calibration"];
+}
+
+void CaptureSession::setGazeCalibration(nlohmann::json result) {
+  gaze_calibration_ = std::move(result);
+  save();
 }
 
 bool CaptureSession::done(std::size_t step) const {
@@ -230,8 +236,10 @@ nlohmann::json CaptureSession::manifest() const {
   nlohmann::json steps = nlohmann::json::array(), captures = nlohmann::json::array();
   for (const auto& s : plan_) steps.push_back(toJson(s));
   for (const auto& r : records_) captures.push_back(recordJson(r));
-  return {{"format", kFormat}, {"version", kVersion},  {"kind", toString(kind_)},      {"scene", scene_name_},
-          {"steps", steps},    {"captures", captures}, {"measurements", measurements_}};
+  nlohmann::json j{{"format", kFormat}, {"version", kVersion},  {"kind", toString(kind_)},      {"scene", scene_name_},
+                   {"steps", steps},    {"captures", captures}, {"measurements", measurements_}};
+  if (!gaze_calibration_.is_null()) j["gaze_calibration"] = gaze_calibration_;
+  return j;
 }
 
 void CaptureSession::save() const {

@@ -76,6 +76,11 @@ class CaptureSession {
   std::filesystem::path importMeasurement(const std::filesystem::path& file);
   const std::vector<std::string>& measurements() const { return measurements_; }
 
+  // The gaze session's result (the pupil-tracked 5-point calibration and its accuracy and
+  // precision on the held-out grid): kept in the manifest under "gaze_calibration", saved at once.
+  void setGazeCalibration(nlohmann::json result);
+  const nlohmann::json& gazeCalibration() const { return gaze_calibration_; }  // null when none
+
   nlohmann::json manifest() const;
   void save() const;
 
@@ -87,6 +92,7 @@ class CaptureSession {
   std::vector<CaptureRecord> records_;
   std::map<std::string, cv::Mat> frames_;
   std::vector<std::string> measurements_;
+  nlohmann::json gaze_calibration_;
 };
 
 }  // namespace fovea::devices

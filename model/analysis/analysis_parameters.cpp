@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -55,6 +57,17 @@ ParameterSpec text(std::string name, std::string label, std::vector<std::string>
   ParameterSpec p =
       choice(std::move(name), std::move(label), std::move(suggestions), std::move(default_value), std::move(help));
   p.kind = ParameterKind::Text;
+  return p;
+}
+
+ParameterSpec filePath(std::string name, std::string label, std::string unset_meaning, std::string help) {
+  ParameterSpec p;
+  p.name = std::move(name);
+  p.label = std::move(label);
+  p.kind = ParameterKind::FilePath;
+  p.default_value = nullptr;
+  p.unset_meaning = std::move(unset_meaning);
+  p.help = std::move(help);
   return p;
 }
 
@@ -120,12 +133,19 @@ std::optional<std::string> validateValue(const ParameterSpec& spec, nlohmann::js
       for (const auto& c : spec.choices) all += (all.empty() ? "" : ", ") + c;
       return "expected one of " + all + ", got '" + v + "'";
     }
-    case ParameterKind::Text: {
+    case ParameterKind::Text:
+    case ParameterKind::FilePath: {
       std::string v = value.is_string() ? value.get<std::string>() : value.dump();
       const auto first = v.find_first_not_of(" \t\r\n");
       const auto last = v.find_last_not_of(" \t\r\n");
       v = first == std::string::npos ? std::string() : v.substr(first, last - first + 1);
       if (v.empty()) return std::string("must not be empty");
+      if (spec.kind == ParameterKind::FilePath) {
+        std::error_code ec;
+        if (!std::filesystem::exists(v, ec)) return "no such file '" + v + "'";
+        if (!std::filesystem::is_regular_file(v, ec)) return "'" + v + "' is not a regular file";
+        if (!std::ifstream(v).good()) return "cannot read '" + v + "'";
+      }
       value = v;
       return std::nullopt;
     }
@@ -134,7 +154,7 @@ std::optional<std::string> validateValue(const ParameterSpec& spec, nlohmann::js
 }
 
 std::optional<std::string> parseValueText(const ParameterSpec& spec, const std::string& text, nlohmann::json& value) {
-  if (spec.kind == ParameterKind::Choice || spec.kind == ParameterKind::Text) {
+  if (spec.kind == ParameterKind::Choice || spec.kind == ParameterKind::Text || spec.kind == ParameterKind::FilePath) {
     value = text;
     return std::nullopt;
   }

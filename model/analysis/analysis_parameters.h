@@ -4,7 +4,7 @@
 // and the studio both apply to every value before any work starts.
 //
 // Values travel as a JSON object {name: value}: numbers for Number and Integer, strings
-// for Choice and Text, null for "unset" (a parameter whose default is null means "not
+// for Choice, Text and FilePath, null for "unset" (a parameter whose default is null means "not
 // given": the scene's gaze, every projector wavelength ...; `unset_meaning` says which).
 
 #include <limits>
@@ -22,7 +22,9 @@ inline constexpr double kGazeLimitDeg = 80.0;
 // The most gaze samples one sweep may take (each is a few dozen traces).
 inline constexpr int kMaxGazeSamples = 2000;
 
-enum class ParameterKind { Number, Integer, Choice, Text };
+// FilePath: the path of an input file (a tolerance spec); the validator checks that it names
+// a readable regular file, so a wrong path is refused before any work.
+enum class ParameterKind { Number, Integer, Choice, Text, FilePath };
 
 // clang-tidy's bugprone-exception-escape flags the implicit destructor through
 // nlohmann::json's destructor (its invariant assertion), which does not throw.
@@ -52,6 +54,8 @@ ParameterSpec choice(std::string name, std::string label, std::vector<std::strin
                      std::string help);
 ParameterSpec text(std::string name, std::string label, std::vector<std::string> suggestions, std::string default_value,
                    std::string help);
+// An input file, unset by default (`unset_meaning`: what is read instead).
+ParameterSpec filePath(std::string name, std::string label, std::string unset_meaning, std::string help);
 // A gaze angle in [-kGazeLimitDeg, kGazeLimitDeg].
 ParameterSpec gazeAngle(std::string name, std::string label, nlohmann::json default_value, std::string help);
 

@@ -4,6 +4,7 @@
 
 #include "model/analysis/fit_analysis.h"
 #include "model/analysis/study_analyses.h"
+#include "model/analysis/tolerance_analysis.h"
 
 namespace fovea::analysis {
 
@@ -25,7 +26,7 @@ namespace {
 std::vector<AnalysisDefinition> buildRegistry() {
   return {traceAnalysis(),          sweepAnalysis(),        compareShiftAnalysis(), sensitivityAnalysis(),
           resolutionAnalysis(),     optimizeLensAnalysis(), selectivityAnalysis(),  gratingSweepAnalysis(),
-          kogelnikVsRcwaAnalysis(), fitAnalysis()};
+          kogelnikVsRcwaAnalysis(), toleranceAnalysis(),    fitAnalysis()};
 }
 }  // namespace
 

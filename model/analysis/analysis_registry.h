@@ -66,7 +66,10 @@ struct AnalysisDefinition {
   // command is written by hand with the same option names.
   bool cli_generated = true;
   bool takes_scene = true;  // the command's first argument is the scene file
-  bool cached = false;      // results are kept in StudyCache (expensive studies)
+  // Why these values have no equivalent command line (a required file not chosen, a studio-only
+  // override set), or nothing when "Copy CLI" can write one.
+  std::function<std::optional<std::string>(const nlohmann::json& values)> cli_unavailable;
+  bool cached = false;  // results are kept in StudyCache (expensive studies)
   // A check across parameters (ranges that depend on each other), after each value is valid.
   std::function<std::optional<ParameterProblem>(const nlohmann::json& values)> check;
   // Computes the analysis from validated values; nothing when cancelled. Throws

@@ -119,10 +119,7 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
   return out;
 }
 
-StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& eval, double from_deg, double to_deg,
-                                        double step_deg, GazeAxis axis, ShiftMethod method,
-                                        const GazeStudyOptions& options, const StudyControl& control) {
-  StudyOutcome<GazeSweepResult> out;
+std::vector<double> sweepGazes(double from_deg, double to_deg, double step_deg) {
   if (!(step_deg > 0) || !(to_deg >= from_deg)) throw std::invalid_argument("gaze range: need from <= to and step > 0");
   std::vector<double> gazes;
   for (int i = 0;; ++i) {
@@ -130,6 +127,13 @@ StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& 
     if (g > to_deg + 1e-9 * std::max(1.0, std::abs(to_deg))) break;
     gazes.push_back(g);
   }
+  return gazes;
+}
+
+StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& eval, double from_deg, double to_deg,
+                                        double step_deg, GazeAxis axis, ShiftMethod method,
+                                        const GazeStudyOptions& options, const StudyControl& control) {
+  const std::vector<double> gazes = sweepGazes(from_deg, to_deg, step_deg);
   // Samples, then the zero-gaze reference as the last job.
   auto runs = runSamples<GazeSample>(
       gazes.size() + 1,
@@ -137,12 +141,20 @@ StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& 
         return optimiseShift(scene, eval, i < gazes.size() ? gazes[i] : 0.0, axis, method, options);
       },
       control);
-  if (!runs.ok()) return out;
+  if (!runs.ok()) return {};
+  const GazeSample reference = runs.value->back();
+  runs.value->pop_back();
+  return finishSweep(scene, eval, std::move(*runs.value), reference, axis, method, options, control);
+}
+
+StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator& eval, std::vector<GazeSample> samples,
+                                          const GazeSample& reference, GazeAxis axis, ShiftMethod method,
+                                          const GazeStudyOptions& options, const StudyControl& control) {
+  StudyOutcome<GazeSweepResult> out;
   GazeSweepResult r;
   r.axis = axis;
   r.method = method;
-  const GazeSample reference = runs.value->back();
-  r.samples.assign(runs.value->begin(), runs.value->end() - 1);
+  r.samples = std::move(samples);
   const double threshold = eyeBoxThresholdDeg(axisFov(reference.fov, axis), options);
   auto good = [&](const GazeSample& s) { return axisFov(s.fov, axis) >= threshold; };
 

@@ -134,11 +134,22 @@ double pupilPositionMm(const Scene& scene, double gaze_deg, GazeAxis axis);
 GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
                          ShiftMethod method, const GazeStudyOptions& options = {});
 
+// The gaze samples from..to by step (inclusive). Throws std::invalid_argument unless from <= to, step > 0.
+std::vector<double> sweepGazes(double from_deg, double to_deg, double step_deg);
+
 // Gaze sweep from..to by step (inclusive), each with its optimal shift, plus the eye box
 // (borders refined between samples). Parallel over gaze samples; cancellable.
+// = optimiseShift at every gaze of sweepGazes() and at zero gaze, then finishSweep().
 StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& eval, double from_deg, double to_deg,
                                         double step_deg, GazeAxis axis, ShiftMethod method,
                                         const GazeStudyOptions& options = {}, const StudyControl& control = {});
+
+// The eye box of a sweep from its samples (in gaze order) and the zero-gaze reference sample:
+// walks out from zero gaze on each side and bisects the first failure (border_bisections).
+// A sharded sweep (sweep_shards.h) computes the samples in slices and finishes here.
+StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator& eval, std::vector<GazeSample> samples,
+                                          const GazeSample& reference, GazeAxis axis, ShiftMethod method,
+                                          const GazeStudyOptions& options = {}, const StudyControl& control = {});
 
 struct SensitivitySample {
   double value = 0;

@@ -155,6 +155,17 @@ AnalysisDefinition traceAnalysis() {
   return d;
 }
 
+ShiftMethod sweepMethodFrom(const nlohmann::json& v) {
+  return textOf(v, "method") == "source" ? sourceMethodFrom(v) : ShiftMethod::Hoe;
+}
+
+nlohmann::json sweepDocument(const GazeSweepResult& r, const nlohmann::json& v) {
+  nlohmann::json out = sweepResultJson(r, textOf(v, "axis"));
+  addDefinitions(out, v);
+  out["source_shift"] = textOf(v, "source-shift");
+  return out;
+}
+
 AnalysisDefinition sweepAnalysis() {
   AnalysisDefinition d;
   d.id = "sweep";
@@ -170,14 +181,11 @@ AnalysisDefinition sweepAnalysis() {
   d.check = checkGazeStudy;
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
-    const ShiftMethod m = textOf(v, "method") == "source" ? sourceMethodFrom(v) : ShiftMethod::Hoe;
-    const auto r = sweepGaze(scene, evaluatorFrom(v), numberOf(v, "gaze-from"), numberOf(v, "gaze-to"),
-                             numberOf(v, "gaze-step"), axisFrom(v), m, gazeStudyOptionsFrom(v), control);
+    const auto r =
+        sweepGaze(scene, evaluatorFrom(v), numberOf(v, "gaze-from"), numberOf(v, "gaze-to"), numberOf(v, "gaze-step"),
+                  axisFrom(v), sweepMethodFrom(v), gazeStudyOptionsFrom(v), control);
     if (!r.ok()) return std::nullopt;
-    nlohmann::json out = sweepResultJson(*r.value, textOf(v, "axis"));
-    addDefinitions(out, v);
-    out["source_shift"] = textOf(v, "source-shift");
-    return out;
+    return sweepDocument(*r.value, v);
   };
   return d;
 }

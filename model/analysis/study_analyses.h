@@ -32,6 +32,9 @@ std::optional<std::array<double, 2>> gazeFrom(const nlohmann::json& values);
 FovEvaluator evaluatorFrom(const nlohmann::json& values);
 GazeStudyOptions gazeStudyOptionsFrom(const nlohmann::json& values);
 GazeAxis axisFrom(const nlohmann::json& values);
+ShiftMethod sweepMethodFrom(const nlohmann::json& values);  // the sweep's "method"
+// The sweep analysis' document (fovea-cli sweep --json without "cached") of a result.
+nlohmann::json sweepDocument(const GazeSweepResult& result, const nlohmann::json& values);
 SelectivityOptions selectivityOptionsFrom(const nlohmann::json& values);
 
 // compare-shift's three eye boxes (HOE shift, source shift, nothing moving) as its document.

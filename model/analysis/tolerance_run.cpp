@@ -1,5 +1,7 @@
 #include "model/analysis/tolerance_run.h"
 
+#include "model/analysis/shard_parts.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -133,29 +135,15 @@ nlohmann::json toleranceResultJson(const ToleranceSpec& spec, const ToleranceRun
 }
 
 nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts) {
-  if (parts.empty()) throw std::invalid_argument("merge: no parts given");
-  const char* same[] = {"scene", "scene_digest", "seed", "trials", "spec", "nominal"};
-  int shards = -1;
-  std::map<int, std::size_t> seen;
+  const std::map<int, std::size_t> by_shard = indexShardParts(
+      parts, "fovea-tolerance-part", {"scene", "scene_digest", "seed", "trials", "spec", "nominal"}, "run");
   std::map<std::uint64_t, ToleranceRecord> records;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
+  for (const auto& [k, i] : by_shard) {
     const nlohmann::json& p = parts[i];
     const std::string where = "merge: part " + std::to_string(i + 1);
-    if (!p.is_object() || p.value("format", std::string()) != "fovea-tolerance-part")
-      throw std::invalid_argument(where + ": not a fovea-tolerance-part document");
-    for (const char* k : same)
-      if (!p.contains(k) || p[k] != parts[0][k])
-        throw std::invalid_argument(where + ": \"" + k + "\" differs from part 1 (not the same run)");
-    const auto sh = p.at("shard").get<std::vector<int>>();
-    if (sh.size() != 2) throw std::invalid_argument(where + ": bad \"shard\"");
-    if (shards < 0) shards = sh[1];
-    if (sh[1] != shards) throw std::invalid_argument(where + ": shard count differs from part 1");
-    if (seen.count(sh[0])) throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " given twice");
-    seen[sh[0]] = i;
-    const std::uint64_t trials = p.at("trials").get<std::uint64_t>();
-    const TrialRange range = shardRange(trials, sh[0], sh[1]);
+    const TrialRange range = shardRange(p.at("trials").get<std::uint64_t>(), k, static_cast<int>(by_shard.size()));
     if (p.at("records").size() != range.end - range.begin)
-      throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " is incomplete");
+      throw std::invalid_argument(where + ": shard " + std::to_string(k) + " is incomplete");
     for (const auto& r : p["records"]) {
       ToleranceRecord rec = recordFrom(r);
       if (rec.trial < range.begin || rec.trial >= range.end || records.count(rec.trial))
@@ -163,11 +151,6 @@ nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts) {
       records.emplace(rec.trial, std::move(rec));
     }
   }
-  std::string missing;
-  for (int k = 0; k < shards; ++k)
-    if (!seen.count(k)) missing += (missing.empty() ? "" : ",") + std::to_string(k);
-  if (!missing.empty())
-    throw std::invalid_argument("merge: missing shard(s) " + missing + " of " + std::to_string(shards));
   const nlohmann::json& h = parts[0];
   const ToleranceSpec spec = parseToleranceSpec(h["spec"]);
   ToleranceRunInfo info;

@@ -30,6 +30,18 @@ double quantile(const std::vector<double>& sorted, double q) {
   return sorted[i] + (h - static_cast<double>(i)) * (sorted[i + 1] - sorted[i]);
 }
 
+}  // namespace
+
+std::array<double, 2> wilsonInterval(double p, double n, double z) {
+  if (!(n > 0)) return {0.0, 1.0};
+  const double z2n = z * z / n;
+  const double centre = (p + 0.5 * z2n) / (1 + z2n);
+  const double half = z / (1 + z2n) * std::sqrt(p * (1 - p) / n + z2n / (4 * n));
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+namespace {
+
 nlohmann::json distribution(std::vector<double> v) {
   nlohmann::json j;
   j["count"] = v.size();
@@ -131,6 +143,8 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
                   {"invalid_units", invalid},
                   {"standard_error", std::sqrt(p * (1 - p) / independent)},
                   {"independent_samples", independent},
+                  {"confidence_95", wilsonInterval(p, independent)},
+                  {"confidence_method", "Wilson score interval over the independent samples"},
                   {"method", spec.sobol ? "pass fraction over all trials; binomial standard error over the A and B "
                                           "rows of the Saltelli design (the A_B rows are correlated with them)"
                                         : "pass fraction; binomial standard error"}};

@@ -4,6 +4,7 @@
 // sensitivity indices with bootstrap errors, and the inverse (tolerance per parameter for the
 // target yield).
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,11 @@ namespace fovea {
 // "yield", "figures", "sensitivity", "inverse" of the result document.
 nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed,
                                    const std::vector<ToleranceRecord>& records);
+
+// Wilson score interval of a binomial proportion p over n samples at z standard deviations
+// (z = 1.96: 95 %; Wilson 1927, J. Am. Stat. Assoc. 22:209; inside [0, 1] and not empty at
+// p = 0 or 1, unlike p +- z SE). {lo, hi}; {0, 1} for n <= 0.
+std::array<double, 2> wilsonInterval(double p, double n, double z = 1.96);
 
 struct SobolIndex {
   double first = 0, total = 0, first_se = 0, total_se = 0;

@@ -51,4 +51,32 @@ TrackedCalibration calibrateWithTracker(const TrackedCalibrationOptions& o) {
   return out;
 }
 
+nlohmann::json trackedCalibrationJson(const TrackedCalibration& c, const TrackedCalibrationOptions& o) {
+  const GazeCalibrationResult& r = c.result;
+  nlohmann::json per = nlohmann::json::array();
+  for (const TargetResult& t : r.validated)
+    per.push_back({{"label", t.label},
+                   {"target_deg", t.target_deg},
+                   {"estimate_deg", t.estimate_deg},
+                   {"error_deg", t.error_deg},
+                   {"precision_rms_s2s_deg", t.precision_rms_s2s_deg}});
+  return {{"method",
+           "pupil detector on rendered IR eye-camera frames; each target the average of its accepted samples, "
+           "frames below min_confidence rejected; accuracy and precision on the held-out grid (seed C.4)"},
+          {"targets", r.calibration_targets},
+          {"samples_per_target", o.samples_per_target},
+          {"min_confidence", o.min_confidence},
+          {"accuracy_mean_deg", r.accuracy_mean_deg},
+          {"accuracy_max_deg", r.accuracy_max_deg},
+          {"precision_rms_s2s_deg", r.precision_rms_s2s_deg},
+          {"precision_sd_deg", r.precision_sd_deg},
+          {"held_out_targets", r.validated.size()},
+          {"validation", r.validation},
+          {"fit_rms_deg", r.fit_rms_deg},
+          {"frames", c.frames},
+          {"rejected", c.rejected},
+          {"seed", o.seed},
+          {"held_out", per}};
+}
+
 }  // namespace fovea::gaze

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "model/gaze/eye_image_renderer.h"
 #include "model/gaze/gaze_calibration.h"
 #include "model/gaze/pupil_detector.h"
@@ -38,5 +40,11 @@ struct TrackedCalibration {
 
 // Throws std::invalid_argument when a target keeps too few accepted samples to fit.
 TrackedCalibration calibrateWithTracker(const TrackedCalibrationOptions& options);
+
+// The result as the capture session's manifest keeps it ("gaze_calibration"): method, targets,
+// samples_per_target, min_confidence, accuracy_mean_deg / _max_deg, precision_rms_s2s_deg,
+// precision_sd_deg, held_out_targets, validation, fit_rms_deg, frames, rejected, seed and the
+// per-target errors.
+nlohmann::json trackedCalibrationJson(const TrackedCalibration& calibration, const TrackedCalibrationOptions& options);
 
 }  // namespace fovea::gaze

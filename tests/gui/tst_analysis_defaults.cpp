@@ -7,6 +7,7 @@
 
 #include <QLineEdit>
 #include <QPushButton>
+#include <QToolButton>
 
 #include <algorithm>
 
@@ -126,6 +127,48 @@ class TestAnalysisDefaults : public QObject {
       QVERIFY2(parsed == form, qPrintable(command + "\nCLI " + QString::fromStdString(parsed.dump()) + "\nform " +
                                           QString::fromStdString(form.dump())));
     }
+  }
+
+  // A file parameter (the tolerance spec): a path field with a Browse button, empty meaning the
+  // shipped default; a missing file refused by the one validator before any work; "Copy CLI"
+  // writes --spec FILE and refuses (with the reason) while no file is chosen or a studio-only
+  // override is set.
+  void fileParameterIsValidatedAndCopied() {
+    SceneDocument doc;
+    doc.resetTo(prototype(), {});
+    AnalysesPanel panel(&doc);
+    panel.selectAnalysis("tolerance");
+    auto* field = panel.findChild<QLineEdit*>("spec");
+    QVERIFY(field);
+    QVERIFY(field->placeholderText().contains("prototype-tolerance.json"));
+    QVERIFY(panel.findChild<QToolButton*>("spec-browse"));
+    const AnalysisSpec& tol = *findAnalysis("tolerance");
+    QCOMPARE(tol.parameters[0].kind, AnalysisParameter::Kind::FilePath);
+    AnalysisParams p = panel.parameters();
+    QVERIFY(validateParameters(tol, p).isEmpty());  // unset: the shipped spec
+    p["spec"] = "/no/such/tolerance.json";
+    QCOMPARE(validateParameters(tol, p), QStringList{"spec: no such file '/no/such/tolerance.json'"});
+    p["spec"] = QString(FOVEA_SOURCE_DIR);
+    QVERIFY(validateParameters(tol, p).front().contains("is not a regular file"));
+
+    const QString scene = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/tolerance-scene.json";
+    doc.markSaved(scene);
+    QVERIFY(panel.cliCommand().isEmpty());
+    panel.findChild<QPushButton*>("copyCli")->click();
+    QVERIFY2(panel.statusText().contains("--spec"), qPrintable(panel.statusText()));
+    const QString spec = QString(FOVEA_SOURCE_DIR) + "/resources/tolerance/prototype-tolerance.json";
+    QVERIFY(panel.setParameter("spec", spec));
+    QVERIFY(panel.setParameter("trials", 250));
+    QCOMPARE(panel.cliCommand(), "fovea-cli tolerance " + scene + " --spec " + spec + " --trials 250 --seed 1 --json");
+    QVERIFY(panel.setParameter("compensator", "fixed"));
+    QVERIFY(panel.cliCommand().isEmpty());
+    panel.findChild<QPushButton*>("copyCli")->click();
+    QVERIFY2(panel.statusText().contains("studio only"), qPrintable(panel.statusText()));
+    // The same message as a flag of the command line.
+    nlohmann::json values = analysis::defaultValues(*tol.definition);
+    values["spec"] = "/no/such/tolerance.json";
+    QCOMPARE(analysis::validateValues(*tol.definition, values).front().text("--"),
+             std::string("--spec: no such file '/no/such/tolerance.json'"));
   }
 
   void studioRefusesWhatTheCliRefuses() {

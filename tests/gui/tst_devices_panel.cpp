@@ -230,6 +230,23 @@ class TestDevicesPanel : public QObject {
     }
     QCOMPARE(ids.size(), steps);
     for (const auto& s : wizard->session()->plan()) QVERIFY(ids.contains(QString::fromStdString(s.id)));
+
+    // The gaze session ends with the pupil tracker's calibration on the virtual eye camera: 5
+    // targets of 10 accepted samples each, accuracy and precision on the 8 held-out targets, shown
+    // and written into the manifest. Bound: 0.5 deg (the on-axis camera reaches ~0.2 deg,
+    // docs/gaze-tracking.md; Pupil Core reports 0.6 deg on real eyes).
+    const QJsonObject cal = manifest.value("gaze_calibration").toObject();
+    QCOMPARE(cal.value("targets").toInt(), 5);
+    QCOMPARE(cal.value("samples_per_target").toInt(), 10);
+    QCOMPARE(cal.value("held_out_targets").toInt(), 8);
+    const double accuracy = cal.value("accuracy_mean_deg").toDouble();
+    const double precision = cal.value("precision_rms_s2s_deg").toDouble();
+    QVERIFY2(accuracy > 0 && accuracy < 0.5, qPrintable(QString::number(accuracy)));
+    QVERIFY2(precision > 0 && precision < 0.3, qPrintable(QString::number(precision)));
+    QVERIFY(cal.value("frames").toInt() - cal.value("rejected").toInt() >= 5 * 10);
+    const QString shown = wizard->findChild<QLabel*>("gazeCalibration")->text();
+    QVERIFY2(shown.contains(QString::number(accuracy, 'f', 2) + "°"), qPrintable(shown));
+    QCOMPARE(wizard->gazeCalibration()["accuracy_mean_deg"].get<double>(), accuracy);
   }
 
   void geometricWizardCapturesBothBoardsOverTheGazeRange() {

@@ -13,7 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/embedded_scene.h"
+#include "app/studio/report_tolerance.h"
+#include "model/scene/scene_io.h"
 #include "viz/efficiency_colors.h"
+#include "widgets/analyses/analysis_catalog.h"
 
 namespace {
 
@@ -184,7 +188,60 @@ class TestReport : public QObject {
     QVERIFY(text.contains("Eye box"));
   }
 
+  // The Tolerance section from a tolerance result: the yield with its interval, the spec table
+  // (every tolerance and the width it may take), the yield plot, one histogram per figure and the
+  // ranking with its table, in HTML and PDF.
+  void toleranceSectionInHtmlAndPdf() {
+    const QString spec = tmpDir() + "/tol-spec.json";
+    QFile sf(spec);
+    QVERIFY(sf.open(QIODevice::WriteOnly));
+    sf.write(R"({"format": "fovea-tolerance",
+      "parameters": [{"name": "HOE x", "path": "hoe.position_mm[0]", "distribution": "normal", "sigma": 0.3},
+                     {"name": "gaze tracker", "kind": "gaze_tracker", "distribution": "uniform", "half_width": 1.5}],
+      "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10}, "compensator": "fixed",
+      "wavelength_nm": 532, "pass": {"fov_min_deg": {"min": 60}, "inset_error_deg": {"max": 1.0}},
+      "target_yield": 0.9, "fov_tolerance_deg": 0.05})");
+    sf.close();
+    const fovea::SceneLoadResult scene = fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype");
+    QVERIFY(scene.ok());
+    fovea::widgets::AnalysisParams p = fovea::widgets::defaultParameters(*fovea::widgets::findAnalysis("tolerance"));
+    p["spec"] = spec;
+    p["trials"] = 20;
+    const auto r = fovea::widgets::runAnalysis("tolerance", *scene.scene, p);
+    QVERIFY(r.has_value());
+    fovea::studio::ReportContent c;
+    c.title = "Tolerance report";
+    c.sceneName = "prototype";
+    c.created = QDateTime::currentDateTime();
+    c.sections << fovea::studio::toleranceReportSection(*r, fovea::widgets::DisplayUnits{});
+    QCOMPARE(c.sections[0].heading, QString("Tolerance"));
+    QCOMPARE(c.figureCount(), 7);  // yield, ranking, five histograms
+    const QString yield = QString::number(100 * (*r)["yield"]["value"].get<double>(), 'f', 1) + " %";
+    QVERIFY2(c.sections[0].introHtml.contains(yield), qPrintable(c.sections[0].introHtml));
+    QVERIFY(c.sections[0].introHtml.contains("gaze tracker") && c.sections[0].introHtml.contains("uniform, ± 1.5"));
+    QVERIFY(fovea::studio::toleranceReportSection(nlohmann::json{{"format", "other"}}, {}).figures.isEmpty());
+    const QString html = tmpDir() + "/tolerance-report.html", pdf = tmpDir() + "/tolerance-report.pdf";
+    QString error;
+    QVERIFY2(fovea::studio::writeReport(c, html, &error), qPrintable(error));
+    int pages = 0;
+    QVERIFY2(fovea::studio::writeReport(c, pdf, &error, &pages), qPrintable(error));
+    QVERIFY(pages >= 4);  // the intro and seven figures, at most two per page
+    QFile hf(html);
+    QVERIFY(hf.open(QIODevice::ReadOnly));
+    const QString text = QString::fromUtf8(hf.readAll());
+    QVERIFY(text.contains("<h2>Tolerance</h2>"));
+    QCOMPARE(text.count("<figure id='plot:tolerance-"), 7);
+    QVERIFY(text.contains("<th>total index</th>"));  // the ranking table under its figure
+    const Run t = run(tool("pdftotext"), {pdf, "-"});
+    QCOMPARE(t.code, 0);
+    QVERIFY2(t.out.contains("Tolerance") && t.out.contains("Wilson") && t.out.contains("HOE x"), qPrintable(t.out));
+  }
+
   void argumentAndSceneErrors() {
+    QCOMPARE(run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.pdf", "--tolerance-spec",
+                                  FOVEA_SOURCE_DIR "/resources/tolerance/prototype-tolerance.json"})
+                 .code,
+             2);  // without trials
     QCOMPARE(run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.txt"}).code, 2);
     QCOMPARE(run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.pdf", "--gaze-deg", "120"}).code, 2);
     QCOMPARE(run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.pdf", "--gaze-deg", "ten"}).code, 2);
@@ -199,5 +256,5 @@ class TestReport : public QObject {
   }
 };
 
-QTEST_GUILESS_MAIN(TestReport)
+QTEST_MAIN(TestReport)  // the tolerance section renders its plots (Qt Charts needs a QApplication)
 #include "tst_report.moc"

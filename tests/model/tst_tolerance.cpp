@@ -52,6 +52,19 @@ std::vector<ToleranceRecord> syntheticRecords(const ToleranceSpec& spec, std::ui
 class TestTolerance : public QObject {
   Q_OBJECT
  private slots:
+  // Wilson 1927: centre (p + z²/2n)/(1 + z²/n), half-width z/(1 + z²/n) sqrt(p(1-p)/n + z²/4n²).
+  void wilsonScoreInterval() {
+    const auto a = wilsonInterval(0.5, 100);  // symmetric: 0.5 -+ 0.096170
+    QVERIFY(std::abs(a[0] - 0.403830) < 1e-5 && std::abs(a[1] - 0.596170) < 1e-5);
+    const auto b = wilsonInterval(0.0, 10);  // no success: [0, 0.27754], not the empty p -+ z SE
+    QCOMPARE(b[0], 0.0);
+    QVERIFY(std::abs(b[1] - 0.277540) < 1e-5);
+    const auto c = wilsonInterval(1.0, 10);  // mirror image
+    QVERIFY(std::abs(c[0] - (1 - 0.277540)) < 1e-5 && c[1] == 1.0);
+    const auto d = wilsonInterval(0.3, 0);
+    QVERIFY(d[0] == 0.0 && d[1] == 1.0);
+  }
+
   void quantilesAndDraws() {
     const ToleranceSpec s = parseToleranceSpec(specJson());
     const ToleranceParameter& n = s.parameters[0];

@@ -4,6 +4,7 @@
 #include <QClipboard>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QFileDialog>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -13,6 +14,7 @@
 #include <QScrollArea>
 #include <QSpinBox>
 #include <QTextBrowser>
+#include <QToolButton>
 #include <QVBoxLayout>
 
 #include <cmath>
@@ -142,6 +144,7 @@ void AnalysesPanel::rebuildForm() {
   const AnalysisParams values = edited_.value(spec->id, defaultParameters(*spec));
   for (const AnalysisParameter& p : spec->parameters) {
     QWidget* field = nullptr;
+    QWidget* row = nullptr;  // the form row when it holds more than the field
     const QVariant v = values.value(p.key, p.defaultValue);
     switch (p.kind) {
       case AnalysisParameter::Kind::Number: {
@@ -184,13 +187,33 @@ void AnalysesPanel::rebuildForm() {
         field = box;
         break;
       }
+      case AnalysisParameter::Kind::FilePath: {  // a path (empty: p.unsetMeaning) and "Browse…"
+        auto* edit = new QLineEdit(formHost_);
+        edit->setPlaceholderText(tr("default: %1").arg(p.unsetMeaning));
+        edit->setText(v.isValid() ? v.toString() : QString());
+        auto* browse = new QToolButton(formHost_);
+        browse->setText(tr("…"));
+        browse->setObjectName(p.key + "-browse");
+        browse->setToolTip(tr("Choose the %1").arg(p.label.toLower()));
+        connect(browse, &QToolButton::clicked, edit, [this, edit, label = p.label] {
+          const QString f = QFileDialog::getOpenFileName(this, label, edit->text(), tr("JSON (*.json);;All files (*)"));
+          if (!f.isEmpty()) edit->setText(f);
+        });
+        row = new QWidget(formHost_);
+        auto* h = new QHBoxLayout(row);
+        h->setContentsMargins(0, 0, 0, 0);
+        h->addWidget(edit, 1);
+        h->addWidget(browse);
+        field = edit;
+        break;
+      }
     }
     field->setObjectName(p.key);
     field->setProperty("analysis", spec->id);
     field->setToolTip(
         QString("--%1: %2%3")
             .arg(p.key, p.help, p.unsetMeaning.isEmpty() ? QString() : tr(" (empty: %1)").arg(p.unsetMeaning)));
-    form_->addRow(p.label, field);
+    form_->addRow(p.label, row ? row : field);
     fields_.insert(p.key, field);
   }
   if (spec->id == "fit") {
@@ -291,6 +314,7 @@ QString AnalysesPanel::cliCommand() const {
 QString AnalysesPanel::cliUnavailableReason() const {
   const AnalysisSpec* spec = findAnalysis(currentAnalysis());
   if (!spec || !spec->hasCliTwin) return tr("This analysis has no fovea-cli twin.");
+  if (const QString why = widgets::cliUnavailableReason(*spec, parameters()); !why.isEmpty()) return why;
   if (!spec->definition->takes_scene) return {};
   if (document_->filePath().isEmpty())
     return tr("Save the scene first: fovea-cli reads the scene from a file, and this one has none yet.");

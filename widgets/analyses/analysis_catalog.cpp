@@ -35,10 +35,11 @@ AnalysisParameter parameterOf(const analysis::ParameterSpec& p) {
   a.key = q(p.name);
   a.label = q(p.label);
   a.unit = q(p.unit);
-  a.kind = p.kind == ParameterKind::Number    ? Kind::Number
-           : p.kind == ParameterKind::Integer ? Kind::Integer
-           : p.kind == ParameterKind::Choice  ? Kind::Choice
-                                              : Kind::Text;
+  a.kind = p.kind == ParameterKind::Number     ? Kind::Number
+           : p.kind == ParameterKind::Integer  ? Kind::Integer
+           : p.kind == ParameterKind::Choice   ? Kind::Choice
+           : p.kind == ParameterKind::FilePath ? Kind::FilePath
+                                               : Kind::Text;
   a.defaultValue = toVariant(p.default_value);
   a.minimum = shownBound(p.minimum);
   a.maximum = shownBound(p.maximum);
@@ -138,12 +139,21 @@ QStringList validateParameters(const AnalysisSpec& spec, AnalysisParams& params)
   return problems;
 }
 
+QString cliUnavailableReason(const AnalysisSpec& spec, const AnalysisParams& params) {
+  if (!spec.definition->cli_unavailable) return {};
+  nlohmann::json values = parameterValues(spec, params);
+  analysis::validateValues(*spec.definition, values);
+  const auto why = spec.definition->cli_unavailable(values);
+  return why ? q(*why) : QString();
+}
+
 QString cliCommandLine(const AnalysisSpec& spec, const AnalysisParams& params, const QString& scenePath) {
   const analysis::AnalysisDefinition& def = *spec.definition;
   if (!def.cli_twin) return {};
   if (def.takes_scene && scenePath.isEmpty()) return {};
   nlohmann::json values = parameterValues(spec, params);
   analysis::validateValues(def, values);  // fills defaults; an invalid value is shown as it is
+  if (def.cli_unavailable && def.cli_unavailable(values)) return {};
   auto shown = [&](const std::string& name) {
     const nlohmann::json& v = values[name];
     if (v.is_string()) return q(v.get<std::string>());

@@ -21,7 +21,7 @@
 namespace fovea::widgets {
 
 struct AnalysisParameter {
-  enum class Kind { Number, Integer, Choice, Text };
+  enum class Kind { Number, Integer, Choice, Text, FilePath };
   QString key;  // the fovea-cli flag without dashes ("gaze-from")
   QString label;
   QString unit;
@@ -60,6 +60,10 @@ QStringList validateParameters(const AnalysisSpec& spec, AnalysisParams& params)
 // Empty when the analysis has no fovea-cli twin or, for an analysis of a scene, when
 // `scenePath` is empty (fovea-cli reads the scene from its file: save it first).
 QString cliCommandLine(const AnalysisSpec& spec, const AnalysisParams& params, const QString& scenePath);
+
+// Why the values have no equivalent command line (the registry's cli_unavailable: a required
+// file not chosen, a studio-only override set); empty when they have one.
+QString cliUnavailableReason(const AnalysisSpec& spec, const AnalysisParams& params);
 
 // Computes the analysis. Throws std::invalid_argument (bad parameter) or std::runtime_error
 // (cannot be computed for this scene). Returns nothing when cancelled through `control`.

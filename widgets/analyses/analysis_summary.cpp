@@ -135,6 +135,31 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
       t.add("Mean Kogelnik time", g(sk / pts.size(), 3) + " ns");
       t.add("Mean converged RCWA time", g(sr / pts.size(), 3) + " ms");
     }
+  } else if (id == "tolerance") {
+    const auto& y = r.value("yield", nlohmann::json::object());
+    t.add("Yield", QString("%1 (95 % interval %2 – %3; %4 of %5 units pass)")
+                       .arg(pct(jsonNumber(y, {"value"})), pct(jsonNumberAt(y, "confidence_95", 0)),
+                            pct(jsonNumberAt(y, "confidence_95", 1)), g(jsonNumber(y, {"passed"}), 8),
+                            g(jsonNumber(y, {"trials"}), 8)));
+    t.add("Target yield", pct(jsonNumber(r, {"spec", "target_yield"})));
+    const auto& f = r.value("figures", nlohmann::json::object());
+    t.add("Smallest FOV over the gazes",
+          QString("%1 ± %2 (nominal %3)")
+              .arg(u.angle(jsonNumber(f, {"fov_min_deg", "mean"})), u.angle(jsonNumber(f, {"fov_min_deg", "std"})),
+                   u.angle(jsonNumber(r, {"nominal", "fov_min_deg"}))));
+    t.add("Eye box",
+          QString("%1 ± %2 (nominal %3)")
+              .arg(u.length(jsonNumber(f, {"eyebox_mm", "mean"})), u.length(jsonNumber(f, {"eyebox_mm", "std"})),
+                   u.length(jsonNumber(r, {"nominal", "eyebox_mm"}))));
+    const auto& s = r.value("sensitivity", nlohmann::json::object());
+    QStringList top;
+    for (const auto& p : s.value("ranking", nlohmann::json::array()))
+      if (top.size() < 3 && p.is_string()) top << QString::fromStdString(p.get<std::string>());
+    if (!top.isEmpty())
+      t.add("Drives " + QString::fromStdString(s.value("ranked_by", std::string("failure"))), top.join(", "));
+    if (jsonNumber(y, {"invalid_units"}) > 0)
+      extra = QString("<p><i>%1 units broke the scene rules and count as failed.</i></p>")
+                  .arg(g(jsonNumber(y, {"invalid_units"}), 8));
   } else if (id == "fit") {
     t.add("χ² before → after", g(jsonNumber(r, {"chi2_initial"})) + " → " + g(jsonNumber(r, {"chi2"})) +
                                    QString(" (%1 dof)").arg(g(jsonNumber(r, {"dof"}))));

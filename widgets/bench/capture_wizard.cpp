@@ -17,6 +17,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/gaze/tracked_calibration.h"
+
 namespace fovea::widgets {
 
 CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidget* parent)
@@ -91,6 +93,11 @@ CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidg
   hoe_source_->setObjectName("hoeShiftSource");
   hoe_source_->setWordWrap(true);
   root->addWidget(hoe_source_);
+  gaze_result_ = new QLabel(this);
+  gaze_result_->setObjectName("gazeCalibration");
+  gaze_result_->setWordWrap(true);
+  gaze_result_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  root->addWidget(gaze_result_);
 
   folder_->setText(defaultFolder());
   connect(kind_, &QComboBox::currentIndexChanged, this, [this] {
@@ -202,6 +209,7 @@ bool CaptureWizard::openSession() {
   status_->setText(text);
   hoe_source_->clear();
   hoe_source_->setStyleSheet("");
+  showGazeCalibration();
   if (kind() == devices::CaptureKind::Geometric && hoe_shift_source_) {
     const auto [analysed, source] = hoe_shift_source_();
     hoe_source_->setText(analysed ? tr("HOE at x_p(α) from the %1").arg(QString::fromStdString(source))
@@ -240,6 +248,11 @@ void CaptureWizard::pause() {
 void CaptureWizard::runNext() {
   join();
   const auto next = session_->nextStep();
+  if (!next && kind() == devices::CaptureKind::Gaze && session_->gazeCalibration().is_null() && live_ &&
+      !pause_requested_) {
+    calibrateGaze();  // the last part of the gaze session; runStopped when it is done
+    return;
+  }
   if (!next || pause_requested_ || !live_) {
     running_ = false;
     status_->setText(!next ? tr("Complete: %1 captures in %2").arg(captured_).arg(folder())
@@ -297,6 +310,72 @@ void CaptureWizard::stepFinished(int index, const QString& error) {
   refreshList();
   emit stepCaptured(index, QString::fromStdString(id));
   runNext();
+}
+
+nlohmann::json CaptureWizard::gazeCalibration() const {
+  return session_ ? session_->gazeCalibration() : nlohmann::json();
+}
+
+void CaptureWizard::calibrateGaze() {
+  if (calibrating_ || !session_) return;
+  join();
+  calibrating_ = true;
+  running_ = true;
+  updateButtons();
+  status_->setText(tr("Gaze calibration: the pupil tracker on the eye camera, 5 targets × 10 samples…"));
+  gaze::TrackedCalibrationOptions o;
+  o.eye.pupil_diameter_mm = scene_.eye.pupil_diameter_mm;
+  worker_ = std::thread([this, o] {
+    nlohmann::json result;
+    QString error;
+    try {
+      const gaze::TrackedCalibration c = gaze::calibrateWithTracker(o);
+      result = trackedCalibrationJson(c, o);
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    }
+    QMetaObject::invokeMethod(
+        this, [this, result, error] { gazeCalibrationFinished(result, error); }, Qt::QueuedConnection);
+  });
+}
+
+void CaptureWizard::gazeCalibrationFinished(const nlohmann::json& result, const QString& error) {
+  join();
+  calibrating_ = false;
+  running_ = false;
+  if (session_ && error.isEmpty()) {
+    session_->setGazeCalibration(result);
+    status_->setText(tr("Complete: %1 captures and the gaze calibration in %2").arg(captured_).arg(folder()));
+    showGazeCalibration();
+    emit gazeCalibrated(result["accuracy_mean_deg"].get<double>(), result["precision_rms_s2s_deg"].get<double>());
+  } else if (!error.isEmpty()) {
+    status_->setText(tr("Gaze calibration failed: %1 — Start runs it again").arg(error));
+    emit stepFailed(error);
+  }
+  updateButtons();
+  emit runStopped();
+}
+
+void CaptureWizard::showGazeCalibration() {
+  const nlohmann::json r = gazeCalibration();
+  if (r.is_null()) {
+    gaze_result_->clear();
+    return;
+  }
+  gaze_result_->setText(
+      tr("<b>Gaze calibration</b> (pupil tracker, %1 targets × %2 samples, confidence ≥ %3): accuracy "
+         "<b>%4°</b> mean, %5° max; precision <b>%6°</b> RMS sample-to-sample (%7° SD) over %8 held-out targets; "
+         "%9 frames, %10 rejected. Pupil Core reports 0.6° / 0.08°.")
+          .arg(r["targets"].get<int>())
+          .arg(r["samples_per_target"].get<int>())
+          .arg(r["min_confidence"].get<double>())
+          .arg(r["accuracy_mean_deg"].get<double>(), 0, 'f', 2)
+          .arg(r["accuracy_max_deg"].get<double>(), 0, 'f', 2)
+          .arg(r["precision_rms_s2s_deg"].get<double>(), 0, 'f', 3)
+          .arg(r["precision_sd_deg"].get<double>(), 0, 'f', 3)
+          .arg(r["held_out_targets"].get<int>())
+          .arg(r["frames"].get<int>())
+          .arg(r["rejected"].get<int>()));
 }
 
 bool CaptureWizard::importMeasurement(const QString& file, QString* error) {

@@ -7,7 +7,10 @@
 //  - Geometric: checkerboards per micro-OLED position and HOE position over the gaze range.
 //  - Colour: the patch sequence on each display; the spectroradiometer's readings are
 //    imported as a "fovea-color-measurements" file (checked, copied into the folder).
-//  - Gaze: the 5-point fixation sequence.
+//  - Gaze: the 5-point fixation sequence; when it is complete the pupil tracker calibrates the
+//    gaze on the (virtual) eye camera's frames (model/gaze/tracked_calibration.h: 10 samples
+//    averaged per target, outliers rejected by detection confidence) and the wizard shows the
+//    accuracy and precision reached on the held-out grid and writes them into the manifest.
 //
 // Pause finishes the running step (a capture is never cut in half) and stops; Resume goes on
 // from the first step not captured. Opening a folder that already holds a session of the same
@@ -26,6 +29,8 @@
 
 #include "devices/bench/live_bench.h"
 #include "devices/calibration/capture_session.h"
+
+#include <nlohmann/json.hpp>
 #include "model/scene/scene.h"
 
 class QComboBox;
@@ -66,6 +71,10 @@ class CaptureWizard : public QDialog {
   int stepCount() const;
   QStringList skipped() const { return skipped_; }
   bool importMeasurement(const QString& file, QString* error = nullptr);
+  // The gaze session's tracked calibration (manifest "gaze_calibration"); null until it ran.
+  nlohmann::json gazeCalibration() const;
+  // Runs the tracked gaze calibration now (a gaze session does it by itself when complete).
+  void calibrateGaze();
 
  public slots:
   void start();   // opens the session if needed, then runs from the next step
@@ -76,6 +85,7 @@ class CaptureWizard : public QDialog {
   void stepCaptured(int index, const QString& id);
   void runStopped();  // paused, complete, or stopped by an error
   void stepFailed(const QString& message);
+  void gazeCalibrated(double accuracy_deg, double precision_deg);  // or stepFailed
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -88,6 +98,8 @@ class CaptureWizard : public QDialog {
   void updateButtons();
   QString defaultFolder() const;
   void join();
+  void gazeCalibrationFinished(const nlohmann::json& result, const QString& error);
+  void showGazeCalibration();
 
   Scene scene_;
   devices::LiveBench* live_;
@@ -104,7 +116,9 @@ class CaptureWizard : public QDialog {
   QLineEdit* folder_ = nullptr;
   QPushButton *browse_ = nullptr, *open_ = nullptr, *start_ = nullptr, *pause_ = nullptr, *import_ = nullptr;
   QListWidget* steps_ = nullptr;
-  QLabel *instruction_ = nullptr, *thumbnail_ = nullptr, *status_ = nullptr, *hoe_source_ = nullptr;
+  QLabel *instruction_ = nullptr, *thumbnail_ = nullptr, *status_ = nullptr, *hoe_source_ = nullptr,
+         *gaze_result_ = nullptr;
+  bool calibrating_ = false;
   QProgressBar* progress_ = nullptr;
 };
 

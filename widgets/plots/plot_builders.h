@@ -7,6 +7,8 @@
 //   time-vs-error                          <- kogelnik-vs-rcwa
 //   sensitivity                            <- sensitivity
 //   lens-candidates                        <- optimize-lens
+//   tolerance-yield, tolerance-ranking,    <- tolerance (yield with its 95 % interval, the
+//   tolerance-<figure> (histograms)           sensitivity ranking, one histogram per figure)
 //   fit-residuals                          <- fit
 // Angles and lengths are shown in the preferred display units; the CSV table carries the
 // same numbers as the plot, with the unit in each header.

@@ -16,19 +16,23 @@
 namespace fovea::widgets {
 
 struct PlotSeries {
-  enum class Style { Line, Dashed, Scatter, Area };
+  // Segments: the points taken in pairs, each pair one straight segment (bars drawn as wide
+  // segments, error bars, threshold markers); one legend entry.
+  enum class Style { Line, Dashed, Scatter, Area, Segments };
   QString name;
   QVector<QPointF> points;
   Style style = Style::Line;
   QColor color;            // invalid: the chart theme's next colour
   bool rightAxis = false;  // plotted against the secondary y axis
   double markerSize = 7.0;
+  double lineWidth = 2.0;  // pen width (px) of lines and segments
 };
 
 struct PlotAxis {
   QString title;
   bool log = false;
   std::optional<double> min, max;
+  QStringList categories;  // when set: category i is labelled at value i (a bar chart's names)
 };
 
 struct PlotData {

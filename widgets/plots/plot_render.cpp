@@ -1,6 +1,7 @@
 #include "widgets/plots/plot_render.h"
 
 #include <QBuffer>
+#include <QCategoryAxis>
 #include <QChart>
 #include <QChartView>
 #include <QCoreApplication>
@@ -34,6 +35,16 @@ struct Range {
 };
 
 QAbstractAxis* makeAxis(const PlotAxis& a, Range data, QFont font) {
+  if (!a.categories.isEmpty()) {  // labels at the values 0, 1, ... (a bar chart's names)
+    auto* axis = new QCategoryAxis;
+    for (int i = 0; i < a.categories.size(); ++i) axis->append(a.categories[i], i);
+    axis->setLabelsPosition(QCategoryAxis::AxisLabelsPositionOnValue);
+    axis->setRange(-0.6, a.categories.size() - 0.4);
+    axis->setGridLineVisible(false);
+    axis->setTitleText(a.title);
+    axis->setTitleFont(font);
+    return axis;
+  }
   if (a.min) data.lo = *a.min;
   if (a.max) data.hi = *a.max;
   if (!data.valid()) data = {0.0, 1.0};
@@ -96,6 +107,25 @@ QChart* buildChart(const PlotData& plot, bool dark) {
   }
 
   for (const PlotSeries& s : plot.series) {
+    if (s.style == PlotSeries::Style::Segments) {  // one line series per pair, one legend entry
+      for (qsizetype i = 0; i + 1 < s.points.size(); i += 2) {
+        auto* seg = new QLineSeries;
+        seg->setName(s.name);
+        seg->append(s.points[i]);
+        seg->append(s.points[i + 1]);
+        chart->addSeries(seg);
+        QPen pen = seg->pen();
+        pen.setWidthF(s.lineWidth);
+        pen.setCapStyle(Qt::FlatCap);
+        if (s.color.isValid()) pen.setColor(s.color);
+        seg->setPen(pen);
+        seg->attachAxis(ax);
+        seg->attachAxis(s.rightAxis && ay2 ? ay2 : ay);
+        if (i > 0)
+          for (QLegendMarker* m : chart->legend()->markers(seg)) m->setVisible(false);
+      }
+      continue;
+    }
     QXYSeries* xy = nullptr;
     if (s.style == PlotSeries::Style::Scatter) {
       auto* sc = new QScatterSeries;
@@ -111,7 +141,7 @@ QChart* buildChart(const PlotData& plot, bool dark) {
     if (s.color.isValid()) xy->setColor(s.color);
     if (s.style != PlotSeries::Style::Scatter) {
       QPen pen = xy->pen();
-      pen.setWidthF(s.name == "perceived" ? 3.0 : 2.0);
+      pen.setWidthF(s.name == "perceived" ? 3.0 : s.lineWidth);
       if (s.color.isValid()) pen.setColor(s.color);
       if (s.style == PlotSeries::Style::Dashed) pen.setStyle(Qt::DashLine);
       xy->setPen(pen);

@@ -1,0 +1,47 @@
+#pragma once
+// The bookkeeping every merge of sharded runs shares (tolerance_run.h, sweep_shards.h): each
+// part is a `format` document of one run (the `same` keys equal part 1's), names its shard
+// [K, N] with one N for all, and every shard 0..N-1 comes exactly once. Throws
+// std::invalid_argument naming the part and the problem ("merge: part 3: shard 1 given twice",
+// "merge: missing shard(s) 2 of 3").
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace fovea {
+
+// Shard K -> index of its part.
+inline std::map<int, std::size_t> indexShardParts(const std::vector<nlohmann::json>& parts, const std::string& format,
+                                                  const std::vector<std::string>& same, const std::string& run) {
+  if (parts.empty()) throw std::invalid_argument("merge: no parts given");
+  int shards = -1;
+  std::map<int, std::size_t> seen;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const nlohmann::json& p = parts[i];
+    const std::string where = "merge: part " + std::to_string(i + 1);
+    if (!p.is_object() || p.value("format", std::string()) != format)
+      throw std::invalid_argument(where + ": not a " + format + " document");
+    for (const std::string& k : same)
+      if (!p.contains(k) || p[k] != parts[0][k])
+        throw std::invalid_argument(where + ": \"" + k + "\" differs from part 1 (not the same " + run + ")");
+    const auto sh =
+        p.contains("shard") && p["shard"].is_array() ? p["shard"].get<std::vector<int>>() : std::vector<int>{};
+    if (sh.size() != 2) throw std::invalid_argument(where + ": bad \"shard\"");
+    if (shards < 0) shards = sh[1];
+    if (sh[1] != shards) throw std::invalid_argument(where + ": shard count differs from part 1");
+    if (seen.count(sh[0])) throw std::invalid_argument(where + ": shard " + std::to_string(sh[0]) + " given twice");
+    seen[sh[0]] = i;
+  }
+  std::string missing;
+  for (int k = 0; k < shards; ++k)
+    if (!seen.count(k)) missing += (missing.empty() ? "" : ",") + std::to_string(k);
+  if (!missing.empty())
+    throw std::invalid_argument("merge: missing shard(s) " + missing + " of " + std::to_string(shards));
+  return seen;
+}
+
+}  // namespace fovea

@@ -1,0 +1,86 @@
+// fovea-cli sweep --shard K/N and merge: the parts of three shards, merged in any order, give
+// byte for byte the document of one unsharded sweep; the part's contract; a missing shard,
+// parts of another sweep and parts of another kind are named.
+#include <QtTest>
+
+#include <QFile>
+#include <QTemporaryDir>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_process.h"
+
+using fovea::testing::CliCall;
+using fovea::testing::runFoveaCli;
+
+namespace {
+
+QString writeFile(const QTemporaryDir& d, const QString& name, const QByteArray& text) {
+  const QString p = d.filePath(name);
+  QFile f(p);
+  if (!f.open(QIODevice::WriteOnly)) return {};
+  f.write(text);
+  return p;
+}
+
+// Five gazes (-10 .. 10 by 5) at a low ray count: a cheap sweep whose eye-box borders lie inside
+// the range, so the merge bisects them.
+const QStringList kSweep{"sweep", "--gaze-from", "-10", "--gaze-to", "10", "--gaze-step", "5", "--rays", "400"};
+
+}  // namespace
+
+class TestCliSweepShards : public QObject {
+  Q_OBJECT
+ private slots:
+  void threeShardsMergeToTheUnshardedBytes() {
+    QTemporaryDir dir;
+    CliCall call;
+    call.env.insert("FOVEA_CACHE_DIR", dir.filePath("cache"));
+    const auto whole = runFoveaCli(kSweep + QStringList{"--no-cache", "--json"}, call);
+    QCOMPARE(whole.code, 0);
+    const auto w = nlohmann::json::parse(whole.out.toStdString());
+    QCOMPARE(w["samples"].size(), std::size_t{5});
+
+    QStringList parts;
+    for (const int k : {1, 2, 0}) {
+      const auto p = runFoveaCli(kSweep + QStringList{"--shard", QString("%1/3").arg(k), "--json"}, call);
+      QCOMPARE(p.code, 0);
+      const auto j = nlohmann::json::parse(p.out.toStdString());
+      QCOMPARE(j["format"].get<std::string>(), std::string("fovea-sweep-part"));
+      QCOMPARE(j["shard"], nlohmann::json({k, 3}));
+      QCOMPARE(j["gaze_count"].get<int>(), 5);
+      QCOMPARE(j["samples"].size(), std::size_t{k == 0 ? 1u : 2u});  // gazes [0,1) [1,3) [3,5)
+      QCOMPARE(j.contains("reference"), k == 0);                     // the zero-gaze reference
+      parts << writeFile(dir, QString("part-%1.json").arg(k), p.out);
+    }
+    const auto merged = runFoveaCli(QStringList{"merge"} + parts + QStringList{"--json"}, call);
+    QCOMPARE(merged.code, 0);
+    QCOMPARE(merged.out, whole.out);
+
+    // A shard missing.
+    const auto missing = runFoveaCli({"merge", parts[0], parts[2], "--json"}, call);
+    QCOMPARE(missing.code, 1);
+    QVERIFY2(missing.err.contains("missing shard(s) 2 of 3"), missing.err.constData());
+    // A part of another sweep (another step: other gazes).
+    QStringList other = kSweep;
+    other[6] = "10";
+    const auto o = runFoveaCli(other + QStringList{"--shard", "2/3", "--json"}, call);
+    QCOMPARE(o.code, 0);
+    const QString otherPart = writeFile(dir, "other.json", o.out);
+    const auto mixed = runFoveaCli({"merge", parts[2], parts[0], otherPart, "--json"}, call);
+    QCOMPARE(mixed.code, 1);
+    QVERIFY2(mixed.err.contains("differs from part 1"), mixed.err.constData());
+    // A tolerance part among sweep parts.
+    const QString notSweep = writeFile(dir, "tol-part.json", R"({"format": "fovea-tolerance-part"})");
+    const auto kinds = runFoveaCli({"merge", parts[0], notSweep, "--json"}, call);
+    QCOMPARE(kinds.code, 1);
+    QVERIFY2(kinds.err.contains("part 2 is not a fovea-sweep-part"), kinds.err.constData());
+    // A bad shard is a usage error.
+    const auto bad = runFoveaCli(kSweep + QStringList{"--shard", "3/3", "--json"}, call);
+    QCOMPARE(bad.code, 2);
+    QVERIFY2(bad.err.contains("--shard"), bad.err.constData());
+  }
+};
+
+QTEST_MAIN(TestCliSweepShards)
+#include "tst_cli_sweep_shards.moc"
