@@ -60,7 +60,7 @@ std::string Range::text() const {
 }
 
 std::string FieldInfo::rangeText() const {
-  const std::string r = range.text();
+  std::string r = range.text();
   if (rule_note.empty()) return r;
   return r.empty() ? rule_note : r + ", " + rule_note;
 }

@@ -57,7 +57,7 @@ class Reader {
    public:
     Obj(Reader& r, const ojson& obj, std::string path, std::string pointer)
         : r_(r), obj_(obj), path_(std::move(path)), pointer_(std::move(pointer)) {}
-    ~Obj() { finish(); }
+    ~Obj() { finish(); }  // NOLINT(bugprone-exception-escape): finish() only appends warnings
     Obj(const Obj&) = delete;
     Obj& operator=(const Obj&) = delete;
 
@@ -457,7 +457,7 @@ std::size_t writeEntries(ojson& out, const ojson& unknown, const std::string& po
       ++i;
     } else if (e.info.type == FieldType::Object) {
       ojson nested = ojson::object();
-      const std::string nested_pointer = pointer + "/" + key;
+      const std::string nested_pointer = pointer + ("/" + key);
       i = writeEntries(nested, unknown, nested_pointer, table, obj, i + 1, e.info.key + ".");
       appendUnknown(nested, unknown, nested_pointer);
       // An optional object with nothing to say (every field at an omitted default) is left

@@ -23,7 +23,10 @@ Scene withParameter(const Scene& scene, const std::string& path, double value) {
   const std::vector<std::string> problems = validateScene(out);
   if (!problems.empty()) {
     std::string msg;
-    for (const auto& p : problems) msg += (msg.empty() ? "" : "; ") + path + "=" + formatNumber(value) + ": " + p;
+    for (const auto& p : problems) {
+      if (!msg.empty()) msg += "; ";
+      msg.append(path).append("=").append(formatNumber(value)).append(": ").append(p);
+    }
     throw std::invalid_argument(msg);
   }
   return out;
