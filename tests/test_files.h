@@ -1,6 +1,11 @@
 #pragma once
 // Files for the test suites: a scratch folder under $FOVEA_TEST_TMP (set by CTest per
-// configuration, /tmp otherwise), a whole file as text, and the shipped prototype scene.
+// configuration, /tmp otherwise), a whole file as text, the shipped prototype scene, and a
+// file written into a temporary folder.
+#include <QByteArray>
+#include <QFile>
+#include <QString>
+#include <QTemporaryDir>
 #include <QtGlobal>
 
 #include <filesystem>
@@ -28,6 +33,15 @@ inline std::string readFileText(const std::filesystem::path& path) {
 
 inline std::string prototypeSceneText() {
   return readFileText(std::filesystem::path(FOVEA_SOURCE_DIR) / "resources/scenes/prototype-bench.json");
+}
+
+// Writes `text` to `name` inside `dir`; the path, or "" when it cannot be written.
+inline QString writeTestFile(const QTemporaryDir& dir, const QString& name, const QByteArray& text) {
+  const QString path = dir.filePath(name);
+  QFile file(path);
+  if (!file.open(QIODevice::WriteOnly)) return {};
+  file.write(text);
+  return path;
 }
 
 }  // namespace fovea::testing

@@ -28,6 +28,7 @@
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
 #include "widgets/live_trace.h"
+#include "widgets/number_text.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plot_render.h"
 #include "widgets/retina_view.h"
@@ -46,10 +47,10 @@ QString esc(const std::string& s) {
   return QString::fromStdString(s).toHtmlEscaped();
 }
 QString g(double v, int significant = 4) {
-  return std::isfinite(v) ? QString::number(v, 'g', significant) : QStringLiteral("—");
+  return widgets::numberText(v, significant);
 }
 QString pct(double v) {
-  return std::isfinite(v) ? QString::number(100.0 * v, 'f', 1) + " %" : QStringLiteral("—");
+  return widgets::percentText(v);
 }
 
 QString vec(const std::array<double, 3>& v, const DisplayUnits& u) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "model/json_numbers.h"
+#include "widgets/number_text.h"
 #include "widgets/plots/plot_builders.h"
 
 namespace fovea::studio {
@@ -12,10 +13,10 @@ namespace fovea::studio {
 namespace {
 
 QString g(double v, int significant = 4) {
-  return std::isfinite(v) ? QString::number(v, 'g', significant) : QStringLiteral("—");
+  return widgets::numberText(v, significant);
 }
 QString pct(double v) {
-  return std::isfinite(v) ? QString::number(100.0 * v, 'f', 1) + " %" : QStringLiteral("—");
+  return widgets::percentText(v);
 }
 QString text(const nlohmann::json& j, const char* key, const char* fallback = "") {
   return QString::fromStdString(j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>()

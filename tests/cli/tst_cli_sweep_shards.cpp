@@ -8,20 +8,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_process.h"
+#include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 using fovea::testing::CliCall;
 using fovea::testing::runFoveaCli;
 
 namespace {
 
-QString writeFile(const QTemporaryDir& d, const QString& name, const QByteArray& text) {
-  const QString p = d.filePath(name);
-  QFile f(p);
-  if (!f.open(QIODevice::WriteOnly)) return {};
-  f.write(text);
-  return p;
-}
+using fovea::testing::writeTestFile;
 
 // Five gazes (-10 .. 10 by 5) at a low ray count: a cheap sweep whose eye-box borders lie inside
 // the range, so the merge bisects them.
@@ -51,7 +46,7 @@ class TestCliSweepShards : public QObject {
       QCOMPARE(j["gaze_count"].get<int>(), 5);
       QCOMPARE(j["samples"].size(), std::size_t{k == 0 ? 1u : 2u});  // gazes [0,1) [1,3) [3,5)
       QCOMPARE(j.contains("reference"), k == 0);                     // the zero-gaze reference
-      parts << writeFile(dir, QString("part-%1.json").arg(k), p.out);
+      parts << writeTestFile(dir, QString("part-%1.json").arg(k), p.out);
     }
     const auto merged = runFoveaCli(QStringList{"merge"} + parts + QStringList{"--json"}, call);
     QCOMPARE(merged.code, 0);
@@ -66,12 +61,12 @@ class TestCliSweepShards : public QObject {
     other[6] = "10";
     const auto o = runFoveaCli(other + QStringList{"--shard", "2/3", "--json"}, call);
     QCOMPARE(o.code, 0);
-    const QString otherPart = writeFile(dir, "other.json", o.out);
+    const QString otherPart = writeTestFile(dir, "other.json", o.out);
     const auto mixed = runFoveaCli({"merge", parts[2], parts[0], otherPart, "--json"}, call);
     QCOMPARE(mixed.code, 1);
     QVERIFY2(mixed.err.contains("differs from part 1"), mixed.err.constData());
     // A tolerance part among sweep parts.
-    const QString notSweep = writeFile(dir, "tol-part.json", R"({"format": "fovea-tolerance-part"})");
+    const QString notSweep = writeTestFile(dir, "tol-part.json", R"({"format": "fovea-tolerance-part"})");
     const auto kinds = runFoveaCli({"merge", parts[0], notSweep, "--json"}, call);
     QCOMPARE(kinds.code, 1);
     QVERIFY2(kinds.err.contains("part 2 is not a fovea-sweep-part"), kinds.err.constData());

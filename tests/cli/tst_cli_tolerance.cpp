@@ -8,7 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_process.h"
+#include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 using fovea::testing::runFoveaCli;
 
@@ -28,13 +29,7 @@ const char* kSpec = R"({
   "fov_tolerance_deg": 0.05
 })";
 
-QString writeFile(const QTemporaryDir& d, const QString& name, const QByteArray& text) {
-  const QString p = d.filePath(name);
-  QFile f(p);
-  if (!f.open(QIODevice::WriteOnly)) return {};
-  f.write(text);
-  return p;
-}
+using fovea::testing::writeTestFile;
 }  // namespace
 
 class TestCliTolerance : public QObject {
@@ -42,7 +37,7 @@ class TestCliTolerance : public QObject {
  private slots:
   void contractAndShards() {
     QTemporaryDir dir;
-    const QString spec = writeFile(dir, "tol.json", kSpec);
+    const QString spec = writeTestFile(dir, "tol.json", kSpec);
     const QStringList base{"tolerance", "--spec", spec, "--trials", "16", "--seed", "5"};
     const auto whole = runFoveaCli(base + QStringList{"--json"});
     QCOMPARE(whole.code, 0);
@@ -67,7 +62,7 @@ class TestCliTolerance : public QObject {
     for (const int k : {2, 0, 1}) {
       const auto p = runFoveaCli(base + QStringList{"--shard", QString("%1/3").arg(k), "--json"});
       QCOMPARE(p.code, 0);
-      parts << writeFile(dir, QString("part-%1.json").arg(k), p.out);
+      parts << writeTestFile(dir, QString("part-%1.json").arg(k), p.out);
     }
     const auto merged = runFoveaCli(QStringList{"merge"} + parts + QStringList{"--json"});
     QCOMPARE(merged.code, 0);
@@ -80,7 +75,7 @@ class TestCliTolerance : public QObject {
 
   void slurmJobFiles() {
     QTemporaryDir dir;
-    const QString spec = writeFile(dir, "tol.json", kSpec);
+    const QString spec = writeTestFile(dir, "tol.json", kSpec);
     const QString job = dir.filePath("job");
     const auto r =
         runFoveaCli({"tolerance", "--spec", spec, "--trials", "40", "--seed", "2", "--slurm", job, "--shards", "5"});
@@ -98,11 +93,11 @@ class TestCliTolerance : public QObject {
     QTemporaryDir dir;
     QByteArray bad = kSpec;
     bad.replace("\"normal\"", "\"gamma\"");
-    const QString spec = writeFile(dir, "bad.json", bad);
+    const QString spec = writeTestFile(dir, "bad.json", bad);
     auto r = runFoveaCli({"tolerance", "--spec", spec, "--trials", "4", "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("parameters[0]") && r.err.contains("gamma"), r.err.constData());
-    const QString good = writeFile(dir, "tol.json", kSpec);
+    const QString good = writeTestFile(dir, "tol.json", kSpec);
     r = runFoveaCli({"tolerance", "--spec", good, "--trials", "4", "--shard", "3/3", "--json"});
     QCOMPARE(r.code, 2);
     QVERIFY(r.err.contains("--shard"));
@@ -110,11 +105,11 @@ class TestCliTolerance : public QObject {
     QCOMPARE(r.code, 1);
     QVERIFY(r.err.contains("nope.json"));
     // Spec and part files go through the same JSON input limits as scenes.
-    const QString deep = writeFile(dir, "deep.json", QByteArray(100000, '[') + QByteArray(100000, ']'));
+    const QString deep = writeTestFile(dir, "deep.json", QByteArray(100000, '[') + QByteArray(100000, ']'));
     r = runFoveaCli({"tolerance", "--spec", deep, "--trials", "4", "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("deep.json: line 1, column 65: nesting deeper than 64"), r.err.constData());
-    const QString dup = writeFile(dir, "dup.json", "{\"format\": 1, \"format\": 2}");
+    const QString dup = writeTestFile(dir, "dup.json", "{\"format\": 1, \"format\": 2}");
     r = runFoveaCli({"merge", dup, "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("duplicate key \"format\""), r.err.constData());

@@ -5,16 +5,17 @@
 #include <cmath>
 
 #include "model/json_numbers.h"
+#include "widgets/number_text.h"
 
 namespace fovea::widgets {
 
 namespace {
 
 QString g(double v, int significant = 4) {
-  return std::isfinite(v) ? QString::number(v, 'g', significant) : QStringLiteral("—");
+  return numberText(v, significant);
 }
 QString pct(double v) {
-  return std::isfinite(v) ? QString::number(100.0 * v, 'f', 1) + " %" : QStringLiteral("—");
+  return percentText(v);
 }
 
 struct Table {
