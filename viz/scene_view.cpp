@@ -28,6 +28,7 @@
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 
+#include "model/scene/scene_compare.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 #include "viz/element_labels.h"
@@ -186,6 +187,15 @@ void SceneView::setDragRendering(bool on) {
   applyDragRendering();
 }
 
+void SceneView::prepareDragRendering() {
+  if (!isVisible() || dragRendering()) return;
+  dragRendering_ = true;
+  applyDragRendering();
+  renderToImage();  // into an off-screen framebuffer
+  dragRendering_ = false;
+  applyDragRendering();
+}
+
 void SceneView::applyDragRendering() {
   const bool peel = !dragRendering();
   if (renderer()->GetUseDepthPeeling() == (peel ? 1 : 0)) return;
@@ -243,9 +253,7 @@ void SceneView::setScene(const Scene& scene, bool reset) {
   const bool first = !hasScene_;
   // A gaze change (a drag of the gaze slider or the eye's rings) only turns the eye: redraw
   // its actors alone, the cheap path that keeps the GUI thread free while the hand moves.
-  Scene turned = scene_;
-  turned.eye.gaze_deg = scene.eye.gaze_deg;
-  if (!first && !reset && turned == scene && scene_.eye.gaze_deg != scene.eye.gaze_deg) {
+  if (!first && !reset && scene_.eye.gaze_deg != scene.eye.gaze_deg && equalButGaze(scene_, scene)) {
     scene_ = scene;
     sceneLayer().removeElement(QStringLiteral("eye"));
     buildEyeActors(scene_, sceneLayer());

@@ -102,6 +102,10 @@ class SceneView : public VtkGlWidget {
   // exact depth-peeled blending. A mouse button held in the view (orbit, pan, zoom, a
   // handle) draws for speed too.
   void setDragRendering(bool on);
+  // Draws one drag-rendered frame off screen (nothing on screen changes), so the GPU driver
+  // compiles its shader variants now rather than on the first frame of the first drag (a
+  // software renderer needs ~0.5 s for them). Call once the view shows what a drag will draw.
+  void prepareDragRendering();
   bool dragRendering() const { return dragRendering_ || mouseHeld_; }
 
  signals:

@@ -98,7 +98,17 @@ void LiveTraceFeatures::requestTrace() {
 }
 
 void LiveTraceFeatures::showResult(const std::shared_ptr<const widgets::LiveTraceResult>& r) {
-  if (r && r->detail == widgets::TraceDetail::Refined) window_->sceneView()->setDragRendering(false);
+  if (probe_ && r) probe_->noteDelivered(r->generation);
+  if (r && r->detail == widgets::TraceDetail::Refined) {
+    window_->sceneView()->setDragRendering(false);
+    // Once the first rays are on screen: compile what the first drag's frames will need.
+    if (!dragRenderingPrepared_)
+      QTimer::singleShot(0, this, [this] {
+        if (dragRenderingPrepared_ || !window_->sceneView()->isVisible()) return;
+        dragRenderingPrepared_ = true;
+        window_->sceneView()->prepareDragRendering();
+      });
+  }
   gaze_->showResult(r, trace_->isBusy());
   redraw();
   if (probe_ && r) {
