@@ -15,12 +15,11 @@
 
 #include <cmath>
 
-#include "app/embedded_scene.h"
 #include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "model/analysis/tolerance_analysis.h"
-#include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
+#include "tests/gui/analysis_panel_fixture.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plots_panel.h"
@@ -29,14 +28,9 @@
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::testing::prototypeScene;
 
 namespace {
-
-Scene prototype() {
-  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-  if (!r.ok()) qFatal("embedded scene invalid");
-  return *r.scene;
-}
 
 // Three tolerances, the fixed compensator, three gazes at one wavelength: cheap trials.
 const char* kSpec = R"({
@@ -79,7 +73,7 @@ class TestToleranceAnalysis : public QObject {
     QTemporaryDir dir;
     const QString spec = writeSpec(dir);
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     QCOMPARE(panel.currentAnalysis(), QString("tolerance"));
@@ -157,7 +151,7 @@ class TestToleranceAnalysis : public QObject {
     AnalysisParams p = defaultParameters(*findAnalysis("tolerance"));
     QVERIFY(!p["spec"].isValid());  // unset: the shipped spec
     p["trials"] = 16;               // one Saltelli block of the 14 parameters
-    const auto r = runAnalysis("tolerance", prototype(), p);
+    const auto r = runAnalysis("tolerance", prototypeScene(), p);
     QVERIFY(r.has_value());
     QCOMPARE((*r)["spec"], shipped);
     QCOMPARE((*r)["trials"].get<int>(), 16);
@@ -174,7 +168,7 @@ class TestToleranceAnalysis : public QObject {
     p["gaze-to"] = 0.0;
     p["gaze-step"] = 5.0;
     p["trials"] = 5;
-    const auto r = runAnalysis("tolerance", prototype(), p);
+    const auto r = runAnalysis("tolerance", prototypeScene(), p);
     QVERIFY(r.has_value());
     QCOMPARE((*r)["spec"]["compensator"].get<std::string>(), std::string("refind"));
     QCOMPARE((*r)["spec"]["gaze"]["from_deg"].get<double>(), 0.0);
@@ -216,7 +210,7 @@ class TestToleranceAnalysis : public QObject {
 
   void cancelStopsALongRun() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     QVERIFY(panel.setParameter("trials", 100000));  // the default spec, refind: hours if not cancelled
