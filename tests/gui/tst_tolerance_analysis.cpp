@@ -20,6 +20,7 @@
 #include "model/analysis/tolerance_analysis.h"
 #include "tests/cli/cli_process.h"
 #include "tests/gui/analysis_panel_fixture.h"
+#include "tests/tolerance_test_spec.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plots_panel.h"
@@ -32,28 +33,12 @@ using fovea::testing::prototypeScene;
 
 namespace {
 
-// Three tolerances, the fixed compensator, three gazes at one wavelength: cheap trials.
-const char* kSpec = R"({
-  "format": "fovea-tolerance",
-  "parameters": [
-    {"name": "HOE x", "path": "hoe.position_mm[0]", "distribution": "normal", "sigma": 0.3},
-    {"name": "eye relief", "path": "eye.relief_mm", "distribution": "normal", "sigma": 1.5},
-    {"name": "gaze tracker", "kind": "gaze_tracker", "distribution": "uniform", "half_width": 1.5}
-  ],
-  "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10},
-  "compensator": "fixed",
-  "wavelength_nm": 532,
-  "pass": {"fov_min_deg": {"min": 60}, "inset_error_deg": {"max": 1.0}},
-  "target_yield": 0.9,
-  "fov_tolerance_deg": 0.05
-})";
-
+// The small spec with eye relief as a third tolerance (5 Saltelli blocks of 5 rows), as tol.json in d.
 QString writeSpec(const QTemporaryDir& d) {
-  const QString p = d.filePath("tol.json");
-  QFile f(p);
-  if (!f.open(QIODevice::WriteOnly)) qFatal("cannot write %s", qPrintable(p));
-  f.write(kSpec);
-  return p;
+  return fovea::testing::writeTestFile(
+      d, "tol.json",
+      fovea::testing::smallToleranceSpec(
+          R"({"name": "eye relief", "path": "eye.relief_mm", "distribution": "normal", "sigma": 1.5},)"));
 }
 
 const PlotData* find(const QList<PlotData>& plots, const QString& id) {
