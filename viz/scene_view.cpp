@@ -180,6 +180,19 @@ void SceneView::setEyeViewMode(bool on) {
   scaleBar_->setVisible(!on);  // a length at the focal plane means nothing from the pupil
 }
 
+void SceneView::setDragRendering(bool on) {
+  if (on == dragRendering_) return;
+  dragRendering_ = on;
+  applyDragRendering();
+}
+
+void SceneView::applyDragRendering() {
+  const bool peel = !dragRendering();
+  if (renderer()->GetUseDepthPeeling() == (peel ? 1 : 0)) return;
+  renderer()->SetUseDepthPeeling(peel);
+  requestRender();
+}
+
 void SceneView::setPrintLook(bool on) {
   if (on == printLook_) return;
   printLook_ = on;
@@ -490,11 +503,15 @@ void SceneView::mousePressEvent(QMouseEvent* e) {
     pressPos_ = e->position();
     pressed_ = true;
   }
+  mouseHeld_ = true;
+  applyDragRendering();
   VtkGlWidget::mousePressEvent(e);
 }
 
 void SceneView::mouseReleaseEvent(QMouseEvent* e) {
   VtkGlWidget::mouseReleaseEvent(e);
+  mouseHeld_ = e->buttons() != Qt::NoButton;
+  applyDragRendering();
   if (e->button() != Qt::LeftButton || !pressed_) return;
   pressed_ = false;
   if ((e->position() - pressPos_).manhattanLength() > 4.0) return;  // a drag orbits, a click picks

@@ -35,10 +35,11 @@ void LatencyProbe::noteRequest(quint64 generation) {
   if (lastInput_ >= 0) inputOf_[generation] = lastInput_;
 }
 
-void LatencyProbe::noteDrawn(quint64 generation, const char* detail, double compute_ms) {
+void LatencyProbe::noteDrawn(quint64 generation, const char* detail, double compute_ms, double paint_ms) {
   const auto it = inputOf_.find(generation);
   if (it == inputOf_.end()) return;
-  std::fprintf(stderr, "latency: %s %lld compute %.1f\n", detail, clock_.elapsed() - it->second, compute_ms);
+  std::fprintf(stderr, "latency: %s %lld compute %.1f paint %.1f\n", detail, clock_.elapsed() - it->second, compute_ms,
+               paint_ms);
   inputOf_.erase(inputOf_.begin(), std::next(it));
 }
 

@@ -2,7 +2,7 @@
 // Measuring the studio's drag latency (docs/benchmarks.md, "Responsive drag"): with the
 // environment variable FOVEA_LATENCY_LOG set, every mouse move with a button held is time
 // stamped; each live-trace result drawn on screen (the 3-D view's next swapped frame) prints
-// "latency: <detail> <ms from the move that asked for it to the frame>" and each move
+// "latency: <detail> <ms from the move that asked for it to the frame> compute <ms> paint <ms>" and each move
 // "gui: <ms the GUI thread spent on it>" to stderr. Off: nothing is installed.
 
 #include <QElapsedTimer>
@@ -22,8 +22,9 @@ class LatencyProbe : public QObject {
   qint64 nowMs() const { return clock_.elapsed(); }
   // Remembers that trace request `generation` answers the newest move.
   void noteRequest(quint64 generation);
-  // Prints the latency of `generation`'s result, drawn now.
-  void noteDrawn(quint64 generation, const char* detail, double compute_ms);
+  // Prints the latency of `generation`'s result, drawn now, with the trace's compute time and
+  // the 3-D view's paint time of that frame.
+  void noteDrawn(quint64 generation, const char* detail, double compute_ms, double paint_ms);
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
