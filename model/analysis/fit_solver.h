@@ -49,6 +49,7 @@ struct FitParameterResult {
   bool determined = true, at_bound = false;
 };
 
+// NOLINTNEXTLINE(bugprone-exception-escape): the implicit members copy json/strings; std::bad_alloc only.
 struct FitTargetResult {
   FitTarget target;
   double initial_model = 0, model = 0;

@@ -17,6 +17,7 @@
 
 namespace fovea {
 
+// NOLINTNEXTLINE(bugprone-exception-escape): the implicit members copy json/strings; std::bad_alloc only.
 struct FitTarget {
   std::string id, observable, unit, source;
   nlohmann::json parameters;  // the observable's parameters, defaults filled in

@@ -30,7 +30,7 @@ UncertaintyResult analyseUncertainty(const UncertaintyInput& in) {
   // J on the scaled parameters q_j = p_j / window_j: its singular values compare alike.
   const Eigen::MatrixXd js = in.jacobian * w.asDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(js, Eigen::ComputeFullV);
-  const Eigen::VectorXd s = svd.singularValues();  // min(rows, n) values, descending
+  const Eigen::VectorXd& s = svd.singularValues();  // min(rows, n) values, descending
   const Eigen::MatrixXd& v = svd.matrixV();
   const double s_max = s.size() > 0 ? s(0) : 0.0;
   Eigen::MatrixXd cs = Eigen::MatrixXd::Zero(n, n);

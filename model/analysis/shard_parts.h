@@ -24,10 +24,16 @@ inline std::map<int, std::size_t> indexShardParts(const std::vector<nlohmann::js
     const nlohmann::json& p = parts[i];
     const std::string where = "merge: part " + std::to_string(i + 1);
     if (!p.is_object() || p.value("format", std::string()) != format)
-      throw std::invalid_argument(where + ": not a " + format + " document");
+      throw std::invalid_argument(std::string(where).append(": not a ").append(format).append(" document"));
     for (const std::string& k : same)
-      if (!p.contains(k) || p[k] != parts[0][k])
-        throw std::invalid_argument(where + ": \"" + k + "\" differs from part 1 (not the same " + run + ")");
+      if (!p.contains(k) || p[k] != parts[0][k]) {
+        throw std::invalid_argument(std::string(where)
+                                        .append(": \"")
+                                        .append(k)
+                                        .append("\" differs from part 1 (not the same ")
+                                        .append(run)
+                                        .append(")"));
+      }
     const auto sh =
         p.contains("shard") && p["shard"].is_array() ? p["shard"].get<std::vector<int>>() : std::vector<int>{};
     if (sh.size() != 2) throw std::invalid_argument(where + ": bad \"shard\"");

@@ -204,8 +204,9 @@ Warp2d fitWarp(const std::vector<PointPair>& pairs, WarpModel model) {
   Eigen::MatrixXd A(2 * Eigen::Index{n}, 9);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d p = ns.apply(src[i]), q = nd.apply(dst[i]);
-    A.row(2 * i) << -p.x(), -p.y(), -1, 0, 0, 0, q.x() * p.x(), q.x() * p.y(), q.x();
-    A.row(2 * i + 1) << 0, 0, 0, -p.x(), -p.y(), -1, q.y() * p.x(), q.y() * p.y(), q.y();
+    const Eigen::Index row = 2 * Eigen::Index{i};
+    A.row(row) << -p.x(), -p.y(), -1, 0, 0, 0, q.x() * p.x(), q.x() * p.y(), q.x();
+    A.row(row + 1) << 0, 0, 0, -p.x(), -p.y(), -1, q.y() * p.x(), q.y() * p.y(), q.y();
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
   const auto& sv = svd.singularValues();
@@ -221,10 +222,11 @@ Warp2d fitWarp(const std::vector<PointPair>& pairs, WarpModel model) {
       const double w = h[6] * p.x() + h[7] * p.y() + 1.0;
       const double u = (h[0] * p.x() + h[1] * p.y() + h[2]) / w;
       const double v = (h[3] * p.x() + h[4] * p.y() + h[5]) / w;
-      r[2 * i] = u - q.x();
-      r[2 * i + 1] = v - q.y();
-      J.row(2 * i) << p.x() / w, p.y() / w, 1 / w, 0, 0, 0, -u * p.x() / w, -u * p.y() / w;
-      J.row(2 * i + 1) << 0, 0, 0, p.x() / w, p.y() / w, 1 / w, -v * p.x() / w, -v * p.y() / w;
+      const Eigen::Index row = 2 * Eigen::Index{i};
+      r[row] = u - q.x();
+      r[row + 1] = v - q.y();
+      J.row(row) << p.x() / w, p.y() / w, 1 / w, 0, 0, 0, -u * p.x() / w, -u * p.y() / w;
+      J.row(row + 1) << 0, 0, 0, p.x() / w, p.y() / w, 1 / w, -v * p.x() / w, -v * p.y() / w;
     }
     const Eigen::VectorXd step = J.colPivHouseholderQr().solve(-r);
     for (int k = 0; k < 8; ++k) h[k] += step[k];

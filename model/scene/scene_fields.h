@@ -177,9 +177,9 @@ class FieldTable {
   // A text field, optionally restricted to `choices`.
   template <auto... Members>
   FieldTable& text(std::string key, Presence presence, std::string label, std::string help,
-                   std::vector<std::string> choices = {}) {
+                   const std::vector<std::string>& choices = {}) {
     add<Members...>(std::move(key), "", Range::any(), presence, {std::move(label)}, std::move(help));
-    entries.back().info.choices = std::move(choices);
+    entries.back().info.choices = choices;
     return *this;
   }
   // A nested object; its fields follow with keys "key.<field>".
@@ -192,7 +192,7 @@ class FieldTable {
     return *this;
   }
   // A rule checked after the previous entry, reported at `at`; `note` is shown with the range.
-  FieldTable& rule(std::string at, std::string note, std::function<std::string(const T&)> check) {
+  FieldTable& rule(std::string at, const std::string& note, std::function<std::string(const T&)> check) {
     FieldInfo i;
     i.key = std::move(at);
     i.rule_note = note;

@@ -457,7 +457,8 @@ std::size_t writeEntries(ojson& out, const ojson& unknown, const std::string& po
       ++i;
     } else if (e.info.type == FieldType::Object) {
       ojson nested = ojson::object();
-      const std::string nested_pointer = pointer + ("/" + key);
+      std::string nested_pointer = pointer;
+      nested_pointer.append("/").append(key);
       i = writeEntries(nested, unknown, nested_pointer, table, obj, i + 1, e.info.key + ".");
       appendUnknown(nested, unknown, nested_pointer);
       // An optional object with nothing to say (every field at an omitted default) is left
