@@ -9,26 +9,10 @@
 
 #include "model/rigorous/kogelnik_vs_rcwa.h"
 #include "model/rigorous/rcwa.h"
+#include "tests/model/rcwa_cases.h"
 
 using namespace fovea::rigorous;
-
-namespace {
-// A strong slanted grating with several propagating orders (as in tests/model/tst_rcwa.cpp).
-RcwaProblem strongSlanted(RcwaPolarization pol) {
-  RcwaProblem p;
-  p.n0 = 1.5;
-  p.n1 = 0.06;
-  p.thickness_um = 3.0;
-  p.period_nm = 420.0;
-  p.slant_deg = 60.0;
-  p.wavelength_nm = 532.0;
-  p.n_cover = 1.0;
-  p.n_substrate = 1.6;
-  p.polarization = pol;
-  p.setCoverAngleDeg(-7.5);
-  return p;
-}
-}  // namespace
+using fovea::testing::strongSlanted;  // the case tests/model/tst_rcwa.cpp checks
 
 // Cost against retained orders N (2N+1 harmonics: one (2N+1)² eigenproblem + log2 M star products).
 static void BM_RcwaOrders(benchmark::State& state) {

@@ -28,4 +28,12 @@ double jsonNumberAt(const nlohmann::json& j, std::string_view key, std::size_t i
   return v.is_number() ? v.get<double>() : kMissing;
 }
 
+nlohmann::json numberOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json optionalNumber(const std::optional<double>& v) {
+  return v ? numberOrNull(*v) : nlohmann::json(nullptr);
+}
+
 }  // namespace fovea

@@ -42,4 +42,6 @@ summary() {  # name, then numbers on stdin: count, median, 90th percentile, max
 grep '^gui:' "$log" | awk '{print $2}' | summary "GUI thread per move"
 grep "^latency: coarse" "$log" | awk "{print \$3}" | summary "move -> drawn coarse rays"
 grep "^latency: coarse" "$log" | awk "{print \$5}" | cut -d. -f1 | summary "coarse trace compute"
+grep "^latency: coarse" "$log" | awk "{print \$7}" | cut -d. -f1 | summary "3-D view paint of that frame"
+grep "^latency: coarse" "$log" | awk "{print \$9}" | summary "move -> result on the GUI thread"
 echo "coarse frames drawn: $(grep -c '^latency: coarse' "$log" || true) for $steps moves"

@@ -28,6 +28,7 @@
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 
+#include "model/scene/scene_compare.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 #include "viz/element_labels.h"
@@ -181,6 +182,28 @@ void SceneView::setEyeViewMode(bool on) {
   scaleBar_->setVisible(!on);  // a length at the focal plane means nothing from the pupil
 }
 
+void SceneView::setDragRendering(bool on) {
+  if (on == dragRendering_) return;
+  dragRendering_ = on;
+  applyDragRendering();
+}
+
+void SceneView::prepareDragRendering() {
+  if (!isVisible() || dragRendering()) return;
+  dragRendering_ = true;
+  applyDragRendering();
+  renderToImage();  // into an off-screen framebuffer
+  dragRendering_ = false;
+  applyDragRendering();
+}
+
+void SceneView::applyDragRendering() {
+  const bool peel = !dragRendering();
+  if (renderer()->GetUseDepthPeeling() == (peel ? 1 : 0)) return;
+  renderer()->SetUseDepthPeeling(peel);
+  requestRender();
+}
+
 void SceneView::setPrintLook(bool on) {
   if (on == printLook_) return;
   printLook_ = on;
@@ -231,9 +254,7 @@ void SceneView::setScene(const Scene& scene, bool reset) {
   const bool first = !hasScene_;
   // A gaze change (a drag of the gaze slider or the eye's rings) only turns the eye: redraw
   // its actors alone, the cheap path that keeps the GUI thread free while the hand moves.
-  Scene turned = scene_;
-  turned.eye.gaze_deg = scene.eye.gaze_deg;
-  if (!first && !reset && turned == scene && scene_.eye.gaze_deg != scene.eye.gaze_deg) {
+  if (!first && !reset && scene_.eye.gaze_deg != scene.eye.gaze_deg && equalButGaze(scene_, scene)) {
     scene_ = scene;
     sceneLayer().removeElement(QStringLiteral("eye"));
     buildEyeActors(scene_, sceneLayer());
@@ -498,11 +519,15 @@ void SceneView::mousePressEvent(QMouseEvent* e) {
     pressPos_ = e->position();
     pressed_ = true;
   }
+  mouseHeld_ = true;
+  applyDragRendering();
   VtkGlWidget::mousePressEvent(e);
 }
 
 void SceneView::mouseReleaseEvent(QMouseEvent* e) {
   VtkGlWidget::mouseReleaseEvent(e);
+  mouseHeld_ = e->buttons() != Qt::NoButton;
+  applyDragRendering();
   if (e->button() != Qt::LeftButton || !pressed_) return;
   pressed_ = false;
   if ((e->position() - pressPos_).manhattanLength() > 4.0) return;  // a drag orbits, a click picks

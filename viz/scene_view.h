@@ -97,6 +97,17 @@ class SceneView : public VtkGlWidget {
   // no selection highlight and no interaction handles. Off restores the studio's look.
   void setPrintLook(bool on);
   bool printLook() const { return printLook_; }
+  // While a hand drags (a slider or a handle): frames drawn for speed — translucency blended
+  // in one pass (VTK's order-independent pass) instead of depth peeling, which on a software
+  // renderer costs several full-viewport passes a frame. Off (the resting, refined frame):
+  // exact depth-peeled blending. A mouse button held in the view (orbit, pan, zoom, a
+  // handle) draws for speed too.
+  void setDragRendering(bool on);
+  // Draws one drag-rendered frame off screen (nothing on screen changes), so the GPU driver
+  // compiles its shader variants now rather than on the first frame of the first drag (a
+  // software renderer needs ~0.5 s for them). Call once the view shows what a drag will draw.
+  void prepareDragRendering();
+  bool dragRendering() const { return dragRendering_ || mouseHeld_; }
 
  signals:
   void elementPicked(const QString& id);
@@ -117,6 +128,7 @@ class SceneView : public VtkGlWidget {
   void applyHoeShift();
   void layoutViewports();
   void applyMarginColors();
+  void applyDragRendering();
 
   Scene scene_;
   bool hasScene_ = false;
@@ -136,6 +148,8 @@ class SceneView : public VtkGlWidget {
   bool pressed_ = false;
   Eigen::Vector3d hoeShift_ = Eigen::Vector3d::Zero();
   bool printLook_ = false;
+  bool dragRendering_ = false;
+  bool mouseHeld_ = false;
   bool handlesWereVisible_ = true;
 };
 

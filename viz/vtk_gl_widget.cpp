@@ -1,5 +1,6 @@
 #include "viz/vtk_gl_widget.h"
 
+#include <QElapsedTimer>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
@@ -125,6 +126,8 @@ void VtkGlWidget::resizeGL(int w, int h) {
 
 void VtkGlWidget::paintGL() {
   if (!glReady_) return;
+  QElapsedTimer timer;
+  timer.start();
   inPaint_ = true;
   const int w = toPixels(width()), h = toPixels(height());
   window_->SetSize(w, h);
@@ -139,6 +142,7 @@ void VtkGlWidget::paintGL() {
   window_->BlitDisplayFramebuffer(0, 0, 0, w, h, 0, 0, w, h, 0x00004000 /*GL_COLOR_BUFFER_BIT*/, 0x2600 /*GL_NEAREST*/);
   state->PopFramebufferBindings();
   inPaint_ = false;
+  lastPaintMs_ = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
 }
 
 QImage VtkGlWidget::renderToImage() {

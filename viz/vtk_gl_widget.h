@@ -40,6 +40,8 @@ class VtkGlWidget : public QOpenGLWidget {
   // Renders now (makes the context current) and returns the rendered image, the same
   // pixels the user sees. Empty when OpenGL is unavailable.
   QImage renderToImage();
+  // How long the last paintGL() took (VTK's render and the blit into Qt's framebuffer), ms.
+  double lastPaintMs() const { return lastPaintMs_; }
 
  protected:
   void initializeGL() override;
@@ -68,6 +70,7 @@ class VtkGlWidget : public QOpenGLWidget {
   vtkNew<vtkCallbackCommand> callback_;
   bool inPaint_ = false;
   bool glReady_ = false;
+  double lastPaintMs_ = 0.0;
 };
 
 }  // namespace fovea::viz

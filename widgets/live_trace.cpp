@@ -18,8 +18,9 @@ struct Superseded {};
 }  // namespace
 
 // Results of the expensive stages of the last jobs, reused by the next ones (one diffraction
-// slot per detail, so a drag's coarse traces keep the refined one). Touched by one job at a
-// time (the pool has one thread), guarded anyway.
+// slot per detail, so a drag's coarse traces keep the refined one). A coarse trace on the GUI
+// thread may run while a refined job finishes on the worker: every access holds the mutex
+// (briefly: the slots hold shared pointers).
 struct LiveTrace::Cache {
   std::mutex mutex;
   // diffractScene() depends on everything but the gaze.
@@ -59,17 +60,16 @@ LiveTrace::~LiveTrace() {
 void LiveTrace::request(const Scene& scene, const LiveTraceSettings& settings, TraceDetail detail) {
   ++requests_;
   settings_ = settings;
+  if (detail == TraceDetail::Coarse) {
+    traceCoarseNow(scene, settings);
+    return;
+  }
   const bool wasBusy = isBusy();
   pending_ = Job{++generation_, scene, settings, detail, {}, {0, 0}};
   newest_->store(generation_);
-  if (detail == TraceDetail::Coarse) {
-    refineNext_ = Job{0, scene, settings, TraceDetail::Refined, {}, {0, 0}};
-    refineTimer_->start();  // restarted by every move: fires when the hand rests
-  } else {
-    refineTimer_->stop();
-    refineNext_.reset();
-    if (settings.follow_gaze) updateShiftTable(scene);
-  }
+  refineTimer_->stop();
+  refineNext_.reset();
+  if (settings.follow_gaze) updateShiftTable(scene);
   if (!wasBusy) emit busyChanged(true);
   if (!running_ && !startQueued_) {
     startQueued_ = true;
@@ -77,6 +77,32 @@ void LiveTrace::request(const Scene& scene, const LiveTraceSettings& settings, T
       startQueued_ = false;
       startPending();
     });
+  }
+}
+
+void LiveTrace::traceCoarseNow(const Scene& scene, const LiveTraceSettings& settings) {
+  const bool wasBusy = isBusy();
+  pending_.reset();  // a queued job is superseded; a running refined one stops at its next checkpoint
+  newest_->store(++generation_);
+  refineNext_ = Job{0, scene, settings, TraceDetail::Refined, {}, {0, 0}};
+  refineTimer_->start();  // restarted by every move: fires when the hand rests
+  adoptShiftTable();
+  Job job{generation_, scene, settings, TraceDetail::Coarse, table_, {0, 0}};
+  if (latest_) job.last_shift = latest_->hoe_shift_mm;
+  ++started_;
+  std::shared_ptr<LiveTraceResult> result = run(job, *cache_, *newest_);
+  latest_ = result;
+  deliveredGeneration_ = result->generation;
+  ++delivered_;
+  emit resultReady(latest_);
+  if (wasBusy && !isBusy()) emit busyChanged(false);
+}
+
+void LiveTrace::adoptShiftTable() {
+  if (!tableTask_) return;
+  if (auto t = tableTask_->table()) {
+    table_ = std::move(t);
+    tableTask_.reset();
   }
 }
 
@@ -94,15 +120,7 @@ void LiveTrace::startPending() {
   if (running_ || !pending_) return;
   Job job = std::move(*pending_);
   pending_.reset();
-  if (tableTask_)
-    if (auto t = tableTask_->table()) {
-      table_ = std::move(t);
-      tableTask_.reset();
-    }
-  if (job.detail == TraceDetail::Coarse) {
-    job.table = table_;
-    if (latest_) job.last_shift = latest_->hoe_shift_mm;
-  }
+  adoptShiftTable();
   running_ = true;
   ++started_;
   std::shared_ptr<Cache> cache = cache_;
@@ -116,10 +134,8 @@ void LiveTrace::startPending() {
 
 void LiveTrace::jobFinished(std::shared_ptr<LiveTraceResult> result) {
   running_ = false;
-  // The newest request's result, or a coarse one newer than what is shown (drag: the view
-  // follows at the pace of the jobs rather than waiting for the hand to stop).
-  const bool deliver = result && (result->generation == generation_ ||
-                                  (result->detail == TraceDetail::Coarse && result->generation > deliveredGeneration_));
+  // Only the newest request's result (a coarse one was delivered when it was asked for).
+  const bool deliver = result && result->generation == generation_;
   if (deliver) {
     latest_ = result;
     deliveredGeneration_ = result->generation;

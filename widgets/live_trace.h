@@ -15,10 +15,13 @@
 //    handle drag): few rays (coarse_rays) and x_p interpolated in the gaze study's table
 //    (devices/bench/follow_gaze_table.h, computed in the background for the scene once it
 //    follows the gaze; until it exists the last applied x_p), no grating-vector cloud. A
-//    coarse job is never abandoned and its result is delivered unless a newer one already
-//    was, so the view follows every move at the job's pace instead of freezing; requests
-//    arriving meanwhile coalesce into one. When no coarse request came for kRefineIdle_ms
-//    the newest scene is traced refined (all rays, x_p searched), replacing the coarse view.
+//    coarse trace is cheap (< 1 ms: a gaze move re-evaluates the pupil, a handle move traces
+//    coarse_rays; benchmarks/bench_live_trace.cpp), so it runs at once on the calling (GUI)
+//    thread and resultReady() is emitted before request() returns: the view draws each move's
+//    rays in the same frame as the moved element, with no worker round trip through a busy
+//    event loop. A refined job still running is superseded. When no coarse request came for
+//    kRefineIdle_ms the newest scene is traced refined (on the worker: all rays, x_p
+//    searched), replacing the coarse view.
 
 #include <QObject>
 #include <QThreadPool>
@@ -105,6 +108,8 @@ class LiveTrace : public QObject {
   };
   struct Cache;
   void startPending();
+  void traceCoarseNow(const Scene& scene, const LiveTraceSettings& settings);
+  void adoptShiftTable();  // the gaze study's x_p table, once its background task finished
   void jobFinished(std::shared_ptr<LiveTraceResult> result);
   static std::shared_ptr<LiveTraceResult> run(const Job& job, Cache& cache, const std::atomic<quint64>& newest);
 

@@ -21,6 +21,7 @@
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
 #include "model/image/test_target.h"
+#include "model/scene/scene_compare.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
@@ -243,7 +244,11 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
     if (!path.isEmpty()) loadTarget(path);
   });
   if (document_) {
-    connect(document_, &SceneDocument::sceneChanged, this, [this] { rebuild(); });
+    // The compositor depends on the design, not on the eye's gaze (the preview has its own):
+    // a gaze drag leaves it alone.
+    connect(document_, &SceneDocument::sceneChanged, this, [this] {
+      if (!configured_ || !equalButGaze(*configured_, document_->scene())) rebuild();
+    });
     connect(document_, &SceneDocument::sceneReplaced, this, [this] { rebuild(); });
   }
   rebuild();
@@ -274,6 +279,7 @@ void PreviewPanel::rebuild() {
     const QSignalBlocker block(s);
     s->setRange(-lim, lim);
   }
+  configured_ = scene;
   const bool blend = blend_->isChecked();
   PreviewWorker* w = worker_;
   QMetaObject::invokeMethod(

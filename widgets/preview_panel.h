@@ -14,6 +14,8 @@
 #include <array>
 #include <optional>
 
+#include "model/scene/scene.h"
+
 class QCheckBox;
 class QLabel;
 class QSlider;
@@ -84,6 +86,7 @@ class PreviewPanel : public QWidget {
   void showFrame(const PreviewFrame& frame);
 
   SceneDocument* document_;
+  std::optional<Scene> configured_;  // the scene the compositor was last built for
   QThread thread_;
   PreviewWorker* worker_ = nullptr;
   QSlider *yaw_ = nullptr, *pitch_ = nullptr;

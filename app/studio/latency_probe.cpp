@@ -35,10 +35,18 @@ void LatencyProbe::noteRequest(quint64 generation) {
   if (lastInput_ >= 0) inputOf_[generation] = lastInput_;
 }
 
-void LatencyProbe::noteDrawn(quint64 generation, const char* detail, double compute_ms) {
+void LatencyProbe::noteDelivered(quint64 generation) {
+  deliveredAt_[generation] = clock_.elapsed();
+}
+
+void LatencyProbe::noteDrawn(quint64 generation, const char* detail, double compute_ms, double paint_ms) {
   const auto it = inputOf_.find(generation);
   if (it == inputOf_.end()) return;
-  std::fprintf(stderr, "latency: %s %lld compute %.1f\n", detail, clock_.elapsed() - it->second, compute_ms);
+  const auto d = deliveredAt_.find(generation);
+  const qint64 delivered = d == deliveredAt_.end() ? -1 : d->second - it->second;
+  std::fprintf(stderr, "latency: %s %lld compute %.1f paint %.1f delivered %lld\n", detail,
+               clock_.elapsed() - it->second, compute_ms, paint_ms, delivered);
+  deliveredAt_.erase(deliveredAt_.begin(), deliveredAt_.upper_bound(generation));
   inputOf_.erase(inputOf_.begin(), std::next(it));
 }
 

@@ -2,8 +2,8 @@
 // Measuring the studio's drag latency (docs/benchmarks.md, "Responsive drag"): with the
 // environment variable FOVEA_LATENCY_LOG set, every mouse move with a button held is time
 // stamped; each live-trace result drawn on screen (the 3-D view's next swapped frame) prints
-// "latency: <detail> <ms from the move that asked for it to the frame>" and each move
-// "gui: <ms the GUI thread spent on it>" to stderr. Off: nothing is installed.
+// "latency: <detail> <ms from the move that asked for it to the frame> compute <ms> paint <ms> delivered <ms>" and each
+// move "gui: <ms the GUI thread spent on it>" to stderr. Off: nothing is installed.
 
 #include <QElapsedTimer>
 #include <QObject>
@@ -22,8 +22,12 @@ class LatencyProbe : public QObject {
   qint64 nowMs() const { return clock_.elapsed(); }
   // Remembers that trace request `generation` answers the newest move.
   void noteRequest(quint64 generation);
-  // Prints the latency of `generation`'s result, drawn now.
-  void noteDrawn(quint64 generation, const char* detail, double compute_ms);
+  // Prints the latency of `generation`'s result, drawn now, with the trace's compute time and
+  // the 3-D view's paint time of that frame.
+  void noteDrawn(quint64 generation, const char* detail, double compute_ms, double paint_ms);
+  // Remembers when `generation`'s result reached the GUI thread (printed with noteDrawn as
+  // "delivered <ms after the move>").
+  void noteDelivered(quint64 generation);
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
@@ -33,6 +37,7 @@ class LatencyProbe : public QObject {
   QElapsedTimer clock_;
   qint64 lastInput_ = -1;
   std::map<quint64, qint64> inputOf_;
+  std::map<quint64, qint64> deliveredAt_;
 };
 
 }  // namespace fovea::studio

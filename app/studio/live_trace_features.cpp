@@ -90,12 +90,25 @@ void LiveTraceFeatures::requestTrace() {
   s.follow_gaze = gaze_->followGaze();
   // While the hand moves a slider or a handle: coarse traces, refined when it rests.
   const bool dragging = gaze_->isDragging() || handles_->isDragging();
+  // Frames for speed from the first move; the refined result (showResult) restores them.
+  if (dragging) window_->sceneView()->setDragRendering(true);
   trace_->request(window_->document()->scene(), s,
                   dragging ? widgets::TraceDetail::Coarse : widgets::TraceDetail::Refined);
   if (probe_ && dragging) probe_->noteRequest(trace_->newestGeneration());
 }
 
 void LiveTraceFeatures::showResult(const std::shared_ptr<const widgets::LiveTraceResult>& r) {
+  if (probe_ && r) probe_->noteDelivered(r->generation);
+  if (r && r->detail == widgets::TraceDetail::Refined) {
+    window_->sceneView()->setDragRendering(false);
+    // Once the first rays are on screen: compile what the first drag's frames will need.
+    if (!dragRenderingPrepared_)
+      QTimer::singleShot(0, this, [this] {
+        if (dragRenderingPrepared_ || !window_->sceneView()->isVisible()) return;
+        dragRenderingPrepared_ = true;
+        window_->sceneView()->prepareDragRendering();
+      });
+  }
   gaze_->showResult(r, trace_->isBusy());
   redraw();
   if (probe_ && r) {
@@ -103,7 +116,10 @@ void LiveTraceFeatures::showResult(const std::shared_ptr<const widgets::LiveTrac
     const char* detail = r->detail == widgets::TraceDetail::Coarse ? "coarse" : "refined";
     connect(
         window_->sceneView(), &QOpenGLWidget::frameSwapped, probe_,
-        [this, gen, detail, ms = r->compute_ms] { probe_->noteDrawn(gen, detail, ms); }, Qt::SingleShotConnection);
+        [this, gen, detail, ms = r->compute_ms] {
+          probe_->noteDrawn(gen, detail, ms, window_->sceneView()->lastPaintMs());
+        },
+        Qt::SingleShotConnection);
   }
 }
 

@@ -67,7 +67,8 @@ class LiveTraceFeatures : public QObject {
   viz::KSpaceView* kspace_ = nullptr;
   widgets::HandleController* handles_ = nullptr;
   std::unique_ptr<viz::TraceOverlay> overlay_;
-  LatencyProbe* probe_ = nullptr;  // FOVEA_LATENCY_LOG only
+  LatencyProbe* probe_ = nullptr;       // FOVEA_LATENCY_LOG only
+  bool dragRenderingPrepared_ = false;  // SceneView::prepareDragRendering() ran
   QDockWidget* retinaDock_ = nullptr;
   QDockWidget* kspaceDock_ = nullptr;
 };

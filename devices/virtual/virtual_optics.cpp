@@ -4,6 +4,7 @@
 
 #include "devices/bench/bench.h"
 #include "devices/stage/stage_binding.h"
+#include "model/scene/scene_compare.h"
 
 namespace fovea::devices {
 
@@ -18,8 +19,15 @@ VirtualOptics::VirtualOptics(const Scene& scene, EyeViewCamera camera, PoseSourc
 
 void VirtualOptics::setScene(const Scene& scene) {
   std::lock_guard lock(mutex_);
+  // The camera maps follow the camera's pose (BenchPose::camera_gaze_deg), not the design's
+  // eye gaze: a gaze drag in the studio keeps them (tst_virtual_bench checks the maps agree).
+  const bool keep = equalButGaze(scene_, scene);
   scene_ = scene;
-  cache_.clear();
+  if (!keep) {
+    cache_.clear();
+    last_.reset();
+    ++scene_generation_;
+  }
 }
 
 void VirtualOptics::show(BenchDisplay display, const image::DisplayPattern& pattern) {
@@ -34,11 +42,13 @@ image::DisplayPattern VirtualOptics::shown(BenchDisplay display) const {
 
 std::shared_ptr<const VirtualOptics::Cached> VirtualOptics::cached(BenchDisplay display, const BenchPose& pose) {
   Scene scene;
+  std::uint64_t generation = 0;
   {
     std::lock_guard lock(mutex_);
     for (const auto& c : cache_)
       if (c->display == display && c->pose == pose) return c;
     scene = scene_;
+    generation = scene_generation_;
   }
   // Computed outside the lock: the studio's GUI thread may set patterns meanwhile.
   auto c = std::make_shared<Cached>();
@@ -47,6 +57,7 @@ std::shared_ptr<const VirtualOptics::Cached> VirtualOptics::cached(BenchDisplay 
   c->map = makeDisplayMap(display, scene, camera_, pose);
   c->map->cameraMaps(c->map_x, c->map_y, c->brightness);
   std::lock_guard lock(mutex_);
+  if (generation != scene_generation_) return c;  // the scene changed meanwhile
   cache_.push_front(c);
   while (cache_.size() > kCacheSize) cache_.pop_back();
   return c;
@@ -61,14 +72,26 @@ cv::Mat VirtualOptics::render(double t_s) {
 }
 
 cv::Mat VirtualOptics::render(const BenchPose& pose) {
+  const image::DisplayPattern shown_p = shown(BenchDisplay::Peripheral), shown_f = shown(BenchDisplay::Foveal);
+  const double blur = blur_sigma_px_;
+  std::uint64_t generation = 0;
+  {
+    std::lock_guard lock(mutex_);
+    generation = scene_generation_;
+    if (last_ && last_->pose == pose && last_->peripheral == shown_p && last_->foveal == shown_f &&
+        last_->blur_sigma_px == blur)
+      return last_->radiance.clone();
+  }
   cv::Mat radiance = cv::Mat::zeros(camera_.pixels[1], camera_.pixels[0], CV_32F);
   for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
-    const image::DisplayPattern p = shown(d);
+    const image::DisplayPattern& p = d == BenchDisplay::Peripheral ? shown_p : shown_f;
     if (p.kind == image::DisplayPattern::Kind::Off) continue;
     const auto c = cached(d, pose);
     image::renderPattern(p, c->map_x, c->map_y, c->brightness, radiance);
   }
-  if (blur_sigma_px_ > 0) cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), blur_sigma_px_);
+  if (blur > 0) cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), blur);
+  std::lock_guard lock(mutex_);
+  if (generation == scene_generation_) last_ = LastFrame{pose, shown_p, shown_f, blur, radiance.clone()};
   return radiance;
 }
 

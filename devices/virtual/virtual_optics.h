@@ -10,10 +10,12 @@
 // stage recomputes them every frame (a trace of the HOE and a Newton inversion per pixel).
 // Thread-safe: patterns are set from one thread (the studio, a calibration session) while
 // the camera renders on another.
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include <opencv2/core.hpp>
 
@@ -63,6 +65,18 @@ class VirtualOptics {
   image::DisplayPattern peripheral_, foveal_;
   std::deque<std::shared_ptr<const Cached>> cache_;
   double blur_sigma_px_ = 0.6;
+  // The last rendered radiance and what it was rendered for: a camera streaming a still
+  // bench (no axis moving, the same patterns) gets it again instead of a new rendering.
+  struct LastFrame {
+    BenchPose pose;
+    image::DisplayPattern peripheral, foveal;
+    double blur_sigma_px = 0;
+    cv::Mat radiance;
+  };
+  std::optional<LastFrame> last_;
+  // Counts the scene changes that clear the caches: what was computed for an older scene is
+  // returned to its caller but not stored.
+  std::uint64_t scene_generation_ = 0;
 };
 
 // The pose of a bench's elements at time t: emulated axes by their controllers' simulated

@@ -1,14 +1,11 @@
 #include "model/analysis/analysis_json.h"
 
 #include "model/analysis/lens_catalog.h"
+#include "model/json_numbers.h"
 
 namespace fovea {
 
 namespace {
-
-nlohmann::json optionalJson(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
 
 nlohmann::json fovDegJson(const FovDeg& f) {
   return {{"horizontal", f.horizontal}, {"vertical", f.vertical}, {"diagonal", f.diagonal}};
@@ -157,11 +154,11 @@ nlohmann::json resolutionResultJson(const ResolutionResult& r, const Scene& scen
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& s : r.samples)
     arr.push_back({{"eccentricity_deg", s.eccentricity_deg},
-                   {"foveal_cpd", optionalJson(s.foveal_cpd)},
-                   {"peripheral_cpd", optionalJson(s.peripheral_cpd)},
-                   {"optical_limit_cpd", optionalJson(s.optical_limit_cpd)},
-                   {"optical_limit_model_cpd", optionalJson(s.optical_limit_model_cpd)},
-                   {"optical_blur_arcmin", optionalJson(s.optical_blur_arcmin)},
+                   {"foveal_cpd", optionalNumber(s.foveal_cpd)},
+                   {"peripheral_cpd", optionalNumber(s.peripheral_cpd)},
+                   {"optical_limit_cpd", optionalNumber(s.optical_limit_cpd)},
+                   {"optical_limit_model_cpd", optionalNumber(s.optical_limit_model_cpd)},
+                   {"optical_blur_arcmin", optionalNumber(s.optical_blur_arcmin)},
                    {"perceived_cpd", s.perceived_cpd},
                    {"foveal_shown", s.foveal_shown}});
   out["samples"] = arr;
@@ -213,10 +210,10 @@ nlohmann::json selectivityResultJson(const SelectivityResult& r) {
                       {"nominal_xi", l.nominal_xi},
                       {"peak_detuning_deg", l.peak_detuning_deg},
                       {"peak_angle_efficiency", l.peak_angle_efficiency},
-                      {"angular_fwhm_deg", optionalJson(l.angular_fwhm_deg)},
+                      {"angular_fwhm_deg", optionalNumber(l.angular_fwhm_deg)},
                       {"peak_wavelength_nm", l.peak_wavelength_nm},
                       {"peak_spectral_efficiency", l.peak_spectral_efficiency},
-                      {"spectral_fwhm_nm", optionalJson(l.spectral_fwhm_nm)},
+                      {"spectral_fwhm_nm", optionalNumber(l.spectral_fwhm_nm)},
                       {"angle", curveJson(l.angle, "detuning_deg")},
                       {"spectrum", curveJson(l.spectrum, "wavelength_nm")}});
   }

@@ -1,16 +1,10 @@
 #include "model/analysis/fit_json.h"
 
-#include <cmath>
+#include "model/json_numbers.h"
 
 namespace fovea {
 
 namespace {
-nlohmann::json numberOrNull(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-nlohmann::json optionalNumber(const std::optional<double>& v) {
-  return v ? numberOrNull(*v) : nlohmann::json(nullptr);
-}
 nlohmann::json matrixJson(const Eigen::MatrixXd& m) {
   nlohmann::json rows = nlohmann::json::array();
   for (Eigen::Index i = 0; i < m.rows(); ++i) {

@@ -325,7 +325,10 @@ nlohmann::json completeObservableParameters(const ObservableDefinition& def, con
       }
       if (!ok) {
         std::string list;
-        for (const auto& c : spec->choices) list += (list.empty() ? "" : ", ") + c;
+        for (const auto& c : spec->choices) {
+          if (!list.empty()) list += ", ";
+          list += c;
+        }
         throw std::invalid_argument(key + ": must be one of " + list + ", got " + value.dump());
       }
     } else if (!(value.is_number() && std::isfinite(value.get<double>())) &&

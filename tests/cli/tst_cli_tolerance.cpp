@@ -10,34 +10,18 @@
 
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
+#include "tests/tolerance_test_spec.h"
 
 using fovea::testing::runFoveaCli;
-
-namespace {
-// Two bench tolerances, the fixed compensator and three gazes at one wavelength: cheap trials.
-const char* kSpec = R"({
-  "format": "fovea-tolerance",
-  "parameters": [
-    {"name": "HOE x", "path": "hoe.position_mm[0]", "distribution": "normal", "sigma": 0.3},
-    {"name": "gaze tracker", "kind": "gaze_tracker", "distribution": "uniform", "half_width": 1.5}
-  ],
-  "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10},
-  "compensator": "fixed",
-  "wavelength_nm": 532,
-  "pass": {"fov_min_deg": {"min": 60}, "inset_error_deg": {"max": 1.0}},
-  "target_yield": 0.9,
-  "fov_tolerance_deg": 0.05
-})";
-
+using fovea::testing::smallToleranceSpec;
 using fovea::testing::writeTestFile;
-}  // namespace
 
 class TestCliTolerance : public QObject {
   Q_OBJECT
  private slots:
   void contractAndShards() {
     QTemporaryDir dir;
-    const QString spec = writeTestFile(dir, "tol.json", kSpec);
+    const QString spec = writeTestFile(dir, "tol.json", smallToleranceSpec());
     const QStringList base{"tolerance", "--spec", spec, "--trials", "16", "--seed", "5"};
     const auto whole = runFoveaCli(base + QStringList{"--json"});
     QCOMPARE(whole.code, 0);
@@ -75,7 +59,7 @@ class TestCliTolerance : public QObject {
 
   void slurmJobFiles() {
     QTemporaryDir dir;
-    const QString spec = writeTestFile(dir, "tol.json", kSpec);
+    const QString spec = writeTestFile(dir, "tol.json", smallToleranceSpec());
     const QString job = dir.filePath("job");
     const auto r =
         runFoveaCli({"tolerance", "--spec", spec, "--trials", "40", "--seed", "2", "--slurm", job, "--shards", "5"});
@@ -91,13 +75,13 @@ class TestCliTolerance : public QObject {
 
   void badInputIsNamed() {
     QTemporaryDir dir;
-    QByteArray bad = kSpec;
+    QByteArray bad = smallToleranceSpec();
     bad.replace("\"normal\"", "\"gamma\"");
     const QString spec = writeTestFile(dir, "bad.json", bad);
     auto r = runFoveaCli({"tolerance", "--spec", spec, "--trials", "4", "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("parameters[0]") && r.err.contains("gamma"), r.err.constData());
-    const QString good = writeTestFile(dir, "tol.json", kSpec);
+    const QString good = writeTestFile(dir, "tol.json", smallToleranceSpec());
     r = runFoveaCli({"tolerance", "--spec", good, "--trials", "4", "--shard", "3/3", "--json"});
     QCOMPARE(r.code, 2);
     QVERIFY(r.err.contains("--shard"));

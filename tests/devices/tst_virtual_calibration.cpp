@@ -125,6 +125,38 @@ class TestVirtualCalibration : public QObject {
     QVERIFY(session.record("b")->discarded_frames >= 0);
   }
 
+  void aStillBenchIsRenderedOnceAndTheEyesGazeChangesNothing() {
+    // The camera maps follow the camera's pose, not the design's eye gaze: a scene differing
+    // only in gaze renders the same radiance (a fresh bench built for it agrees), so a gaze
+    // drag in the studio keeps the maps and the last frame; any other change renders anew.
+    const Scene s = prototype();
+    auto live = virtualBench(s);
+    VirtualOptics* optics = live->optics();
+    QVERIFY(optics);
+    optics->show(BenchDisplay::Peripheral, peripheralBoard(s));
+    const BenchPose still{};
+    const cv::Mat first = optics->render(still);
+    QVERIFY(cv::norm(first, cv::NORM_L1) > 100.0);  // the board is seen
+    QCOMPARE(cv::norm(first, optics->render(still), cv::NORM_INF), 0.0);
+    Scene turned = s;
+    turned.eye.gaze_deg = {12.0, -4.0};
+    optics->setScene(turned);
+    QCOMPARE(cv::norm(first, optics->render(still), cv::NORM_INF), 0.0);
+    auto fresh = virtualBench(turned);
+    fresh->optics()->show(BenchDisplay::Peripheral, peripheralBoard(s));
+    QCOMPARE(cv::norm(first, fresh->optics()->render(still), cv::NORM_INF), 0.0);
+    // A design change (the HOE 1.5 mm to the side) and a pattern change render anew.
+    Scene moved = turned;
+    moved.hoe.pose.position_mm[0] += 1.5;
+    optics->setScene(moved);
+    const double design = cv::norm(first, optics->render(still), cv::NORM_L1) / cv::norm(first, cv::NORM_L1);
+    qInfo("HOE 1.5 mm aside: radiance changed by %.1f %% (L1)", 100.0 * design);
+    QVERIFY(design > 0.05);
+    optics->setScene(s);
+    optics->show(BenchDisplay::Peripheral, image::DisplayPattern{});
+    QVERIFY(cv::norm(optics->render(still), cv::NORM_L1) < 1e-9 * cv::norm(first, cv::NORM_L1) + 1e-6);
+  }
+
   void sessionsResumeAndKeepTheirCaptures() {
     const Scene s = prototype();
     auto live = virtualBench(s);

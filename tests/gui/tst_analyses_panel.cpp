@@ -13,10 +13,9 @@
 
 #include <cmath>
 
-#include "app/embedded_scene.h"
 #include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
-#include "model/scene/scene_io.h"
+#include "tests/gui/analysis_panel_fixture.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plot_render.h"
@@ -26,19 +25,13 @@
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::testing::prototypeScene;
+using fovea::testing::testTmpPath;
 
 namespace {
 
 QString tmpDir() {
-  const QString d = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/gui_analyses_panel";
-  QDir().mkpath(d);
-  return d;
-}
-
-Scene prototype() {
-  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-  if (!r.ok()) qFatal("embedded scene invalid");
-  return *r.scene;
+  return testTmpPath("gui_analyses_panel");
 }
 
 nlohmann::json cliJson(const QStringList& args) {
@@ -79,7 +72,7 @@ class TestAnalysesPanel : public QObject {
 
   void resolutionRunMatchesTheCli() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("resolution");
     QVERIFY(panel.setParameter("gaze-yaw", 5.0));
@@ -107,7 +100,7 @@ class TestAnalysesPanel : public QObject {
   }
 
   void sweepKeysMatchTheCli() {
-    const Scene scene = prototype();
+    const Scene scene = prototypeScene();
     AnalysisParams p = defaultParameters(*findAnalysis("sweep"));
     p["gaze-from"] = -10.0;
     p["gaze-to"] = 10.0;
@@ -125,7 +118,7 @@ class TestAnalysesPanel : public QObject {
 
   void cancelStopsALongStudy() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("sweep");
     // ~80 gaze samples of ~20 traces each at 20000 rays: minutes if not cancelled.
@@ -156,7 +149,7 @@ class TestAnalysesPanel : public QObject {
   }
 
   void plotExportsCarryTheNumbers() {
-    const Scene scene = prototype();
+    const Scene scene = prototypeScene();
     AnalysisParams p = defaultParameters(*findAnalysis("resolution"));
     p["samples"] = 41;
     const auto r = runAnalysis("resolution", scene, p);

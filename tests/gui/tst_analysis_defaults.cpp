@@ -13,22 +13,16 @@
 
 #include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
-#include "app/embedded_scene.h"
-#include "model/scene/scene_io.h"
+#include "tests/gui/analysis_panel_fixture.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::testing::prototypeScene;
 
 namespace {
-
-Scene prototype() {
-  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-  if (!r.ok()) qFatal("embedded scene invalid");
-  return *r.scene;
-}
 
 // Parses `args` (after the program name: the subcommand first) with the options fovea-cli
 // generates for analysis `id`, and returns the validated values.
@@ -66,7 +60,7 @@ class TestAnalysisDefaults : public QObject {
 
   void formDefaultsEqualTheCliDefaults() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     int generated = 0;
     for (const AnalysisSpec& spec : analysisCatalog()) {
@@ -87,7 +81,7 @@ class TestAnalysisDefaults : public QObject {
   // and 12 000, and "Defaults" kept 1 deg.
   void defaultsButtonRestoresTheSharedDefaults() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("sweep");
     QVERIFY(panel.setParameter("tolerance-deg", 1.0));
@@ -102,7 +96,7 @@ class TestAnalysisDefaults : public QObject {
 
   void copyCliParsesBackToTheForm() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     // Unsaved scene: no command with an empty path, a reason instead.
     panel.selectAnalysis("sweep");
@@ -135,7 +129,7 @@ class TestAnalysisDefaults : public QObject {
   // override is set.
   void fileParameterIsValidatedAndCopied() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     auto* field = panel.findChild<QLineEdit*>("spec");
@@ -185,7 +179,7 @@ class TestAnalysisDefaults : public QObject {
     p["gaze-yaw"] = 1000.0;
     QCOMPARE(validateParameters(*findAnalysis("trace"), p),
              QStringList{"gaze-yaw: must lie in [-80, 80] deg, got 1000"});
-    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, runAnalysis("trace", prototype(), p));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, runAnalysis("trace", prototypeScene(), p));
   }
 };
 

@@ -10,12 +10,11 @@
 #include <QPushButton>
 #include <QUndoStack>
 
-#include "app/embedded_scene.h"
 #include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "model/analysis/fit_targets.h"
-#include "model/scene/scene_io.h"
 #include "model/scene/scene_parameters.h"
+#include "tests/gui/analysis_panel_fixture.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/analyses/fit_form_extras.h"
 #include "widgets/plots/plots_panel.h"
@@ -23,17 +22,17 @@
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::testing::prototypeScene;
+using fovea::testing::testTmpPath;
 
 namespace {
 QString tmpDir() {
-  const QString d = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/gui_fit_panel";
-  QDir().mkpath(d);
-  return d;
+  return testTmpPath("gui_fit_panel");
 }
 
 // Targets from the prototype with the HOE 35.2 mm high and the green n1 at 0.0165.
 QString writeTargets() {
-  const Scene nominal = *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
+  const Scene nominal = prototypeScene();
   const Scene built = withParameter(withParameter(nominal, "hoe.size_mm[1]", 35.2), "hoe_layers[1].n1", 0.0165);
   std::vector<FitTarget> t = parseFitTargets(nlohmann::json::parse(R"([
     {"id": "eff", "observable": "mean_efficiency", "shift": "none", "wavelength_nm": 532, "value": 0, "sigma": 0.002},

@@ -18,30 +18,23 @@
 #include <QSysInfo>
 #include <QUndoStack>
 
-#include "app/embedded_scene.h"
 #include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "model/scene/scene_io.h"
+#include "tests/gui/analysis_panel_fixture.h"
 #include "widgets/autosave.h"
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::testing::prototypeScene;
+using fovea::testing::testTmpPath;
 
 namespace {
 
-QString freshDir(const QString& name) {
-  const QString d = qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp") + "/gui_recovery/" + name;
-  QDir(d).removeRecursively();
-  QDir().mkpath(d);
-  return d;
-}
-
-Scene prototype() {
-  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-  if (!r.ok()) qFatal("embedded scene invalid");
-  return *r.scene;
+QString freshDir(const std::string& name) {
+  return testTmpPath("gui_recovery/" + name, true);
 }
 
 // What a crashed studio leaves: the scene, its meta, and a lock naming a process that is gone.
@@ -94,7 +87,7 @@ class TestRecovery : public QObject {
   void autosaveFollowsUnsavedChanges() {
     const QString dir = freshDir("autosave");
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     Autosaver saver(&doc, dir);
     saver.setIntervalSeconds(1);
     QVERIFY(!saver.hasRecoveryFile());
@@ -120,7 +113,7 @@ class TestRecovery : public QObject {
   void cleanExitRemovesTheFiles() {
     const QString dir = freshDir("clean-exit");
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     {
       Autosaver saver(&doc, dir);
       QVERIFY(doc.applyEdit("pupil", [](Scene& s) { s.eye.pupil_diameter_mm = 4.0; }).isEmpty());
@@ -132,7 +125,7 @@ class TestRecovery : public QObject {
 
   void crashLeftoversAreFound() {
     const QString dir = freshDir("orphans");
-    writeCrashLeftovers(dir, prototype(), {}, true);
+    writeCrashLeftovers(dir, prototypeScene(), {}, true);
     const QList<RecoveryEntry> found = Autosaver::findOrphans(dir);
     QCOMPARE(found.size(), 1);
     QCOMPARE(found[0].displayName, QString("bench.json"));
@@ -149,8 +142,8 @@ class TestRecovery : public QObject {
     const QString dir = freshDir("recover");
     // The saved file, and the crashed session's unsaved version of it.
     const QString saved = dir + "/bench.json";
-    saveSceneFileAtomic(prototype(), saved.toStdString());
-    Scene changed = prototype();
+    saveSceneFileAtomic(prototypeScene(), saved.toStdString());
+    Scene changed = prototypeScene();
     changed.eye.relief_mm = 27.0;
     changed.hoe_layers[1].n1 = 0.021;
     writeCrashLeftovers(dir, changed, saved, true);
@@ -168,14 +161,14 @@ class TestRecovery : public QObject {
     QVERIFY(window.analysisFeatures()->autosaver()->hasRecoveryFile());
     // Undo goes back to the file on disk.
     window.document()->undoStack()->undo();
-    QCOMPARE(window.document()->scene().eye.relief_mm, prototype().eye.relief_mm);
+    QCOMPARE(window.document()->scene().eye.relief_mm, prototypeScene().eye.relief_mm);
     window.document()->undoStack()->redo();
     QCOMPARE(window.document()->scene().eye.relief_mm, 27.0);
   }
 
   void declineDiscardsTheLeftovers() {
     const QString dir = freshDir("decline");
-    Scene changed = prototype();
+    Scene changed = prototypeScene();
     changed.eye.relief_mm = 30.0;
     writeCrashLeftovers(dir, changed, {}, false);  // killed before it ever took a lock
     studio::MainWindow window;
@@ -190,7 +183,7 @@ class TestRecovery : public QObject {
 
   void laterKeepsTheLeftovers() {
     const QString dir = freshDir("later");
-    writeCrashLeftovers(dir, prototype(), {}, true);
+    writeCrashLeftovers(dir, prototypeScene(), {}, true);
     studio::MainWindow window;
     answerRecoveryWith("later");
     window.analysisFeatures()->startSession(dir);

@@ -16,6 +16,7 @@
 #include "app/embedded_scene.h"
 #include "app/studio/report_tolerance.h"
 #include "model/scene/scene_io.h"
+#include "tests/tolerance_test_spec.h"
 #include "viz/efficiency_colors.h"
 #include "widgets/analyses/analysis_catalog.h"
 
@@ -195,12 +196,7 @@ class TestReport : public QObject {
     const QString spec = tmpDir() + "/tol-spec.json";
     QFile sf(spec);
     QVERIFY(sf.open(QIODevice::WriteOnly));
-    sf.write(R"({"format": "fovea-tolerance",
-      "parameters": [{"name": "HOE x", "path": "hoe.position_mm[0]", "distribution": "normal", "sigma": 0.3},
-                     {"name": "gaze tracker", "kind": "gaze_tracker", "distribution": "uniform", "half_width": 1.5}],
-      "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10}, "compensator": "fixed",
-      "wavelength_nm": 532, "pass": {"fov_min_deg": {"min": 60}, "inset_error_deg": {"max": 1.0}},
-      "target_yield": 0.9, "fov_tolerance_deg": 0.05})");
+    sf.write(fovea::testing::smallToleranceSpec());
     sf.close();
     const fovea::SceneLoadResult scene = fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype");
     QVERIFY(scene.ok());

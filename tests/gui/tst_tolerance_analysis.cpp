@@ -15,12 +15,12 @@
 
 #include <cmath>
 
-#include "app/embedded_scene.h"
 #include "app/studio/analysis_features.h"
 #include "app/studio/main_window.h"
 #include "model/analysis/tolerance_analysis.h"
-#include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
+#include "tests/gui/analysis_panel_fixture.h"
+#include "tests/tolerance_test_spec.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plots_panel.h"
@@ -29,37 +29,16 @@
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::testing::prototypeScene;
 
 namespace {
 
-Scene prototype() {
-  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-  if (!r.ok()) qFatal("embedded scene invalid");
-  return *r.scene;
-}
-
-// Three tolerances, the fixed compensator, three gazes at one wavelength: cheap trials.
-const char* kSpec = R"({
-  "format": "fovea-tolerance",
-  "parameters": [
-    {"name": "HOE x", "path": "hoe.position_mm[0]", "distribution": "normal", "sigma": 0.3},
-    {"name": "eye relief", "path": "eye.relief_mm", "distribution": "normal", "sigma": 1.5},
-    {"name": "gaze tracker", "kind": "gaze_tracker", "distribution": "uniform", "half_width": 1.5}
-  ],
-  "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10},
-  "compensator": "fixed",
-  "wavelength_nm": 532,
-  "pass": {"fov_min_deg": {"min": 60}, "inset_error_deg": {"max": 1.0}},
-  "target_yield": 0.9,
-  "fov_tolerance_deg": 0.05
-})";
-
+// The small spec with eye relief as a third tolerance (5 Saltelli blocks of 5 rows), as tol.json in d.
 QString writeSpec(const QTemporaryDir& d) {
-  const QString p = d.filePath("tol.json");
-  QFile f(p);
-  if (!f.open(QIODevice::WriteOnly)) qFatal("cannot write %s", qPrintable(p));
-  f.write(kSpec);
-  return p;
+  return fovea::testing::writeTestFile(
+      d, "tol.json",
+      fovea::testing::smallToleranceSpec(
+          R"({"name": "eye relief", "path": "eye.relief_mm", "distribution": "normal", "sigma": 1.5},)"));
 }
 
 const PlotData* find(const QList<PlotData>& plots, const QString& id) {
@@ -79,7 +58,7 @@ class TestToleranceAnalysis : public QObject {
     QTemporaryDir dir;
     const QString spec = writeSpec(dir);
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     QCOMPARE(panel.currentAnalysis(), QString("tolerance"));
@@ -157,7 +136,7 @@ class TestToleranceAnalysis : public QObject {
     AnalysisParams p = defaultParameters(*findAnalysis("tolerance"));
     QVERIFY(!p["spec"].isValid());  // unset: the shipped spec
     p["trials"] = 16;               // one Saltelli block of the 14 parameters
-    const auto r = runAnalysis("tolerance", prototype(), p);
+    const auto r = runAnalysis("tolerance", prototypeScene(), p);
     QVERIFY(r.has_value());
     QCOMPARE((*r)["spec"], shipped);
     QCOMPARE((*r)["trials"].get<int>(), 16);
@@ -174,7 +153,7 @@ class TestToleranceAnalysis : public QObject {
     p["gaze-to"] = 0.0;
     p["gaze-step"] = 5.0;
     p["trials"] = 5;
-    const auto r = runAnalysis("tolerance", prototype(), p);
+    const auto r = runAnalysis("tolerance", prototypeScene(), p);
     QVERIFY(r.has_value());
     QCOMPARE((*r)["spec"]["compensator"].get<std::string>(), std::string("refind"));
     QCOMPARE((*r)["spec"]["gaze"]["from_deg"].get<double>(), 0.0);
@@ -216,7 +195,7 @@ class TestToleranceAnalysis : public QObject {
 
   void cancelStopsALongRun() {
     SceneDocument doc;
-    doc.resetTo(prototype(), {});
+    doc.resetTo(prototypeScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     QVERIFY(panel.setParameter("trials", 100000));  // the default spec, refind: hours if not cancelled

@@ -101,16 +101,22 @@ class TestTraceViews : public QObject {
     connect(bench()->liveTrace(), &widgets::LiveTrace::resultReady, this,
             [&](const std::shared_ptr<const widgets::LiveTraceResult>& r) { seen.push_back(r); });
     // A drag: pressed, 1 deg steps up to 15 deg with the event loop running between moves.
+    // Each move's coarse trace is there when the move returns (same frame as the turned eye).
     yaw->setSliderDown(true);
+    int moves = 0;
     for (int v = 2; v <= 30; v += 2) {
       yaw->setValue(v);
+      ++moves;
+      QCOMPARE(bench()->liveTrace()->latest()->generation, bench()->liveTrace()->newestGeneration());
+      QCOMPARE(bench()->liveTrace()->latest()->trace.gaze_deg[0], v / 2.0);
       QTest::qWait(15);
     }
     QTest::qWait(40);
-    // While the hand moved, coarse traces were drawn (the view never froze on one result).
+    // While the hand moved, one coarse trace was drawn per move (the view never froze).
     const auto coarse = std::count_if(seen.begin(), seen.end(),
                                       [](const auto& r) { return r->detail == widgets::TraceDetail::Coarse; });
-    QVERIFY2(coarse >= 1, qPrintable(QString::number(coarse)));
+    QCOMPARE(static_cast<int>(coarse), moves);
+    QVERIFY(w->sceneView()->dragRendering());  // frames for speed until the refined one
     for (const auto& r : seen) {
       if (r->detail != widgets::TraceDetail::Coarse) continue;
       QCOMPARE(r->grid, projectorGrid(r->scene.projector, r->settings.coarse_rays));
@@ -123,6 +129,7 @@ class TestTraceViews : public QObject {
     QVERIFY(bench()->waitForTrace());
     const auto r = bench()->liveTrace()->latest();
     QCOMPARE(r->detail, widgets::TraceDetail::Refined);
+    QVERIFY(!w->sceneView()->dragRendering());  // depth-peeled again
     QCOMPARE(r->trace.gaze_deg[0], 15.0);
     QCOMPARE(r->grid, projectorGrid(r->scene.projector, r->settings.rays));
     QCOMPARE(r->shift_source, std::string("search"));
@@ -140,6 +147,7 @@ class TestTraceViews : public QObject {
     QSignalSpy sceneSpy(w->document(), &widgets::SceneDocument::sceneChanged);
     QSignalSpy results(bench()->liveTrace(), &widgets::LiveTrace::resultReady);
     // A drag of the slider: pressed, several values, released.
+    const quint64 started = bench()->liveTrace()->jobsStarted();
     yaw->setSliderDown(true);
     for (int v = 1; v <= 28; ++v) yaw->setValue(v);  // 0.5 deg steps up to 14 deg
     yaw->setSliderDown(false);
@@ -149,11 +157,14 @@ class TestTraceViews : public QObject {
     QCOMPARE(stack->count(), 1);  // one drag, one undo step
     QCOMPARE(stack->undoText(), QString("Set gaze to 14.0°, 0.0°"));
     QVERIFY(w->isWindowModified());
-    // The trace follows: 28 requests, coalesced; only the newest result is delivered.
+    // The trace follows: one coarse trace per move (each delivered at once), then one
+    // refined trace when the hand rests.
+    QCOMPARE(results.count(), 28);
     QVERIFY(bench()->waitForTrace());
-    QVERIFY(results.count() >= 1);
-    QVERIFY(bench()->liveTrace()->jobsStarted() < 10);
+    QCOMPARE(results.count(), 29);
+    QCOMPARE(bench()->liveTrace()->jobsStarted() - started, quint64{29});
     const auto r = bench()->liveTrace()->latest();
+    QCOMPARE(r->detail, widgets::TraceDetail::Refined);
     QCOMPARE(r->trace.gaze_deg[0], 14.0);
     QVERIFY(r->reused_diffraction);  // only the gaze stage ran
     // At 14 deg without HOE travel the pupil has left the Maxwellian focus (physics.md:

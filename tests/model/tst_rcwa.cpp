@@ -8,10 +8,12 @@
 
 #include "model/rigorous/rcwa.h"
 #include "model/units.h"
+#include "tests/model/rcwa_cases.h"
 
 using namespace fovea::rigorous;
 using fovea::degToRad;
 using fovea::kPi;
+using fovea::testing::strongSlanted;
 using cd = std::complex<double>;
 
 namespace {
@@ -40,20 +42,6 @@ Airy airy(double nc, cd nf, double ns, double kx, double d_um, double lambda_nm,
   return {std::norm(r), std::norm(t) * ys.real() / yc.real()};
 }
 
-RcwaProblem strongSlanted(RcwaPolarization pol) {
-  RcwaProblem p;
-  p.n0 = 1.5;
-  p.n1 = 0.06;
-  p.thickness_um = 3.0;
-  p.period_nm = 420.0;
-  p.slant_deg = 60.0;
-  p.wavelength_nm = 532.0;
-  p.n_cover = 1.0;
-  p.n_substrate = 1.6;
-  p.polarization = pol;
-  p.setCoverAngleDeg(-7.5);  // near Bragg for order +1 (θ_film ≈ −5°)
-  return p;
-}
 }  // namespace
 
 class TestRcwa : public QObject {
