@@ -294,13 +294,13 @@ void buildEyeActors(const Scene& scene, SceneLayer& layer) {
   addEye(scene, layer);
 }
 
-void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light) {
+void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light, SceneLayer& stages) {
   addHoe(scene, layer);
   addProjector(scene, layer, light);
   addEye(scene, layer);
   addFovealDisplay(scene, layer);
   addLens(scene, layer);
-  addStages(scene, layer);
+  addStages(scene, stages);
 }
 
 }  // namespace fovea::viz

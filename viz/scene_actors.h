@@ -12,7 +12,8 @@
 //   Foveal display: the micro-OLED panel and its image combiner on the eye's axis.
 //   Beam-shaping lens: a lens body from its focal length, index and thickness with its rim
 //   drawn as a ring (ghosted when disabled).
-//   Translation stages: the travel between the soft limits along the driven axis.
+//   Translation stages: the travel between the soft limits along the driven axis, in their own
+//   layer ("stages": mechanics, not optics, which the eye's view hides).
 
 #include <array>
 
@@ -42,9 +43,9 @@ inline constexpr std::array<double, 3> kStage{0.85, 0.35, 0.85};
 inline constexpr std::array<double, 3> kSelection{1.00, 1.00, 0.00};
 }  // namespace colors
 
-// Adds every element's actors to `layer` and the projector's light (frustum outline) to
-// `light` (both cleared by the caller).
-void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light);
+// Adds every element's actors to `layer`, the projector's light (frustum outline) to `light`
+// and the translation stages' travel to `stages` (all cleared by the caller).
+void buildSceneActors(const Scene& scene, SceneLayer& layer, SceneLayer& light, SceneLayer& stages);
 // Adds the eye's actors only (element "eye"): what a gaze change redraws.
 void buildEyeActors(const Scene& scene, SceneLayer& layer);
 

@@ -98,8 +98,9 @@ constexpr double kPrintText[3] = {0.10, 0.10, 0.12};
 constexpr double kScreenMargin[3] = {0.13, 0.14, 0.17};
 constexpr double kPrintMargin[3] = {1.0, 1.0, 1.0};
 // Layers the eye's view hides: the light seen edge-on, fans converging on the camera, the
-// eye's own marks around it and the handles.
-const char* const kHiddenInEyeView[] = {"frustum", "rays", "eye_marks", "handles"};
+// eye's own marks around it, the handles, and the stages' travel bars and end stops (drawn
+// mechanics: from the pupil the micro-OLED's stops were two big magenta balls at the top).
+const char* const kHiddenInEyeView[] = {"frustum", "rays", "eye_marks", "handles", "stages"};
 }  // namespace
 
 void SceneView::applyMarginColors() {
@@ -265,9 +266,11 @@ void SceneView::setScene(const Scene& scene, bool reset) {
   hasScene_ = true;
   SceneLayer& l = sceneLayer();
   SceneLayer& light = layer(QStringLiteral("frustum"));
+  SceneLayer& stages = layer(QStringLiteral("stages"));
   l.clear();
   light.clear();
-  buildSceneActors(scene_, l, light);
+  stages.clear();
+  buildSceneActors(scene_, l, light, stages);
   labels_->setScene(scene_);
   applyHoeShift();
   updateHighlight();
@@ -289,7 +292,7 @@ void SceneView::updateHighlight() {
                  std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
   bool any = false;
   if (!selected_.isEmpty()) {
-    for (vtkProp* p : sceneLayer().propsOf(selected_)) {
+    for (vtkProp* p : elementProps(selected_)) {
       const double* pb = p->GetBounds();
       if (!pb) continue;
       for (int i = 0; i < 3; ++i) {
@@ -309,6 +312,12 @@ void SceneView::updateHighlight() {
   cube->Update();
   static_cast<vtkPolyDataMapper*>(highlight_->GetMapper())->SetInputData(cube->GetOutput());
   highlight_->VisibilityOn();
+}
+
+std::vector<vtkProp*> SceneView::elementProps(const QString& id) {
+  std::vector<vtkProp*> props = sceneLayer().propsOf(id);
+  for (vtkProp* p : layer(QStringLiteral("stages")).propsOf(id)) props.push_back(p);
+  return props;
 }
 
 void SceneView::setHoeDisplayShift(const Eigen::Vector3d& shift) {
@@ -424,14 +433,13 @@ void SceneView::showStandardView(StandardView view) {
 void SceneView::resetCamera() {
   vtkRenderer* ren = renderer();
   vtkCamera* cam = ren->GetActiveCamera();
-  // The bench: the bounds of every element of the scene layer (not the light, the fans, the
-  // handles or the selection box).
-  // The bench: the points of every element prop of the scene layer (not the light, the fans,
-  // the handles or the selection box) where they are drawn, at most ~400 per prop.
+  // The bench: the points of every element prop of the scene and stages layers (not the
+  // light, the fans, the handles or the selection box) where they are drawn, at most ~400
+  // per prop.
   std::vector<Eigen::Vector3d> corners;
   Eigen::AlignedBox3d box;
   for (const QString& id : elementIds(scene_))
-    for (vtkProp* p : sceneLayer().propsOf(id)) {
+    for (vtkProp* p : elementProps(id)) {
       auto* actor = vtkActor::SafeDownCast(p);
       vtkDataSet* data = actor && actor->GetMapper() ? actor->GetMapper()->GetInputAsDataSet() : nullptr;
       if (!data || data->GetNumberOfPoints() == 0) continue;

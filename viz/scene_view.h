@@ -1,9 +1,9 @@
 #pragma once
 // The studio's 3D view of the bench: a VtkGlWidget with layers of actors. The "scene" layer
-// holds the elements and "frustum" the projector's light (viz/scene_actors.h); later
-// features add their own layers (ray fans, handles) with layer(name). Clicking an element
-// (press and release without dragging) emits elementPicked(id); setSelectedElement() draws
-// a highlight box around it.
+// holds the elements, "frustum" the projector's light and "stages" the translation stages'
+// travel (viz/scene_actors.h); later features add their own layers (ray fans, handles) with
+// layer(name). Clicking an element (press and release without dragging) emits
+// elementPicked(id); setSelectedElement() draws a highlight box around it.
 // Viewport layout: the scene renderer takes the window but for a right margin (the legend
 // renderer: the colour bar) and a bottom margin (the scale bar), so neither ever covers the
 // bench. Element labels (viz/element_labels.h) can be toggled. The camera frames the
@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -69,7 +70,7 @@ class SceneView : public VtkGlWidget {
 
   // The standard views. The eye's view puts the camera in the pupil along the gaze, its view
   // angle fitted to the HOE, and hides what the eye cannot see as such (the projector's
-  // frustum, the ray fans, the eye's own marks, handles); the "seen" layer (the plate's area
+  // frustum, the ray fans, the eye's own marks, handles, the stages' travel); the "seen" layer (the plate's area
   // whose light enters the pupil, trace_overlay.h) shows only there. Any other standard view
   // leaves it.
   void showStandardView(StandardView view);
@@ -122,6 +123,8 @@ class SceneView : public VtkGlWidget {
 
  private:
   void updateHighlight();
+  // The drawn props of an element: its scene-layer props and, for a stage, its travel bar.
+  std::vector<vtkProp*> elementProps(const QString& id);
   void applyHoeShift();
   void layoutViewports();
   void applyMarginColors();

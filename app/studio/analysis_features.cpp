@@ -253,8 +253,10 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   });
   // Progress over the whole export: the analyses (0..1000 of the worker's progress), the
   // figures (1000..1100), writing the file (1100..1200); Cancel stops before the next step.
+  // Shown for File ▸ Export Report… always: right after the save dialog closes the window may
+  // not be active again yet (focus comes back asynchronously), and the check alone skipped it.
   std::unique_ptr<QProgressDialog> progress;
-  if (window_->isVisible() && window_->isActiveWindow()) {
+  if (fromDialog_ || (window_->isVisible() && window_->isActiveWindow())) {
     progress = std::make_unique<QProgressDialog>(tr("Computing the report's analyses…"), tr("Cancel"), 0,
                                                  kReportProgressSteps, window_);
     progress->setObjectName("reportProgress");
@@ -372,7 +374,10 @@ void AnalysisFeatures::exportReportDialog() {
                                                     tr("PDF documents (*.pdf);;HTML pages (*.html)"));
   if (path.isEmpty()) return;
   QString error;
-  if (!exportReport(path, options, &error) && error != tr("cancelled"))
+  fromDialog_ = true;
+  const bool written = exportReport(path, options, &error);
+  fromDialog_ = false;
+  if (!written && error != tr("cancelled"))
     QMessageBox::critical(window_, tr("Export Report"), tr("The report could not be written: %1").arg(error));
 }
 

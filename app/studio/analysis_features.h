@@ -69,6 +69,7 @@ class AnalysisFeatures : public QObject {
   QDockWidget* plotsDock_ = nullptr;
   std::unique_ptr<widgets::Autosaver> autosaver_;
   QString recoveryDir_;
+  bool fromDialog_ = false;  // exportReport() runs for File ▸ Export Report…: show its progress
 };
 
 }  // namespace fovea::studio

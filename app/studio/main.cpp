@@ -215,12 +215,12 @@ int main(int argc, char** argv) {
     settle(300);
   }
   QImage image;
-  if (grab == "view")
-    image = window.sceneView()->renderToImage();
+  if (grab == "view")  // opaque, as on screen (the labels' boxes keep their darkness)
+    image = fovea::studio::opaqueFramebuffer(window.sceneView()->renderToImage());
   else if (grab == "retina")
     image = bench->retinaView()->render(size);
   else if (grab == "kcloud")
-    image = bench->kspaceView()->renderToImage();
+    image = fovea::studio::opaqueFramebuffer(bench->kspaceView()->renderToImage());
   else
     image = window.captureWindow();
   const QString path = parser.value(shotOpt);

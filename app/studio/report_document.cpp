@@ -22,6 +22,7 @@
 #include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
 #include "app/studio/report_tolerance.h"
+#include "app/studio/window_capture.h"
 #include "fovea/version.h"
 #include "model/json_numbers.h"
 #include "model/scene/scene_geometry.h"
@@ -144,7 +145,7 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
 
 QImage capture3d(viz::SceneView* view) {
   QImage img = view->renderToImage();
-  return img.isNull() ? img : img.convertToFormat(QImage::Format_RGB32);
+  return img.isNull() ? img : opaqueFramebuffer(img);  // colours as on screen (window_capture.h)
 }
 
 // Pixels that differ clearly (summed RGB difference above 48 of 765) between two captures.

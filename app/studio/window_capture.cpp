@@ -15,8 +15,9 @@ QImage captureWithOpenGl(QWidget* window) {
   for (QOpenGLWidget* gl : window->findChildren<QOpenGLWidget*>()) {
     if (!gl->isVisible()) continue;
     // Opaque, as the screen shows it: the framebuffer's alpha (text and translucent passes
-    // leave it below 1) must not let the widget grab underneath show through.
-    const QImage content = gl->grabFramebuffer().convertToFormat(QImage::Format_RGB32);
+    // leave it below 1) must neither let the widget grab underneath show through nor lighten
+    // the colours.
+    const QImage content = opaqueFramebuffer(gl->grabFramebuffer());
     if (content.isNull()) continue;
     const QRect target(gl->mapTo(window, QPoint(0, 0)), gl->size());
     painter.drawImage(QRectF(target.topLeft() * 1.0, QSizeF(target.size()) * 1.0), content,
@@ -24,6 +25,19 @@ QImage captureWithOpenGl(QWidget* window) {
   }
   Q_UNUSED(dpr);
   return image;
+}
+
+QImage opaqueFramebuffer(const QImage& grab) {
+  if (grab.isNull() || !grab.hasAlphaChannel()) return grab.convertToFormat(QImage::Format_RGB32);
+  // Same channel values in ARGB order (a premultiplied grab stays premultiplied: no division).
+  QImage argb = grab.convertToFormat(grab.pixelFormat().premultiplied() == QPixelFormat::Premultiplied
+                                         ? QImage::Format_ARGB32_Premultiplied
+                                         : QImage::Format_ARGB32);
+  for (int y = 0; y < argb.height(); ++y) {
+    auto* line = reinterpret_cast<QRgb*>(argb.scanLine(y));
+    for (int x = 0; x < argb.width(); ++x) line[x] |= 0xff000000u;
+  }
+  return argb.convertToFormat(QImage::Format_RGB32);
 }
 
 bool parseWindowSize(const QString& text, QSize* size) {

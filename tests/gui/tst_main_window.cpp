@@ -140,9 +140,9 @@ class TestMainWindow : public QObject {
     QVERIFY(w->sceneView()->scene() == s);
     // Real sizes: the 44 x 36 mm HOE, the HOE's x stage travelling -8..+8 mm (end stops of
     // 0.8 mm radius); the gaze camera's rotation stage is not drawn.
-    auto bounds = [&](const char* id) {
+    auto bounds = [&](const char* id, const char* layer = "scene") {
       std::array<double, 6> b{1e9, -1e9, 1e9, -1e9, 1e9, -1e9};
-      for (vtkProp* p : w->sceneView()->sceneLayer().propsOf(id)) {
+      for (vtkProp* p : w->sceneView()->layer(layer).propsOf(id)) {
         const double* pb = p->GetBounds();
         for (int i = 0; i < 3; ++i) {
           b[2 * i] = std::min(b[2 * i], pb[2 * i]);
@@ -156,10 +156,11 @@ class TestMainWindow : public QObject {
     QCOMPARE(hoe[1], 22.0);
     QCOMPARE(hoe[2], -18.0);
     QCOMPARE(hoe[3], 18.0);
-    const auto stage = bounds("stages[0]");
+    const auto stage = bounds("stages[0]", "stages");                             // the stages have their own layer
     QVERIFY2(std::abs(stage[0] + 8.8) < 1e-3 && std::abs(stage[1] - 8.8) < 1e-3,  // tessellated stops
              qPrintable(QString("stage x from %1 to %2").arg(stage[0]).arg(stage[1])));
-    QVERIFY(w->sceneView()->sceneLayer().propsOf("stages[4]").empty());
+    QVERIFY(w->sceneView()->layer("stages").propsOf("stages[4]").empty());
+    QVERIFY(w->sceneView()->sceneLayer().propsOf("stages[0]").empty());
     QVERIFY(w->messageLog()->entries().first().startsWith("info: Opened the default scene: Optical bench prototype"));
   }
 

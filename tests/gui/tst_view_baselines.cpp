@@ -8,6 +8,7 @@
 #include <QtTest>
 
 #include <QPainter>
+#include <QVBoxLayout>
 
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
@@ -15,6 +16,7 @@
 #include <filesystem>
 
 #include "app/embedded_scene.h"
+#include "app/studio/window_capture.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
@@ -191,6 +193,85 @@ class TestViewBaselines : public QObject {
     view.showStandardView(viz::StandardView::Top);
     QVERIFY(!view.eyeViewMode());
     QVERIFY(view.layer("rays").isVisible() && view.layer("frustum").isVisible() && !view.layer("seen").isVisible());
+  }
+
+  void eyesViewHidesTheStages() {
+    // Looking up a little (pitch 10 deg) the eye's view takes in the micro-OLED above the
+    // plate; its stages' end stops (0.8 mm balls a few cm from the pupil) were big magenta
+    // blobs at the top edge, and the HOE stages' cross showed through the plate.
+    viz::SceneView view;
+    view.resize(960, 640);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    Scene scene = defaultScene();
+    scene.eye.gaze_deg = {0.0, 10.0};
+    view.setScene(scene, true);
+    viz::TraceOverlay overlay(&view);
+    const auto r = traced(scene);
+    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, {});
+    QVERIFY(view.layer("stages").size() > 0 && view.layer("stages").isVisible());
+    view.showStandardView(viz::StandardView::EyeView);
+    QVERIFY(!view.layer("stages").isVisible());
+    // The stage colour, lit or seen through the plate: red and blue well above green.
+    const auto magentaAtTheTop = [&] {
+      const QImage image = view.renderToImage().convertToFormat(QImage::Format_RGB32);
+      const double* vp = view.renderer()->GetViewport();
+      int n = 0;
+      for (int y = 0; y < image.height() / 5; ++y)  // the top fifth of the scene viewport
+        for (int x = 0; x < int(vp[2] * image.width()); ++x) {
+          const QRgb c = image.pixel(x, y);
+          if (qRed(c) > 110 && qBlue(c) > 110 && qGreen(c) < 0.6 * std::min(qRed(c), qBlue(c))) ++n;
+        }
+      return n;
+    };
+    QCOMPARE(magentaAtTheTop(), 0);
+    // The same count with the stages drawn finds them (the check can fail).
+    view.layer("stages").setVisible(true);
+    const int withStages = magentaAtTheTop();
+    qInfo("magenta pixels in the top fifth: %d with the stages shown, 0 hidden", withStages);
+    QVERIFY2(withStages > 200, qPrintable(QString("%1 magenta pixels with the stages shown").arg(withStages)));
+    view.layer("stages").setVisible(false);
+    view.showStandardView(viz::StandardView::Isometric);
+    QVERIFY(view.layer("stages").isVisible());  // leaving the eye's view restores them
+  }
+
+  void windowGrabKeepsTheLabelBoxes() {
+    // The window screenshot (--screenshot, File ▸ Save Screenshot) paints each 3-D view's
+    // framebuffer over the widget grab. The framebuffer's colours are what the screen shows;
+    // its alpha is below 1 on the labels' boxes. The screenshot must show those colours, not
+    // colours divided by alpha (the dark boxes came out light).
+    QWidget window;
+    auto* layout = new QVBoxLayout(&window);
+    layout->setContentsMargins(10, 20, 10, 10);
+    auto* view = new viz::SceneView(&window);
+    layout->addWidget(view);
+    window.resize(980, 670);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    view->setScene(defaultScene(), true);
+    // The framebuffer's own bytes (premultiplied ARGB keeps them as they are).
+    const QImage raw = view->renderToImage().convertToFormat(QImage::Format_ARGB32_Premultiplied);
+    QCOMPARE(view->labelsShown(), 6);
+    const QImage shot = studio::captureWithOpenGl(&window);
+    const QPoint at = view->mapTo(&window, QPoint(0, 0));
+    QCOMPARE(raw.size(), view->size());
+    int translucent = 0, differ = 0;
+    double gray = 0.0;
+    for (int y = 0; y < raw.height(); ++y)
+      for (int x = 0; x < raw.width(); ++x) {
+        const QRgb f = raw.pixel(x, y), s = shot.pixel(at.x() + x, at.y() + y);
+        if (std::abs(qRed(f) - qRed(s)) + std::abs(qGreen(f) - qGreen(s)) + std::abs(qBlue(f) - qBlue(s)) > 6) ++differ;
+        if (qAlpha(f) < 250) {
+          ++translucent;
+          gray += qGray(s);
+        }
+      }
+    qInfo("%d translucent pixels, mean grey %.1f in the screenshot; %d pixels differ", translucent,
+          gray / std::max(1, translucent), differ);
+    // The labels' boxes are there (six labels of ~21 px height) and dark in the screenshot too.
+    QVERIFY2(translucent > 2000, qPrintable(QString("%1 translucent pixels").arg(translucent)));
+    QVERIFY2(gray / translucent < 70.0, qPrintable(QString("mean grey %1 behind the labels").arg(gray / translucent)));
+    QVERIFY2(differ == 0, qPrintable(QString("%1 pixels differ from the framebuffer").arg(differ)));
   }
 
   void retinaView() {
