@@ -329,7 +329,8 @@ nlohmann::json completeObservableParameters(const ObservableDefinition& def, con
           if (!list.empty()) list += ", ";
           list += c;
         }
-        throw std::invalid_argument(key + ": must be one of " + list + ", got " + value.dump());
+        throw std::invalid_argument(
+            std::string(key).append(": must be one of ").append(list).append(", got ").append(value.dump()));
       }
     } else if (!(value.is_number() && std::isfinite(value.get<double>())) &&
                !(value.is_null() && spec->default_value.is_null())) {
