@@ -5,8 +5,10 @@
 # refined trace, quits, and summarises what the studio logged: per move the GUI thread's time,
 # per drawn result the latency from the move that asked for it to the swapped frame.
 # Usage: scripts/measure-drag-latency.sh [STUDIO] [extra studio args, e.g. --follow-gaze]
+# FOVEA_DRAG_RESOLUTION=N (25..100) sets the preference "3-D view resolution while dragging"
+# for the run (default: the studio's default, 50 %).
 set -euo pipefail
-studio=${1:-build/ci/app/fovea-studio}
+studio=${1:-build/default/app/fovea-studio}
 shift || true
 log=$(mktemp)
 home=$(mktemp -d)  # fresh settings: no autosave-recovery question from an earlier run
@@ -15,6 +17,10 @@ Xvfb "$display" -screen 0 1920x1080x24 >/dev/null 2>&1 &
 xvfb=$!
 trap 'kill $xvfb 2>/dev/null || true; rm -rf "$log" "$home"' EXIT
 sleep 1
+if [ -n "${FOVEA_DRAG_RESOLUTION:-}" ]; then
+  mkdir -p "$home/config/FoveatedARStudio"
+  printf '[preferences]\ndragResolutionPercent=%s\n' "$FOVEA_DRAG_RESOLUTION" >"$home/config/FoveatedARStudio/fovea-studio.conf"
+fi
 HOME=$home XDG_CONFIG_HOME=$home/config XDG_DATA_HOME=$home/data XDG_CACHE_HOME=$home/cache \
   DISPLAY=$display FOVEA_LATENCY_LOG=1 "$studio" "$@" 2>"$log" &
 app=$!

@@ -17,6 +17,7 @@
 #include <vtkTextProperty.h>
 
 #include "model/scene/scene_geometry.h"
+#include "viz/render_scale.h"
 
 namespace fovea::viz {
 
@@ -149,20 +150,22 @@ void ElementLabels::layout() {
     double x0, y0, x1, y1;
   };
   std::vector<Box> taken;
-  const double w_per_char = 0.62 * kFontSize, h = kFontSize + 6.0;
+  // Sizes in pixels of the frame being drawn (smaller while a drag draws at reduced resolution).
+  const double px = pixelScale(renderer_);
+  const double w_per_char = 0.62 * kFontSize * px, h = (kFontSize + 6.0) * px;
   for (const Placed& p : onScreen) {
     Eigen::Vector2d dir = p.anchor - centre;
     // Mostly sideways and upwards: labels read best beside an element.
     if (dir.norm() < 1e-6) dir = {0.0, 1.0};
     dir.normalize();
     dir = (dir + Eigen::Vector2d(0.0, 0.35)).normalized();
-    const double w = w_per_char * static_cast<double>(labels_[p.index].text.size()) + 8.0;
+    const double w = w_per_char * static_cast<double>(labels_[p.index].text.size()) + 8.0 * px;
     Eigen::Vector2d at;
     Box box{};
     for (int k = 0; k < 10; ++k) {
-      at = p.anchor + (kLeader_px + k * kStep_px) * dir;
+      at = p.anchor + (kLeader_px + k * kStep_px) * px * dir;
       // Keep the label inside the viewport.
-      at.x() = std::clamp(at.x(), origin[0] + 4.0, origin[0] + size[0] - 4.0);
+      at.x() = std::clamp(at.x(), origin[0] + 4.0 * px, origin[0] + size[0] - 4.0 * px);
       at.y() = std::clamp(at.y(), origin[1] + h, origin[1] + size[1] - h);
       const bool right = dir.x() >= 0.0;
       box = right ? Box{at.x(), at.y() - h / 2, at.x() + w, at.y() + h / 2}
@@ -178,7 +181,7 @@ void ElementLabels::layout() {
     vtkTextActor* t = texts_[p.index];
     t->SetInput(labels_[p.index].text.toUtf8().constData());
     t->GetTextProperty()->SetJustificationToLeft();
-    t->SetDisplayPosition(static_cast<int>(box.x0 + 4.0), static_cast<int>((box.y0 + box.y1) / 2));
+    t->SetDisplayPosition(static_cast<int>(box.x0 + 4.0 * px), static_cast<int>((box.y0 + box.y1) / 2));
     t->VisibilityOn();
     const Eigen::Vector2d end(dir.x() >= 0.0 ? box.x0 : box.x1, (box.y0 + box.y1) / 2);
     // The 2-D mapper draws in viewport pixels: relative to the renderer's origin.

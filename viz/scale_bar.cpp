@@ -20,6 +20,8 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
+#include "viz/render_scale.h"
+
 namespace fovea::viz {
 
 double millimetresPerPixel(vtkRenderer* renderer) {
@@ -92,20 +94,23 @@ void ScaleBar::update() {
   const int* size = host_->GetSize();
   const int* origin = host_->GetOrigin();
   if (!(mmpp > 0.0) || size[0] <= 0) return;
-  length_mm_ = roundScaleLength(120.0 * mmpp);
+  // Pixel sizes of the frame being drawn (smaller while a drag draws at reduced resolution):
+  // the bar's length in millimetres does not change with the resolution.
+  const double s = pixelScale(renderer_);
+  length_mm_ = roundScaleLength(120.0 * s * mmpp);
   const double px = length_mm_ / mmpp;
   // Bar and label in the host's viewport pixels (the 2-D mapper's default coordinates).
-  const double x1 = size[0] - 24.0, x0 = x1 - px, y = std::max(8.0, size[1] * 0.30);
+  const double x1 = size[0] - 24.0 * s, x0 = x1 - px, y = std::max(8.0 * s, size[1] * 0.30), tick = 5.0 * s;
   points_->SetPoint(0, x0, y, 0);
   points_->SetPoint(1, x1, y, 0);
-  points_->SetPoint(2, x0, y - 5, 0);
-  points_->SetPoint(3, x0, y + 5, 0);
-  points_->SetPoint(4, x1, y - 5, 0);
-  points_->SetPoint(5, x1, y + 5, 0);
+  points_->SetPoint(2, x0, y - tick, 0);
+  points_->SetPoint(3, x0, y + tick, 0);
+  points_->SetPoint(4, x1, y - tick, 0);
+  points_->SetPoint(5, x1, y + tick, 0);
   points_->Modified();
   const QString text = QString::number(length_mm_, 'g', 3) + " mm";
   label_->SetInput(text.toUtf8().constData());
-  label_->SetDisplayPosition(origin[0] + static_cast<int>((x0 + x1) / 2), origin[1] + static_cast<int>(y + 8));
+  label_->SetDisplayPosition(origin[0] + static_cast<int>((x0 + x1) / 2), origin[1] + static_cast<int>(y + 8 * s));
 }
 
 }  // namespace fovea::viz

@@ -24,6 +24,7 @@
 #include <vtkProp.h>
 #include <vtkProp3D.h>
 #include <vtkProperty.h>
+#include <vtkRenderStepsPass.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
@@ -197,10 +198,21 @@ void SceneView::prepareDragRendering() {
   applyDragRendering();
 }
 
+void SceneView::setDragRenderScale(double scale) {
+  dragRenderScale_ = std::clamp(std::isfinite(scale) ? scale : 1.0, 0.25, 1.0);
+  applyDragRendering();
+}
+
 void SceneView::applyDragRendering() {
-  const bool peel = !dragRendering();
-  if (renderer()->GetUseDepthPeeling() == (peel ? 1 : 0)) return;
-  renderer()->SetUseDepthPeeling(peel);
+  const bool drag = dragRendering();
+  setRenderScale(drag ? dragRenderScale_ : 1.0);  // repaints when it changes
+  if (renderer()->GetUseDepthPeeling() == (drag ? 0 : 1)) return;
+  renderer()->SetUseDepthPeeling(!drag);
+  // Drag frames blend translucency in drawing order in one pass (VTK's standard steps with
+  // its plain translucent pass); VTK 9.1's order-independent pass washes the stacked HOE
+  // films and the eye out to white on llvmpipe.
+  if (drag && !dragPass_) dragPass_ = vtkSmartPointer<vtkRenderStepsPass>::New();
+  renderer()->SetPass(drag ? dragPass_.Get() : nullptr);
   requestRender();
 }
 

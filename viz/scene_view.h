@@ -29,6 +29,7 @@ class vtkActor;
 class vtkOrientationMarkerWidget;
 class vtkCellPicker;
 class vtkRenderer;
+class vtkRenderStepsPass;
 
 namespace fovea::viz {
 
@@ -101,8 +102,13 @@ class SceneView : public VtkGlWidget {
   // in one pass (VTK's order-independent pass) instead of depth peeling, which on a software
   // renderer costs several full-viewport passes a frame. Off (the resting, refined frame):
   // exact depth-peeled blending. A mouse button held in the view (orbit, pan, zoom, a
-  // handle) draws for speed too.
+  // handle) draws for speed too. Drag frames are also drawn at dragRenderScale() of the
+  // view's resolution and magnified (VtkGlWidget::setRenderScale): llvmpipe's cost is per pixel.
   void setDragRendering(bool on);
+  // The resolution of drag frames, 0.25 .. 1 of the view's in each direction (default 0.5;
+  // Edit ▸ Preferences ▸ "Resolution while dragging").
+  void setDragRenderScale(double scale);
+  double dragRenderScale() const { return dragRenderScale_; }
   // Draws one drag-rendered frame off screen (nothing on screen changes), so the GPU driver
   // compiles its shader variants now rather than on the first frame of the first drag (a
   // software renderer needs ~0.5 s for them). Call once the view shows what a drag will draw.
@@ -149,6 +155,8 @@ class SceneView : public VtkGlWidget {
   Eigen::Vector3d hoeShift_ = Eigen::Vector3d::Zero();
   bool printLook_ = false;
   bool dragRendering_ = false;
+  double dragRenderScale_ = 0.5;
+  vtkSmartPointer<vtkRenderStepsPass> dragPass_;
   bool mouseHeld_ = false;
   bool handlesWereVisible_ = true;
 };

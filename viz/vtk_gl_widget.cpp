@@ -7,14 +7,22 @@
 #include <QSurfaceFormat>
 #include <QWheelEvent>
 
+#include <vtkActor.h>
+#include <vtkActor2D.h>
+#include <vtkActor2DCollection.h>
+#include <vtkActorCollection.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGenericRenderWindowInteractor.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkOpenGLState.h>
+#include <vtkProperty.h>
+#include <vtkProperty2D.h>
 #include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace fovea::viz {
@@ -130,19 +138,80 @@ void VtkGlWidget::paintGL() {
   timer.start();
   inPaint_ = true;
   const int w = toPixels(width()), h = toPixels(height());
-  window_->SetSize(w, h);
+  const int rw = std::clamp(static_cast<int>(std::lround(w * renderScale_)), 1, std::max(1, w));
+  const int rh = std::clamp(static_cast<int>(std::lround(h * renderScale_)), 1, std::max(1, h));
+  window_->SetSize(rw, rh);
+  scaleLineWidths();
   window_->SetIsCurrent(true);
   window_->Render();
-  // Copy VTK's display framebuffer into Qt's framebuffer object for this widget.
+  // Copy VTK's display framebuffer into Qt's framebuffer object for this widget, magnified
+  // (bilinear) when the frame was drawn at a reduced resolution.
   vtkOpenGLState* state = window_->GetState();
   state->PushFramebufferBindings();
   state->vtkglBindFramebuffer(0x8CA9 /*GL_DRAW_FRAMEBUFFER*/, defaultFramebufferObject());
   state->vtkglViewport(0, 0, w, h);
   state->vtkglScissor(0, 0, w, h);
-  window_->BlitDisplayFramebuffer(0, 0, 0, w, h, 0, 0, w, h, 0x00004000 /*GL_COLOR_BUFFER_BIT*/, 0x2600 /*GL_NEAREST*/);
+  const bool reduced = rw != w || rh != h;
+  window_->BlitDisplayFramebuffer(0, 0, 0, rw, rh, 0, 0, w, h, 0x00004000 /*GL_COLOR_BUFFER_BIT*/,
+                                  reduced ? 0x2601 /*GL_LINEAR*/ : 0x2600 /*GL_NEAREST*/);
   state->PopFramebufferBindings();
+  // Picking and display <-> world conversions between frames use the widget's resolution; the
+  // framebuffers keep the reduced size until the next frame asks for another.
+  window_->SetSize(w, h);
+  lastRenderSize_ = QSize(rw, rh);
   inPaint_ = false;
   lastPaintMs_ = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
+}
+
+void VtkGlWidget::setRenderScale(double scale) {
+  scale = std::clamp(std::isfinite(scale) ? scale : 1.0, 0.25, 1.0);
+  if (scale == renderScale_) return;
+  renderScale_ = scale;
+  // VTK sizes text in points at the window's DPI (72: one point a pixel), so text keeps its
+  // size on screen after the magnification.
+  window_->SetDPI(std::max(1, static_cast<int>(std::lround(72.0 * scale))));
+  update();
+}
+
+void VtkGlWidget::scaleLineWidths() {
+  if (renderScale_ == 1.0) {
+    for (auto& [key, e] : scaledWidths_) {
+      float now = 0.0f;
+      if (auto* p = vtkProperty::SafeDownCast(e.property))
+        now = p->GetLineWidth();
+      else if (auto* p2 = vtkProperty2D::SafeDownCast(e.property))
+        now = p2->GetLineWidth();
+      if (now != e.scaled) continue;  // changed by the application meanwhile: keep its width
+      if (auto* p = vtkProperty::SafeDownCast(e.property)) p->SetLineWidth(e.original);
+      if (auto* p2 = vtkProperty2D::SafeDownCast(e.property)) p2->SetLineWidth(e.original);
+    }
+    scaledWidths_.clear();
+    return;
+  }
+  const auto scale = static_cast<float>(renderScale_);
+  auto apply = [&](vtkObject* property, float now, auto set) {
+    auto it = scaledWidths_.find(property);
+    if (it != scaledWidths_.end() && it->second.scaled == now) return;  // already scaled
+    const float scaled = std::min(now, std::max(1.0f, now * scale));    // never below 1 px
+    scaledWidths_[property] = {property, now, scaled};
+    if (scaled != now) set(scaled);
+  };
+  vtkRendererCollection* renderers = window_->GetRenderers();
+  renderers->InitTraversal();
+  while (vtkRenderer* ren = renderers->GetNextItem()) {
+    vtkActorCollection* actors = ren->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* a = actors->GetNextActor()) {
+      vtkProperty* p = a->GetProperty();
+      apply(p, p->GetLineWidth(), [p](float v) { p->SetLineWidth(v); });
+    }
+    vtkActor2DCollection* overlays = ren->GetActors2D();
+    overlays->InitTraversal();
+    while (vtkActor2D* a = overlays->GetNextActor2D()) {
+      vtkProperty2D* p = a->GetProperty();
+      apply(p, p->GetLineWidth(), [p](float v) { p->SetLineWidth(v); });
+    }
+  }
 }
 
 QImage VtkGlWidget::renderToImage() {

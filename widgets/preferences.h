@@ -1,9 +1,9 @@
 #pragma once
 // The studio's preferences, persisted with QSettings ("preferences/..."): how lengths and
 // angles are displayed (plots, analysis summaries, reports), the default ray count of the
-// analyses, the colour theme and the autosave interval. One shared instance; widgets follow
-// changes through changed(). Values are always stored in the model's units (mm, deg);
-// only their display is converted.
+// analyses, the colour theme, the autosave interval and the 3-D view's resolution while dragging. One shared instance;
+// widgets follow changes through changed(). Values are always stored in the model's units (mm, deg); only their display
+// is converted.
 
 #include <QDialog>
 #include <QObject>
@@ -25,6 +25,9 @@ struct PreferenceValues {
   int defaultRays = 1500;  // rays per wavelength of the report dialog (50 .. 1e6); analyses: the registry's
   Theme theme = Theme::System;
   int autosaveSeconds = 5;  // 1 .. 600
+  // The 3-D view's resolution while a hand drags, % of full in each direction (25 .. 100):
+  // drag frames on a software renderer cost per pixel (viz::SceneView::setDragRenderScale).
+  int dragResolutionPercent = 50;
   bool operator==(const PreferenceValues&) const = default;
 };
 
@@ -83,6 +86,7 @@ class PreferencesDialog : public QDialog {
   QSpinBox* rays_ = nullptr;
   QComboBox* theme_ = nullptr;
   QSpinBox* autosave_ = nullptr;
+  QSpinBox* dragResolution_ = nullptr;
 };
 
 }  // namespace fovea::widgets

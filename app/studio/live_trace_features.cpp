@@ -18,6 +18,7 @@
 #include "widgets/gaze_panel.h"
 #include "widgets/handle_controller.h"
 #include "widgets/live_trace.h"
+#include "widgets/preferences.h"
 #include "widgets/retina_view.h"
 #include "widgets/scene_document.h"
 
@@ -64,6 +65,12 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
     window_->statusBar()->showMessage(
         tr("Turned %1: %2 by %3 deg").arg(el, QStringList{"yaw", "pitch", "roll"}.value(ring)).arg(d, 0, 'g', 6), 4000);
   });
+  // The 3-D view's resolution while dragging follows the preference.
+  auto dragResolution = [this] {
+    window_->sceneView()->setDragRenderScale(widgets::Preferences::instance().values().dragResolutionPercent / 100.0);
+  };
+  dragResolution();
+  connect(&widgets::Preferences::instance(), &widgets::Preferences::changed, this, dragResolution);
   display_->setWavelengths(doc->scene().projector.wavelengths_nm);
   requestTrace();
   if (probe_)  // where a scripted drag grabs the yaw slider (scripts/measure-drag-latency.sh)

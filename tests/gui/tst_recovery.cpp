@@ -198,6 +198,7 @@ class TestRecovery : public QObject {
     v.defaultRays = 2500;
     v.theme = Theme::Dark;
     v.autosaveSeconds = 12;
+    v.dragResolutionPercent = 75;
     Preferences::instance().setPersistent(true);
     QSignalSpy changed(&Preferences::instance(), &Preferences::changed);
     Preferences::instance().setValues(v);
@@ -209,6 +210,7 @@ class TestRecovery : public QObject {
     QSettings().setValue("preferences/defaultRays", 2500);
     QSettings().setValue("preferences/theme", "dark");
     QSettings().setValue("preferences/autosaveSeconds", 12);
+    QSettings().setValue("preferences/dragResolutionPercent", 75);
     Preferences::instance().load();
     QCOMPARE(Preferences::instance().values(), v);
     QCOMPARE(Preferences::instance().units().length(2.5), QString("2500 µm"));
@@ -216,8 +218,10 @@ class TestRecovery : public QObject {
     // Nonsense in the settings keeps the defaults.
     QSettings().setValue("preferences/defaultRays", "many");
     QSettings().setValue("preferences/lengthUnit", "furlong");
+    QSettings().setValue("preferences/dragResolutionPercent", 5);  // below the 25 % floor
     Preferences::instance().load();
     QCOMPARE(Preferences::instance().values().defaultRays, 1500);
+    QCOMPARE(Preferences::instance().values().dragResolutionPercent, 50);
     QCOMPARE(Preferences::instance().values().length, LengthUnit::Millimetre);
     Preferences::instance().setValues(PreferenceValues{});
   }

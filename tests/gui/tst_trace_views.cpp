@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkProp.h>
 #include <vtkScalarBarActor.h>
 
@@ -117,6 +118,11 @@ class TestTraceViews : public QObject {
                                       [](const auto& r) { return r->detail == widgets::TraceDetail::Coarse; });
     QCOMPARE(static_cast<int>(coarse), moves);
     QVERIFY(w->sceneView()->dragRendering());  // frames for speed until the refined one
+    // ... drawn at the preference's resolution (default half) and magnified into the view.
+    viz::SceneView* view = w->sceneView();
+    view->renderToImage();
+    const int fullWidth = view->renderWindow()->GetSize()[0], fullHeight = view->renderWindow()->GetSize()[1];
+    QCOMPARE(view->lastRenderSize(), QSize(int(std::lround(fullWidth * 0.5)), int(std::lround(fullHeight * 0.5))));
     for (const auto& r : seen) {
       if (r->detail != widgets::TraceDetail::Coarse) continue;
       QCOMPARE(r->grid, projectorGrid(r->scene.projector, r->settings.coarse_rays));
@@ -130,6 +136,8 @@ class TestTraceViews : public QObject {
     const auto r = bench()->liveTrace()->latest();
     QCOMPARE(r->detail, widgets::TraceDetail::Refined);
     QVERIFY(!w->sceneView()->dragRendering());  // depth-peeled again
+    view->renderToImage();
+    QCOMPARE(view->lastRenderSize(), QSize(fullWidth, fullHeight));  // and at full resolution
     QCOMPARE(r->trace.gaze_deg[0], 15.0);
     QCOMPARE(r->grid, projectorGrid(r->scene.projector, r->settings.rays));
     QCOMPARE(r->shift_source, std::string("search"));

@@ -10,7 +10,13 @@
 #include <QPainter>
 #include <QVBoxLayout>
 
+#include <vtkActor.h>
+#include <vtkActorCollection.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
 #include <vtkScalarBarActor.h>
 
 #include <filesystem>
@@ -19,6 +25,7 @@
 #include "app/studio/window_capture.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
+#include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 #include "tests/gui/image_compare.h"
 #include "viz/element_labels.h"
@@ -233,6 +240,69 @@ class TestViewBaselines : public QObject {
     view.layer("stages").setVisible(false);
     view.showStandardView(viz::StandardView::Isometric);
     QVERIFY(view.layer("stages").isVisible());  // leaving the eye's view restores them
+  }
+
+  void dragFramesAtHalfResolutionKeepTheLook() {
+    // While a hand drags, the view draws at half resolution (blended in one pass) and
+    // magnifies the frame: text, line widths, label boxes and the scale bar scale with it, so
+    // the frame looks as the resting one, only softer, and picking keeps full resolution.
+    viz::SceneView view;
+    view.resize(960, 640);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    const Scene scene = defaultScene();
+    view.setScene(scene, true);
+    viz::TraceOverlay overlay(&view);
+    const auto r = traced(scene);
+    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, {});
+    const QImage rest = view.renderToImage();
+    const QSize full = rest.size();
+    QCOMPARE(view.lastRenderSize(), full);
+    const double barMm = view.scaleBarLengthMm();
+    const Eigen::Vector3d hoe = toVec(scene.hoe.pose.position_mm);
+    const auto hoeAt = view.widgetPositionOf(hoe);
+    QVERIFY(hoeAt);
+    const QString picked = view.elementAt(*hoeAt);
+    QVERIFY2(picked.startsWith("hoe"), qPrintable(picked));  // the plate or one of its layers
+    // Every actor's line width before the drag.
+    std::vector<std::pair<vtkSmartPointer<vtkProperty>, float>> widths;
+    vtkRendererCollection* renderers = view.renderWindow()->GetRenderers();
+    renderers->InitTraversal();
+    while (vtkRenderer* ren = renderers->GetNextItem()) {
+      vtkActorCollection* actors = ren->GetActors();
+      actors->InitTraversal();
+      while (vtkActor* a = actors->GetNextActor())
+        widths.emplace_back(a->GetProperty(), a->GetProperty()->GetLineWidth());
+    }
+    QVERIFY(std::any_of(widths.begin(), widths.end(), [](const auto& w) { return w.second >= 2.0f; }));
+
+    QCOMPARE(view.dragRenderScale(), 0.5);
+    view.setDragRendering(true);
+    const QImage drag = view.renderToImage();
+    QCOMPARE(drag.size(), full);  // magnified into the whole widget
+    QCOMPARE(view.lastRenderSize(), QSize((full.width() + 1) / 2, (full.height() + 1) / 2));
+    QCOMPARE(view.renderWindow()->GetSize()[0], full.width());  // full size between frames
+    QCOMPARE(view.scaleBarLengthMm(), barMm);
+    QCOMPARE(view.labelsShown(), 6);
+    const auto hoeDuring = view.widgetPositionOf(hoe);
+    QVERIFY(hoeDuring && (*hoeDuring - *hoeAt).manhattanLength() < 1e-6);
+    QCOMPARE(view.elementAt(*hoeAt), picked);  // picking at full resolution between frames
+    for (const auto& [p, w] : widths) QCOMPARE(p->GetLineWidth(), std::min(w, std::max(1.0f, w / 2)));
+    const test::ImageDifference d = test::compareImages(drag, rest);
+    drag.save(scratch("actual-drag-frame.png"), "PNG");
+    rest.save(scratch("actual-rest-frame.png"), "PNG");
+    d.diff.save(scratch("diff-drag-frame.png"), "PNG");
+    qInfo("drag frame against the resting one: mean dE %.3f, outliers %.4f", d.mean_dE, d.outlier_fraction);
+    QVERIFY2(d.mean_dE < kMeanLimit && d.outlier_fraction < kOutlierLimit,
+             qPrintable(QString("mean dE %1, outliers %2").arg(d.mean_dE).arg(d.outlier_fraction)));
+
+    // The hand rests: full resolution, the original widths, the same picture as before.
+    view.setDragRendering(false);
+    const QImage again = view.renderToImage();
+    QCOMPARE(view.lastRenderSize(), full);
+    for (const auto& [p, w] : widths) QCOMPARE(p->GetLineWidth(), w);
+    const test::ImageDifference same = test::compareImages(again, rest);
+    QVERIFY2(same.mean_dE < 0.05, qPrintable(QString::number(same.mean_dE)));
   }
 
   void windowGrabKeepsTheLabelBoxes() {
