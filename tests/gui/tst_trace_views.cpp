@@ -34,6 +34,7 @@
 #include "widgets/gaze_panel.h"
 #include "widgets/handle_controller.h"
 #include "widgets/live_trace.h"
+#include "widgets/preferences.h"
 #include "widgets/property_editor.h"
 #include "widgets/retina_view.h"
 #include "widgets/scene_document.h"
@@ -146,6 +147,23 @@ class TestTraceViews : public QObject {
     QVERIFY(bench()->overlay()->stats().rays_drawn > 0);
     QVERIFY(!gaze->findChild<QLabel*>("gazeReadout")->text().contains("refining"));
     QCOMPARE(w->document()->undoStack()->count(), 2);  // follow on, one drag
+  }
+
+  void dragResolutionFollowsThePreference() {
+    // Edit > Preferences > "3-D view resolution while dragging" sets the drag frames' scale.
+    widgets::PreferenceValues v = widgets::Preferences::instance().values();
+    QCOMPARE(w->sceneView()->dragRenderScale(), v.dragResolutionPercent / 100.0);
+    v.dragResolutionPercent = 75;
+    widgets::Preferences::instance().setValues(v);
+    QCOMPARE(w->sceneView()->dragRenderScale(), 0.75);
+    w->sceneView()->setDragRendering(true);
+    w->sceneView()->renderToImage();
+    const int fullWidth = w->sceneView()->renderWindow()->GetSize()[0];
+    QCOMPARE(w->sceneView()->lastRenderSize().width(), int(std::lround(fullWidth * 0.75)));
+    w->sceneView()->setDragRendering(false);
+    v.dragResolutionPercent = 50;
+    widgets::Preferences::instance().setValues(v);
+    QCOMPARE(w->sceneView()->dragRenderScale(), 0.5);
   }
 
   void sliderMoveChangesTheGaze() {
