@@ -105,6 +105,23 @@ std::shared_ptr<widgets::LiveTraceResult> traced(const Scene& scene, std::array<
   return r;
 }
 
+// A 960x640 scene view of `scene` with its ray fans traced (4000 rays per wavelength) and
+// shown with `options`; `exposed` says whether the window came up.
+struct FannedView {
+  viz::SceneView view;
+  viz::TraceOverlay overlay{&view};
+  bool exposed = false;
+  explicit FannedView(const Scene& scene, std::array<double, 2> shift = {0, 0},
+                      const viz::TraceOverlayOptions& options = {}) {
+    view.resize(960, 640);
+    view.show();
+    exposed = QTest::qWaitForWindowExposed(&view);
+    view.setScene(scene, true);
+    const auto r = traced(scene, shift);
+    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, options);
+  }
+};
+
 }  // namespace
 
 class TestViewBaselines : public QObject {
@@ -126,49 +143,33 @@ class TestViewBaselines : public QObject {
   }
 
   void sceneViewWithRayFans() {
-    viz::SceneView view;
-    view.resize(960, 640);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
-    const Scene scene = defaultScene();
-    view.setScene(scene, true);
-    viz::TraceOverlay overlay(&view);
-    const auto r = traced(scene);
-    viz::TraceOverlayOptions o;
-    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, o);
+    FannedView f(defaultScene());
+    QVERIFY(f.exposed);
+    viz::SceneView& view = f.view;
     view.showStandardView(viz::StandardView::Top);
     const QString e = check(view.renderToImage(), "view-rays-top.png");
     QVERIFY2(e.isEmpty(), qPrintable(e));
   }
 
   void sceneViewGazeFollowedWithEfficiencyMap() {
-    viz::SceneView view;
-    view.resize(960, 640);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
     Scene scene = defaultScene();
     scene.eye.gaze_deg = {20.0, 0.0};
-    view.setScene(scene, true);
-    viz::TraceOverlay overlay(&view);
-    const auto r = traced(scene, {3.4, 0.0});  // seed A.4: x_p about 3.4 mm at 20 deg
     viz::TraceOverlayOptions o;
     o.efficiency_map = true;
-    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, o);
+    FannedView f(scene, {3.4, 0.0}, o);  // seed A.4: x_p about 3.4 mm at 20 deg
+    QVERIFY(f.exposed);
+    viz::SceneView& view = f.view;
     view.showStandardView(viz::StandardView::Isometric);
     const QString e = check(view.renderToImage(), "view-effmap-iso-gaze20.png");
     QVERIFY2(e.isEmpty(), qPrintable(e));
   }
 
   void legibleLayoutLabelsAndEyesView() {
-    viz::SceneView view;
-    view.resize(960, 640);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
     const Scene scene = defaultScene();
-    view.setScene(scene, true);
-    viz::TraceOverlay overlay(&view);
-    const auto r = traced(scene);
-    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, {});
+    FannedView f(scene);
+    QVERIFY(f.exposed);
+    viz::SceneView& view = f.view;
+    viz::TraceOverlay& overlay = f.overlay;
     view.renderToImage();
     // The colour bar lives in the right margin, the scene viewport leaves it free.
     QVERIFY(view.legendRenderer()->HasViewProp(overlay.colorBar()));
@@ -206,16 +207,11 @@ class TestViewBaselines : public QObject {
     // Looking up a little (pitch 10 deg) the eye's view takes in the micro-OLED above the
     // plate; its stages' end stops (0.8 mm balls a few cm from the pupil) were big magenta
     // blobs at the top edge, and the HOE stages' cross showed through the plate.
-    viz::SceneView view;
-    view.resize(960, 640);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
     Scene scene = defaultScene();
     scene.eye.gaze_deg = {0.0, 10.0};
-    view.setScene(scene, true);
-    viz::TraceOverlay overlay(&view);
-    const auto r = traced(scene);
-    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, {});
+    FannedView f(scene);
+    QVERIFY(f.exposed);
+    viz::SceneView& view = f.view;
     QVERIFY(view.layer("stages").size() > 0 && view.layer("stages").isVisible());
     view.showStandardView(viz::StandardView::EyeView);
     QVERIFY(!view.layer("stages").isVisible());
@@ -246,15 +242,10 @@ class TestViewBaselines : public QObject {
     // While a hand drags, the view draws at half resolution (blended in one pass) and
     // magnifies the frame: text, line widths, label boxes and the scale bar scale with it, so
     // the frame looks as the resting one, only softer, and picking keeps full resolution.
-    viz::SceneView view;
-    view.resize(960, 640);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
     const Scene scene = defaultScene();
-    view.setScene(scene, true);
-    viz::TraceOverlay overlay(&view);
-    const auto r = traced(scene);
-    overlay.show(scene, r->trace, r->grid, r->hoe_shift_mm, {});
+    FannedView f(scene);
+    QVERIFY(f.exposed);
+    viz::SceneView& view = f.view;
     const QImage rest = view.renderToImage();
     const QSize full = rest.size();
     QCOMPARE(view.lastRenderSize(), full);
