@@ -9,6 +9,8 @@
 #include <algorithm>
 
 #include <QCheckBox>
+#include <QDir>
+#include <QFile>
 #include <QLineEdit>
 #include <QSlider>
 #include <QUndoStack>
@@ -227,6 +229,44 @@ class TestTraceViews : public QObject {
     QCOMPARE(drawn.x(), r->hoe_shift_mm[0]);
     const double* b = w->sceneView()->sceneLayer().propsOf("hoe_layers[1]").front()->GetBounds();
     QVERIFY(std::abs(b[0] - (-22.0 + r->hoe_shift_mm[0])) < 1e-9);
+  }
+
+  void followGazeIsSavedWithTheSceneAndReopened() {
+    // The case: a design saved at 15.5 deg gaze with "HOE follows gaze" on reopened
+    // with FOV 0.0 x 0.0 because the flag was not saved. Now it is part of the scene file.
+    bench()->gazePanel()->setGaze(15.5, 0.0);
+    bench()->gazePanel()->setFollowGaze(true);
+    QVERIFY(bench()->waitForTrace());
+    const auto before = bench()->liveTrace()->latest();
+    QVERIFY2(before->trace.fov_deg.horizontal > 60.0, qPrintable(QString::number(before->trace.fov_deg.horizontal)));
+    const QString path =
+        QDir(QDir::tempPath()).filePath("fovea-follow-gaze-%1.json").arg(QCoreApplication::applicationPid());
+    QVERIFY(w->saveTo(path, false));
+    w->document()->undoStack()->setClean();
+    w.reset();
+
+    w = std::make_unique<studio::MainWindow>();
+    w->resize(1600, 1000);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    QVERIFY(w->openFile(path, false));
+    QVERIFY(bench()->waitForTrace());
+    QFile::remove(path);
+    QVERIFY(bench()->gazePanel()->followGaze());
+    QVERIFY(bench()->gazePanel()->findChild<QCheckBox*>("followGaze")->isChecked());  // the box shows it
+    const auto after = bench()->liveTrace()->latest();
+    QCOMPARE(after->trace.gaze_deg[0], 15.5);
+    // The same travel and FOV as when it was saved (the x_p search is deterministic).
+    QCOMPARE(after->hoe_shift_mm[0], before->hoe_shift_mm[0]);
+    QCOMPARE(after->trace.fov_deg.horizontal, before->trace.fov_deg.horizontal);
+    qInfo("reopened at 15.5 deg: following, x_p %.3f mm, FOV %.1f x %.1f deg", after->hoe_shift_mm[0],
+          after->trace.fov_deg.horizontal, after->trace.fov_deg.vertical);
+    // Without the flag the same gaze gives a far smaller FOV: the reopened numbers are not
+    // the fixed-plate ones.
+    bench()->gazePanel()->setFollowGaze(false);
+    QVERIFY(bench()->waitForTrace());
+    QVERIFY2(bench()->liveTrace()->latest()->trace.fov_deg.horizontal < before->trace.fov_deg.horizontal - 20.0,
+             qPrintable(QString::number(bench()->liveTrace()->latest()->trace.fov_deg.horizontal)));
   }
 
   void dragIsOneUndoStep() {
