@@ -26,6 +26,7 @@
 #include "fovea/version.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
+#include "viz/software_gl.h"
 #include "viz/vtk_gl_widget.h"
 #include "widgets/bench/devices_panel.h"
 #include "widgets/display_panel.h"
@@ -44,6 +45,7 @@ void settle(int ms) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fovea::viz::matchSoftwareRasterizerToAffinity();  // before any OpenGL context
   // VTK's OpenGL2 backend needs a 3.2+ core profile, set before the QApplication exists.
   fovea::viz::installDefaultSurfaceFormat();
   QApplication app(argc, argv);
