@@ -199,7 +199,7 @@ void SceneView::prepareDragRendering() {
 }
 
 void SceneView::setDragRenderScale(double scale) {
-  dragRenderScale_ = std::clamp(std::isfinite(scale) ? scale : 1.0, 0.25, 1.0);
+  dragRenderScale_ = clampRenderScale(scale);
   applyDragRendering();
 }
 

@@ -99,14 +99,15 @@ class SceneView : public VtkGlWidget {
   void setPrintLook(bool on);
   bool printLook() const { return printLook_; }
   // While a hand drags (a slider or a handle): frames drawn for speed — translucency blended
-  // in one pass (VTK's order-independent pass) instead of depth peeling, which on a software
-  // renderer costs several full-viewport passes a frame. Off (the resting, refined frame):
+  // in one pass in drawing order (VTK's render steps with its plain translucent pass; its
+  // order-independent pass washed the HOE films out to white) instead of depth peeling,
+  // which on a software renderer costs several full-viewport passes a frame. Off (the resting, refined frame):
   // exact depth-peeled blending. A mouse button held in the view (orbit, pan, zoom, a
   // handle) draws for speed too. Drag frames are also drawn at dragRenderScale() of the
   // view's resolution and magnified (VtkGlWidget::setRenderScale): llvmpipe's cost is per pixel.
   void setDragRendering(bool on);
   // The resolution of drag frames, 0.25 .. 1 of the view's in each direction (default 0.5;
-  // Edit ▸ Preferences ▸ "Resolution while dragging").
+  // Edit ▸ Preferences ▸ "3-D view resolution while dragging").
   void setDragRenderScale(double scale);
   double dragRenderScale() const { return dragRenderScale_; }
   // Draws one drag-rendered frame off screen (nothing on screen changes), so the GPU driver

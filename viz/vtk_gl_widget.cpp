@@ -163,8 +163,12 @@ void VtkGlWidget::paintGL() {
   lastPaintMs_ = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
 }
 
+double VtkGlWidget::clampRenderScale(double scale) {
+  return std::clamp(std::isfinite(scale) ? scale : 1.0, 0.25, 1.0);
+}
+
 void VtkGlWidget::setRenderScale(double scale) {
-  scale = std::clamp(std::isfinite(scale) ? scale : 1.0, 0.25, 1.0);
+  scale = clampRenderScale(scale);
   if (scale == renderScale_) return;
   renderScale_ = scale;
   // VTK sizes text in points at the window's DPI (72: one point a pixel), so text keeps its
@@ -173,44 +177,44 @@ void VtkGlWidget::setRenderScale(double scale) {
   update();
 }
 
+namespace {
+// The line width of a 3-D or 2-D actor's property (the two classes share no base that has it).
+float lineWidthOf(vtkObject* property) {
+  if (auto* p = vtkProperty::SafeDownCast(property)) return p->GetLineWidth();
+  if (auto* p = vtkProperty2D::SafeDownCast(property)) return p->GetLineWidth();
+  return 0.0f;
+}
+void setLineWidthOf(vtkObject* property, float width) {
+  if (auto* p = vtkProperty::SafeDownCast(property)) p->SetLineWidth(width);
+  if (auto* p = vtkProperty2D::SafeDownCast(property)) p->SetLineWidth(width);
+}
+}  // namespace
+
 void VtkGlWidget::scaleLineWidths() {
   if (renderScale_ == 1.0) {
-    for (auto& [key, e] : scaledWidths_) {
-      float now = 0.0f;
-      if (auto* p = vtkProperty::SafeDownCast(e.property))
-        now = p->GetLineWidth();
-      else if (auto* p2 = vtkProperty2D::SafeDownCast(e.property))
-        now = p2->GetLineWidth();
-      if (now != e.scaled) continue;  // changed by the application meanwhile: keep its width
-      if (auto* p = vtkProperty::SafeDownCast(e.property)) p->SetLineWidth(e.original);
-      if (auto* p2 = vtkProperty2D::SafeDownCast(e.property)) p2->SetLineWidth(e.original);
-    }
+    for (auto& [key, e] : scaledWidths_)  // a width the application changed meanwhile stays
+      if (lineWidthOf(e.property) == e.scaled) setLineWidthOf(e.property, e.original);
     scaledWidths_.clear();
     return;
   }
   const auto scale = static_cast<float>(renderScale_);
-  auto apply = [&](vtkObject* property, float now, auto set) {
+  auto apply = [&](vtkObject* property) {
+    const float now = lineWidthOf(property);
     auto it = scaledWidths_.find(property);
     if (it != scaledWidths_.end() && it->second.scaled == now) return;  // already scaled
     const float scaled = std::min(now, std::max(1.0f, now * scale));    // never below 1 px
     scaledWidths_[property] = {property, now, scaled};
-    if (scaled != now) set(scaled);
+    if (scaled != now) setLineWidthOf(property, scaled);
   };
   vtkRendererCollection* renderers = window_->GetRenderers();
   renderers->InitTraversal();
   while (vtkRenderer* ren = renderers->GetNextItem()) {
     vtkActorCollection* actors = ren->GetActors();
     actors->InitTraversal();
-    while (vtkActor* a = actors->GetNextActor()) {
-      vtkProperty* p = a->GetProperty();
-      apply(p, p->GetLineWidth(), [p](float v) { p->SetLineWidth(v); });
-    }
+    while (vtkActor* a = actors->GetNextActor()) apply(a->GetProperty());
     vtkActor2DCollection* overlays = ren->GetActors2D();
     overlays->InitTraversal();
-    while (vtkActor2D* a = overlays->GetNextActor2D()) {
-      vtkProperty2D* p = a->GetProperty();
-      apply(p, p->GetLineWidth(), [p](float v) { p->SetLineWidth(v); });
-    }
+    while (vtkActor2D* a = overlays->GetNextActor2D()) apply(a->GetProperty());
   }
 }
 

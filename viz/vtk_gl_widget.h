@@ -57,6 +57,8 @@ class VtkGlWidget : public QOpenGLWidget {
   // never see the reduced one. 1 (the default): full resolution.
   void setRenderScale(double scale);
   double renderScale() const { return renderScale_; }
+  // The scale setRenderScale() uses for `scale`: clamped to 0.25 .. 1, 1 for NaN or infinity.
+  static double clampRenderScale(double scale);
   // The size of the last frame VTK drew (device pixels): the widget's, times renderScale().
   QSize lastRenderSize() const { return lastRenderSize_; }
 
