@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build imagemagick ccache pkg-config git
+  build-essential cmake ninja-build mold imagemagick ccache pkg-config git
   qt6-base-dev libqt6opengl6-dev qt6-svg-dev qt6-charts-dev
   libvtk9-dev libopencv-dev libeigen3-dev libopenimageio-dev openimageio-tools
   libglm-dev libusb-1.0-0-dev libgtest-dev libbenchmark-dev

@@ -10,7 +10,17 @@ modification time (a package upgrade changes those). Only clean results are stor
 that has findings, or one whose inputs were never checked (a fresh machine, a changed header,
 an unbuilt object without a dependency log), is always run through clang-tidy.
 
-Usage: tidy_cached.py --build build/default [--jobs N] [--cache DIR] FOLDER...
+Which units: with --all, every unit below the folders. Otherwise only what changed since a
+base commit (see choose_base): each changed .cpp's own unit, and for each changed header one
+unit that reads it (its sibling .cpp, else the first unit whose dependency log names it), so
+every changed file is looked at once and a header's findings are reported through that unit
+(HeaderFilterRegex). A change of .clang-tidy, of this script or an unknown base means all
+units. What the changed-files pass can miss (an unchanged .cpp whose findings appear only with
+a changed header) is what `scripts/lint.sh --all` is for: before a release and weekly
+(.ci/weekly). Measured on two cores with an empty cache: 9-53 s per unit, ~35 min for all of
+model/ (docs/platform.md, "Timings").
+
+Usage: tidy_cached.py --build build/default [--jobs N] [--cache DIR] [--all | --base REV] FOLDER...
 Exit status 1 when any unit has a finding (checks are errors), 0 otherwise.
 """
 import argparse
@@ -60,12 +70,67 @@ def file_digest(path):
     return _file_hashes[path]
 
 
+def git(*args):
+    r = subprocess.run(["git", "-C", ROOT] + list(args), capture_output=True, text=True)
+    return r.stdout.strip() if r.returncode == 0 else None
+
+
+def choose_base(explicit):
+    """(commit, how) to diff against: --base REV / $FOVEA_TIDY_BASE; else the merge base with
+    the branch's upstream when HEAD is not already on it; else the last commit at which a full
+    clean pass was recorded (scripts/tidy-clean-commit, written by `lint.sh --all --record`)."""
+    if explicit:
+        return git("rev-parse", "--verify", explicit + "^{commit}"), "given"
+    upstream = git("rev-parse", "--verify", "--quiet", "@{upstream}")
+    head = git("rev-parse", "HEAD")
+    if upstream and head and upstream != head:
+        mb = git("merge-base", "HEAD", upstream)
+        if mb and mb != head:
+            return mb, "merge base with the upstream branch"
+    try:
+        with open(os.path.join(ROOT, "scripts", "tidy-clean-commit")) as f:
+            rec = f.read().split()[0]
+        return git("rev-parse", "--verify", "--quiet", rec + "^{commit}"), \
+            "last full clean pass (scripts/tidy-clean-commit)"
+    except (OSError, IndexError):
+        return None, "no recorded clean pass"
+
+
+def changed_files(base):
+    """Paths (relative to ROOT) changed since base, the working tree's edits and untracked files included."""
+    out = git("diff", "--name-only", base) or ""
+    untracked = git("ls-files", "--others", "--exclude-standard") or ""
+    return {p for p in (out + "\n" + untracked).splitlines() if p}
+
+
+def select_changed(units, deps_of, changed):
+    """The units that look at every changed file once (see the module docstring)."""
+    by_file = {os.path.relpath(os.path.abspath(e["file"]), ROOT): e for e in units}
+    chosen = {}
+    for rel in sorted(changed):
+        if rel in by_file:
+            chosen[rel] = by_file[rel]
+        elif rel.endswith(".h"):
+            sibling = rel[:-2] + ".cpp"
+            if sibling in by_file:
+                chosen.setdefault(sibling, by_file[sibling])
+                continue
+            for urel, e in sorted(by_file.items()):
+                if any(os.path.normpath(p) == os.path.join(ROOT, rel) for p in deps_of(e)):
+                    chosen.setdefault(urel, e)
+                    break
+    return list(chosen.values())
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build/default")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     ap.add_argument("--cache", default=os.environ.get("FOVEA_TIDY_CACHE",
                                                       os.path.expanduser("~/.cache/fovea-clang-tidy")))
+    ap.add_argument("--all", action="store_true", help="every unit, not only the changed files")
+    ap.add_argument("--base", default=os.environ.get("FOVEA_TIDY_BASE"),
+                    help="commit to diff against (default: see choose_base)")
     ap.add_argument("folders", nargs="+")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
@@ -85,6 +150,22 @@ def main():
         return args[args.index("-o") + 1] if "-o" in args else None
 
     deps = ninja_deps(build, [o for o in map(objects_of, units) if o])
+    if not a.all:
+        base, how = choose_base(a.base)
+        changed = changed_files(base) if base else None
+        always = {".clang-tidy", "scripts/tidy_cached.py"}
+        if changed is None or changed & always:
+            why = how if changed is None else "the tidy configuration changed"
+            print(f"tidy: all units ({why})")
+        else:
+            total = len(units)
+            # Build-tree paths in the dependency log are relative to the build folder.
+            units = select_changed(units, lambda e: [p if os.path.isabs(p) else os.path.join(build, p)
+                                                     for p in deps.get(objects_of(e)) or []], changed)
+            print(f"tidy: {len(changed)} files changed since {base[:10]} ({how}); {len(units)} of "
+                  f"{total} units look at them (scripts/lint.sh --all checks every unit)")
+            if not units:
+                return 0
     os.makedirs(a.cache, exist_ok=True)
     todo, cached = [], 0
     for e in units:
