@@ -63,8 +63,8 @@ double refractiveIndex(const OpticalGlass& glass, double wavelength_nm) {
 }
 
 double abbeNumberD(const OpticalGlass& glass) {
-  return (refractiveIndex(glass, kFraunhoferD_nm) - 1.0) /
-         (refractiveIndex(glass, kFraunhoferF_nm) - refractiveIndex(glass, kFraunhoferC_nm));
+  return (refractiveIndex(glass, kFraunhoferDNm) - 1.0) /
+         (refractiveIndex(glass, kFraunhoferFNm) - refractiveIndex(glass, kFraunhoferCNm));
 }
 
 }  // namespace fovea

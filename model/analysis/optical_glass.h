@@ -26,9 +26,9 @@ class UnknownGlassError : public std::invalid_argument {
 };
 
 // Fraunhofer lines of the Abbe number V_d = (n_d - 1) / (n_F - n_C).
-constexpr double kFraunhoferD_nm = 587.5618;  // helium d
-constexpr double kFraunhoferF_nm = 486.1327;  // hydrogen F
-constexpr double kFraunhoferC_nm = 656.2725;  // hydrogen C
+constexpr double kFraunhoferDNm = 587.5618;  // helium d
+constexpr double kFraunhoferFNm = 486.1327;  // hydrogen F
+constexpr double kFraunhoferCNm = 656.2725;  // hydrogen C
 
 // Every glass the catalogue knows, in a fixed order.
 const std::vector<OpticalGlass>& opticalGlasses();

@@ -32,7 +32,7 @@ class TestOpticalGlass : public QObject {
     QFETCH(int, n_d_digits);
     QFETCH(double, v_d);
     const OpticalGlass& g = findOpticalGlass(glass.toStdString());
-    const double n = refractiveIndex(g, kFraunhoferD_nm);
+    const double n = refractiveIndex(g, kFraunhoferDNm);
     const double v = abbeNumberD(g);
     // tolerance = half a unit of the last printed digit
     QVERIFY2(std::abs(n - n_d) <= 0.5 * std::pow(10.0, -n_d_digits), qPrintable(QString::number(n, 'f', 6)));
