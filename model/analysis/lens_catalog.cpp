@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/analysis/optical_glass.h"
 #include "model/io/json_input.h"
 
 namespace fovea {
@@ -35,11 +36,17 @@ std::vector<StockLens> parseLensCatalog(std::string_view text, const std::string
     l.part = e.value("part", "lens " + std::to_string(i));
     l.vendor = e.value("vendor", "");
     l.shape = e.value("shape", "");
-    l.glass = e.value("glass", "N-BK7");
     l.focal_length_mm = number("focal_length_mm", true, 0);
     l.diameter_mm = number("diameter_mm", true, 0);
     l.center_thickness_mm = number("center_thickness_mm", false, 3.0);
-    if (l.glass != "N-BK7") throw LensCatalogError(at + ".glass: unknown glass \"" + l.glass + "\" (known: N-BK7)");
+    if (!e.contains("glass")) throw LensCatalogError(at + ".glass: missing (known: " + knownGlassNames() + ")");
+    if (!e["glass"].is_string()) throw LensCatalogError(at + ".glass: must be a glass name");
+    l.glass = e["glass"].get<std::string>();
+    try {
+      (void)findOpticalGlass(l.glass);
+    } catch (const UnknownGlassError& err) {
+      throw LensCatalogError(at + ".glass: " + err.what());
+    }
     out.push_back(l);
   }
   if (out.empty()) throw LensCatalogError(source + ": the catalogue lists no lens");
@@ -59,12 +66,7 @@ std::vector<StockLens> defaultLensCatalog() {
 }
 
 double glassIndex(const std::string& glass, double wavelength_nm) {
-  (void)glass;  // only N-BK7 passes the catalogue loader
-  // Schott N-BK7 Sellmeier, lambda in um.
-  const double l2 = (wavelength_nm * 1e-3) * (wavelength_nm * 1e-3);
-  const double n2 = 1.0 + 1.03961212 * l2 / (l2 - 0.00600069867) + 0.231792344 * l2 / (l2 - 0.0200179144) +
-                    1.01046945 * l2 / (l2 - 103.560653);
-  return std::sqrt(n2);
+  return refractiveIndex(findOpticalGlass(glass), wavelength_nm);
 }
 
 }  // namespace fovea

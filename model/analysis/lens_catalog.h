@@ -22,12 +22,15 @@ class LensCatalogError : public std::runtime_error {
 };
 
 // Parses a catalogue; throws LensCatalogError "<source>: lenses[3].focal_length_mm: must be > 0".
+// Every lens names its glass ("glass": one of knownGlassNames()); an unknown or missing one is
+// an error naming it.
 std::vector<StockLens> parseLensCatalog(std::string_view text, const std::string& source);
 std::vector<StockLens> loadLensCatalogFile(const std::filesystem::path& path);
 const char* defaultLensCatalogJson();
 std::vector<StockLens> defaultLensCatalog();
 
-// Refractive index of a catalogue glass (Sellmeier; N-BK7 from the Schott datasheet).
+// Refractive index of a catalogue glass at `wavelength_nm` (Sellmeier, model/analysis/
+// optical_glass.h); throws UnknownGlassError naming a glass it does not know.
 double glassIndex(const std::string& glass, double wavelength_nm);
 
 }  // namespace fovea

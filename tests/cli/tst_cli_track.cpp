@@ -51,7 +51,7 @@ class TestCliTrack : public QObject {
       for (const char* k :
            {"index", "found", "confidence", "centre_px", "ellipse", "glints_px", "time_ms", "subset", "truth", "error"})
         QVERIFY2(f.contains(k), k);
-      QVERIFY(f["time_ms"].get<double>() >= 0);
+      QVERIFY(f["time_ms"].is_number());  // a timing: its value belongs to benchmarks/
       if (f["subset"] == "closed") {
         ++closed;
         QCOMPARE(f["found"].get<bool>(), false);

@@ -122,7 +122,10 @@ class TestVirtualCalibration : public QObject {
     const double shift = (oa->pairs[20].dst - ob->pairs[20].dst).norm();
     qInfo("HOE 0 -> 2 mm moved the board by %.1f px", shift);
     QVERIFY(shift > 10.0);
-    QVERIFY(session.record("b")->discarded_frames >= 0);
+    // The frame of "b" was exposed with the HOE at its target, after the frame of "a".
+    QVERIFY(std::abs(session.record("b")->positions.at("hoe.x") - 2.0) < 1e-6);
+    QVERIFY(std::abs(session.record("a")->positions.at("hoe.x") - 0.0) < 1e-6);
+    QVERIFY(session.record("b")->sequence > session.record("a")->sequence);
   }
 
   void aStillBenchIsRenderedOnceAndTheEyesGazeChangesNothing() {

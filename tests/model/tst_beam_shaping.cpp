@@ -74,31 +74,45 @@ class TestBeamShaping : public QObject {
     QVERIFY(evaluateSpots(further, PlacedLens{lens, {d0, 0.0, 0.0}}, thin).rms_spot_um > rms);
   }
 
+  void realThickLensFocusesFromItsPrincipalPlanes_data() {
+    QTest::addColumn<QString>("glass");
+    QTest::addColumn<double>("wavelength_nm");
+    QTest::newRow("N-BK7 d line") << "N-BK7" << 587.6;
+    QTest::newRow("N-BK7 460") << "N-BK7" << 460.0;
+    QTest::newRow("UVFS 660") << "UVFS" << 660.0;
+    QTest::newRow("N-SF11 660") << "N-SF11" << 660.0;
+    QTest::newRow("N-SF11 460") << "N-SF11" << 460.0;
+  }
   void realThickLensFocusesFromItsPrincipalPlanes() {
     // Plano-convex (curved side to the projector), thickness t, index n: the front
     // principal plane H is at the curved vertex, the back one H' at t (n-1)/n behind it.
-    // The Gaussian lens law from H/H' must hold for the real-surface trace on axis.
-    const double d0 = 20.0, f = 50.0, t = 5.3, zr = 500.0, w0 = 0.6 / 1.1774100225154747, zw = 150.0;
-    const double n = glassIndex("N-BK7", 587.6);
+    // The Gaussian lens law from H/H' must hold for the real-surface trace on axis. The
+    // radius is R = (n_d - 1) f (f catalogued at the d line), so at another wavelength the
+    // focal length is f (n_d - 1)/(n - 1) with the lens glass' own dispersion (N-SF11 at
+    // 460 nm: 48.13 mm, where N-BK7 gives 49.27 mm; the 0.2 % bound tells them apart).
+    QFETCH(QString, glass);
+    QFETCH(double, wavelength_nm);
+    const double d0 = 20.0, f_d = 50.0, t = 5.3, zr = 500.0, w0 = 0.6 / 1.1774100225154747, zw = 150.0;
+    const double n = glassIndex(glass.toStdString(), wavelength_nm);
+    const double f = f_d * (glassIndex(glass.toStdString(), 587.6) - 1) / (n - 1);
     const double h_front = d0 - t / 2, h_back = h_front + t * (n - 1) / n;
     const double s = -(zw - h_front);
     const double s_img = f + f * f * (s - f) / ((s - f) * (s - f) + zr * zr);
     const double mag = f / std::sqrt((s - f) * (s - f) + zr * zr);
     StockLens lens;
     lens.shape = "plano-convex";
-    lens.focal_length_mm = f;
+    lens.glass = glass.toStdString();
+    lens.focal_length_mm = f_d;
     lens.diameter_mm = 25.4;
     lens.center_thickness_mm = t;
     Scene mono = squareBench(h_back + s_img);
-    mono.projector.wavelengths_nm = {587.6};
+    mono.projector.wavelengths_nm = {wavelength_nm};
     const double rms = evaluateSpots(mono, PlacedLens{lens, {d0, 0.0, 0.0}}, {1, 1}).rms_spot_um;
     // 1 mm beam at f/50: spherical aberration is negligible, so the paraxial result holds.
     QVERIFY2(std::abs(rms - 1e3 * std::sqrt(2.0) * mag * w0 / 2) < 2e-3 * rms, qPrintable(QString::number(rms)));
     // Off axis (decentred lens) the real lens' zonal power differs from the ideal thin lens.
-    Scene wide = mono;
-    const double on = rms;
-    const double off = evaluateSpots(wide, PlacedLens{lens, {d0, 9.0, 0.0}}, {1, 1}).rms_spot_um;
-    QVERIFY(std::isfinite(off) && off > on);
+    const double off = evaluateSpots(mono, PlacedLens{lens, {d0, 9.0, 0.0}}, {1, 1}).rms_spot_um;
+    QVERIFY(std::isfinite(off) && off > rms);
   }
 
   void optimiserBeatsTheUnshapedBeam() {
@@ -160,7 +174,6 @@ class TestBeamShaping : public QObject {
     }
     QVERIFY(std::abs(biconvexRadiusMm(f, n, 1e-9) - 2 * (n - 1) * f) < 1e-6);
   }
-  void bk7IndexAtTheDLine() { QVERIFY(std::abs(glassIndex("N-BK7", 587.6) - 1.5168) < 2e-4); }
 };
 
 QTEST_GUILESS_MAIN(TestBeamShaping)

@@ -32,8 +32,11 @@ bool AnalysisRunner::start(const QString& id, const Scene& scene, const Analysis
   base.sceneName = QString::fromStdString(scene.name);
   base.sceneText = serializeScene(scene);
   const Scene snapshot = scene;
+  Evaluator evaluate = evaluator_ ? evaluator_
+                                  : Evaluator([](const QString& a, const Scene& s, const AnalysisParams& p,
+                                                 const StudyControl& c) { return runAnalysis(a, s, p, c); });
 
-  worker_ = QThread::create([this, generation, cancelFlag, lastPermille, base, snapshot]() mutable {
+  worker_ = QThread::create([this, generation, cancelFlag, lastPermille, base, snapshot, evaluate]() mutable {
     QElapsedTimer clock;
     clock.start();
     StudyControl control;
@@ -51,7 +54,7 @@ bool AnalysisRunner::start(const QString& id, const Scene& scene, const Analysis
     };
     QString kind = "finished", message;
     try {
-      std::optional<nlohmann::json> out = runAnalysis(base.id, snapshot, base.params, control);
+      std::optional<nlohmann::json> out = evaluate(base.id, snapshot, base.params, control);
       if (out)
         base.json = std::make_shared<const nlohmann::json>(std::move(*out));
       else

@@ -12,6 +12,7 @@
 #include <QThread>
 
 #include <atomic>
+#include <functional>
 #include <memory>
 
 #include "widgets/analyses/analysis_catalog.h"
@@ -41,6 +42,13 @@ class AnalysisRunner : public QObject {
   // Blocks (processing events) until idle or `timeoutMs`; true when idle.
   bool waitForIdle(int timeoutMs);
 
+  // What a run calls on its worker thread: runAnalysis() unless replaced. A test hook: a test
+  // wraps runAnalysis() in a gate (it blocks until the test releases it) to cancel a run at a
+  // known point without sleeping. Takes effect from the next start(); nullptr restores it.
+  using Evaluator = std::function<std::optional<nlohmann::json>(
+      const QString& id, const Scene& scene, const AnalysisParams& params, const StudyControl& control)>;
+  void setEvaluator(Evaluator evaluator) { evaluator_ = std::move(evaluator); }
+
  signals:
   void started(const QString& id);
   void progress(const QString& id, double fraction);
@@ -52,6 +60,7 @@ class AnalysisRunner : public QObject {
  private:
   void deliver(int generation, const QString& kind, const AnalysisResult& result, const QString& message);
 
+  Evaluator evaluator_;
   QPointer<QThread> worker_;
   std::shared_ptr<std::atomic<bool>> cancel_;
   std::shared_ptr<std::atomic<int>> lastProgressPermille_;
