@@ -14,7 +14,7 @@ Which units: with --all, every unit below the folders. Otherwise only what chang
 base commit (see choose_base): each changed .cpp's own unit, and for each changed header one
 unit that reads it (its sibling .cpp, else the first unit whose dependency log names it), so
 every changed file is looked at once and a header's findings are reported through that unit
-(HeaderFilterRegex). A change of .clang-tidy, of this script or an unknown base means all
+(HeaderFilterRegex). A change of .clang-tidy or an unknown base means all
 units. What the changed-files pass can miss (an unchanged .cpp whose findings appear only with
 a changed header) is what `scripts/lint.sh --all` is for: before a release and weekly
 (.ci/weekly). Measured on two cores with an empty cache: 9-53 s per unit, ~35 min for all of
@@ -153,7 +153,7 @@ def main():
     if not a.all:
         base, how = choose_base(a.base)
         changed = changed_files(base) if base else None
-        always = {".clang-tidy", "scripts/tidy_cached.py"}
+        always = {".clang-tidy"}  # what the checks are; the script only chooses units
         if changed is None or changed & always:
             why = how if changed is None else "the tidy configuration changed"
             print(f"tidy: all units ({why})")
