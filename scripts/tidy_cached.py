@@ -80,7 +80,8 @@ def choose_base(explicit):
     the branch's upstream when HEAD is not already on it; else the last commit at which a full
     clean pass was recorded (scripts/tidy-clean-commit, written by `lint.sh --all --record`)."""
     if explicit:
-        return git("rev-parse", "--verify", explicit + "^{commit}"), "given"
+        commit = git("rev-parse", "--verify", "--quiet", explicit + "^{commit}")
+        return commit, "given" if commit else f"given base {explicit} not found"
     upstream = git("rev-parse", "--verify", "--quiet", "@{upstream}")
     head = git("rev-parse", "HEAD")
     if upstream and head and upstream != head:
@@ -150,6 +151,12 @@ def main():
         return args[args.index("-o") + 1] if "-o" in args else None
 
     deps = ninja_deps(build, [o for o in map(objects_of, units) if o])
+
+    def inputs_of(e):
+        """The unit's inputs from the dependency log as absolute paths (None if never built);
+        the log names build-tree files relative to the build folder."""
+        inputs = deps.get(objects_of(e))
+        return None if inputs is None else [p if os.path.isabs(p) else os.path.join(build, p) for p in inputs]
     if not a.all:
         base, how = choose_base(a.base)
         changed = changed_files(base) if base else None
@@ -159,9 +166,7 @@ def main():
             print(f"tidy: all units ({why})")
         else:
             total = len(units)
-            # Build-tree paths in the dependency log are relative to the build folder.
-            units = select_changed(units, lambda e: [p if os.path.isabs(p) else os.path.join(build, p)
-                                                     for p in deps.get(objects_of(e)) or []], changed)
+            units = select_changed(units, lambda e: inputs_of(e) or [], changed)
             print(f"tidy: {len(changed)} files changed since {base[:10]} ({how}); {len(units)} of "
                   f"{total} units look at them (scripts/lint.sh --all checks every unit)")
             if not units:
@@ -169,16 +174,14 @@ def main():
     os.makedirs(a.cache, exist_ok=True)
     todo, cached = [], 0
     for e in units:
-        obj = objects_of(e)
-        inputs = deps.get(obj)
+        inputs = inputs_of(e)
         key = None
         if inputs:
             h = hashlib.sha256()
             h.update(tidy_version.encode())
             h.update(config)
             h.update(e["command"].replace(ROOT, "<src>").encode())
-            for p in sorted(set(inputs) | {e["file"]}):
-                full = p if os.path.isabs(p) else os.path.join(build, p)
+            for full in sorted(set(inputs) | {e["file"]}):
                 h.update(os.path.relpath(full, ROOT).encode() if full.startswith(ROOT) else full.encode())
                 h.update(file_digest(os.path.normpath(full)).encode())
             key = h.hexdigest()
