@@ -4,7 +4,6 @@
 //   to its ray spacing, docs/benchmarks.md "Ray count vs FOV error").
 #include <benchmark/benchmark.h>
 
-#include <fstream>
 #include <map>
 #include <optional>
 #include <string>
@@ -14,6 +13,7 @@
 #include "app/embedded_scene.h"
 #include "model/analysis/fov_edges.h"
 #include "model/analysis/gaze_studies.h"
+#include "model/analysis/tolerance_analysis.h"
 #include "model/analysis/tolerance_run.h"
 #include "model/analysis/tolerance_spec.h"
 #include "model/analysis/tolerance_trial.h"
@@ -74,13 +74,13 @@ void BM_Sweep41GazesEdges(benchmark::State& state) {
 }
 BENCHMARK(BM_Sweep41GazesEdges)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// One tolerance trial of resources/tolerance/prototype-tolerance.json, one core:
+// One tolerance trial of the default spec (resources/tolerance/prototype-tolerance.json, compiled
+// in), one core:
 // range(0) = 0 refind (x_p re-found per gaze), 1 fixed.
 void BM_ToleranceTrial(benchmark::State& state) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const fovea::Scene s = prototype();
-  std::ifstream f(std::string(FOVEA_SOURCE_DIR) + "/resources/tolerance/prototype-tolerance.json");
-  nlohmann::json j = nlohmann::json::parse(f);
+  nlohmann::json j = nlohmann::json::parse(fovea::analysis::defaultToleranceSpecText());
   j["compensator"] = state.range(0) ? "fixed" : "refind";
   const fovea::ToleranceSpec spec = fovea::parseToleranceSpec(j);
   const fovea::FovEvaluator eval = fovea::toleranceEvaluator(spec);

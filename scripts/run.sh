@@ -6,8 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/fovea-ccache}"
-export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-5G}"
+source scripts/ccache-env.sh
 cmake --preset default >/dev/null
 cmake --build --preset default --target fovea-studio fovea-cli
 studio=build/default/app/fovea-studio

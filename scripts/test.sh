@@ -6,9 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/fovea-ccache}"
-# Relative paths in the cache key: a fresh clone elsewhere reuses earlier compilations.
-export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-5G}"
+source scripts/ccache-env.sh
 start=$(date +%s)
 # Configure, build, test (CMakePresets.json workflow "default").
 xvfb-run -a -s "-screen 0 1920x1080x24" cmake --workflow --preset default

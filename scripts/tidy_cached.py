@@ -123,6 +123,37 @@ def select_changed(units, deps_of, changed):
     return list(chosen.values())
 
 
+def per_file_database(db):
+    """The compile database clang-tidy needs: one entry per source file. A unity batch
+    (cmake/FoveaBuildSpeed.cmake: a generated file of `#include "model/x.cpp"` lines) becomes one
+    entry per source it includes, with the batch's flags and object (whose dependency log covers
+    them all); the precompiled-header flags are dropped (GCC's .gch means nothing to clang, and a
+    unit must include what it uses without the PCH)."""
+    out = []
+    for e in db:
+        args = shlex.split(e["command"]) if "command" in e else list(e["arguments"])
+        cleaned, skip = [], False
+        for i, arg in enumerate(args):
+            if skip:
+                skip = False
+                continue
+            if arg == "-include" and i + 1 < len(args) and args[i + 1].endswith("cmake_pch.hxx"):
+                skip = True
+                continue
+            if arg == "-Winvalid-pch":
+                continue
+            cleaned.append(arg)
+        obj = cleaned[cleaned.index("-o") + 1] if "-o" in cleaned else None
+        sources = [e["file"]]
+        if "/unity/" in e["file"]:
+            with open(e["file"]) as f:
+                sources = [os.path.join(ROOT, line.split('"')[1]) for line in f if line.startswith("#include \"")]
+        for src in sources:
+            a = [src if x == e["file"] else x for x in cleaned]
+            out.append({"directory": e["directory"], "file": src, "command": shlex.join(a), "object": obj})
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build/default")
@@ -136,7 +167,11 @@ def main():
     a = ap.parse_args()
     build = os.path.abspath(a.build)
     with open(os.path.join(build, "compile_commands.json")) as f:
-        db = json.load(f)
+        db = per_file_database(json.load(f))
+    tidy_db = os.path.join(build, "tidy")
+    os.makedirs(tidy_db, exist_ok=True)
+    with open(os.path.join(tidy_db, "compile_commands.json"), "w") as f:
+        json.dump([{k: e[k] for k in ("directory", "file", "command")} for e in db], f, indent=1)
     prefixes = tuple(os.path.join(ROOT, d.strip("/")) + os.sep for d in a.folders)
     units = [e for e in db if os.path.abspath(e["file"]).startswith(prefixes)]
     if not units:
@@ -147,8 +182,7 @@ def main():
         config = f.read()
 
     def objects_of(e):
-        args = shlex.split(e["command"]) if "command" in e else e["arguments"]
-        return args[args.index("-o") + 1] if "-o" in args else None
+        return e["object"]
 
     deps = ninja_deps(build, [o for o in map(objects_of, units) if o])
 
@@ -193,7 +227,7 @@ def main():
     def run(item):
         path, key = item
         t0 = time.time()
-        r = subprocess.run(["clang-tidy", "-p", build, "--quiet", "--warnings-as-errors=*",
+        r = subprocess.run(["clang-tidy", "-p", tidy_db, "--quiet", "--warnings-as-errors=*",
                             "--extra-arg=-Wno-unknown-warning-option", path],
                            capture_output=True, text=True)
         clean = r.returncode == 0

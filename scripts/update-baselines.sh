@@ -4,9 +4,10 @@
 # under Xvfb with FOVEA_UPDATE_BASELINES=1. Look at the PNGs before committing them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
+source scripts/ccache-env.sh
 cmake --preset default >/dev/null
 cmake --build --preset default --target gui_tst_view_baselines
-FOVEA_UPDATE_BASELINES=1 FOVEA_TEST_TMP="$PWD/build/default/tests/tmp" \
-  xvfb-run -a -s "-screen 0 1920x1080x24" build/default/tests/gui_tst_view_baselines
+# Through CTest: it gives the test its paths (FOVEA_SOURCE_DIR, FOVEA_TEST_TMP: tests/CMakeLists.txt).
+FOVEA_UPDATE_BASELINES=1 xvfb-run -a -s "-screen 0 1920x1080x24" \
+  ctest --test-dir build/default -R '^gui[.]tst_view_baselines$' --output-on-failure
 git status --short tests/baselines

@@ -7,6 +7,7 @@
 #include <QString>
 #include <QTemporaryDir>
 #include <QtGlobal>
+#include "tests/test_paths.h"
 
 #include <filesystem>
 #include <fstream>

@@ -99,7 +99,7 @@ long hex4(std::string_view t, std::size_t i) {
   return v;
 }
 
-struct Frame {
+struct ScanFrame {
   bool object = false;
   bool expect_key = false;
   std::unordered_map<std::string, std::size_t> keys;  // decoded key -> byte of its opening quote
@@ -112,7 +112,7 @@ std::variant<std::monostate, JsonInputError> scan(std::string_view t, const Json
   if (t.size() > limits.max_bytes)
     return errorAt(
         t, 0, "too large: " + std::to_string(t.size()) + " bytes (limit " + std::to_string(limits.max_bytes) + ")");
-  std::vector<Frame> stack;
+  std::vector<ScanFrame> stack;
   const auto utf8Error = [&](std::size_t i) {
     return errorAt(t, i, "invalid UTF-8 at byte offset " + std::to_string(i));
   };

@@ -5,6 +5,7 @@
 #include <QProcess>
 #include <QProcessEnvironment>
 #include <QStringList>
+#include "tests/test_paths.h"
 
 namespace fovea::testing {
 

@@ -1,6 +1,7 @@
 // fovea-cli analysis commands: the exact JSON contracts of resolution and optimize-lens,
 // argument errors, and the study commands' parameter validation.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <nlohmann/json.hpp>
 

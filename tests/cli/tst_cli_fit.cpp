@@ -3,6 +3,7 @@
 // prototype, fitted from the prototype: each parameter back within its uncertainty, the
 // written scene holding the fitted values), and bad input named.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QFile>
 #include <QTemporaryDir>
@@ -17,7 +18,7 @@
 using fovea::testing::runFoveaCli;
 
 namespace {
-const QString kScene = QStringLiteral(FOVEA_SOURCE_DIR "/resources/scenes/prototype-bench.json");
+const QString kScene = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
 
 QString writeFile(const QTemporaryDir& d, const QString& name, const std::string& text) {
   const QString p = d.filePath(name);

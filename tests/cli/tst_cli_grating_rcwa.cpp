@@ -4,6 +4,7 @@
 // grating, energy conservation when lossless, the unmodulated film) and against the error map
 // of docs/benchmarks.md, rebuilt with the CLI alone from --error-map-requests.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <cmath>
 #include <fstream>

@@ -1,6 +1,7 @@
 // fovea-cli devices / stage contracts: JSON keys, the --trace line format, exit codes 2
 // (soft limits, nothing sent) and 3 (silent or missing device), degrees for rotation stages.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <fstream>
 #include <sstream>

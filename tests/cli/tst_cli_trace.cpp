@@ -1,5 +1,6 @@
 // fovea-cli trace: the JSON contract (docs/physics.md) and exit codes.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <string>

@@ -3,6 +3,7 @@
 // unreadable file and a closed eye give zero confidence, never a pupil; the closed loop's
 // latency budget, inset error and FOV-loss keys and its latency sweep.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,6 +1,7 @@
 // fovea-cli validate: exit codes and messages (good file, bad file with several problems,
 // malformed JSON, missing file, missing argument).
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QProcess>
 

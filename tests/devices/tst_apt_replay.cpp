@@ -4,6 +4,7 @@
 // behaviour of real controllers: completion with the moving bits set, an error response, the
 // header-only move forms, a limit switch hit mid-move, an unplug mid-move.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include "devices/apt/apt_decoder.h"
 #include "devices/replay/replay_transport.h"

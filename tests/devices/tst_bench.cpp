@@ -2,6 +2,7 @@
 // bench, each axis on its own worker thread; element-coordinate moves through the
 // bindings, soft limits, and the e-stop interrupting a running move.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <chrono>
 

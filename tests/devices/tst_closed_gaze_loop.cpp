@@ -2,6 +2,7 @@
 // against the true gaze, and the stage simulation: fast stages keep the inset on the
 // fovea, the prototype's slow screw stages do not, and added latency makes it worse.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <cmath>
 

@@ -2,6 +2,7 @@
 // bytes removed per max-packet chunk, the baud-rate divisor encoding (AN232B-05 values), and
 // enumeration / opening a missing device failing cleanly.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <mutex>
 

@@ -5,6 +5,7 @@
 // keep every capture in their folder and resume where they stopped; measurement imports are
 // checked. The virtual camera shows what the stages do.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <filesystem>
 #include <fstream>
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 Scene prototype() {
-  return *loadSceneFile(FOVEA_SOURCE_DIR "/resources/scenes/prototype-bench.json").scene;
+  return *loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json").scene;
 }
 
 fs::path tmpDir(const std::string& name) {

@@ -2,6 +2,7 @@
 // fovea-cli twin; Cancel stops a long study (no result, runner idle); plot exports write a
 // valid PNG, SVG and CSV with the result's numbers; display units convert the plotted values.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QChartView>
 #include <QDockWidget>

@@ -4,6 +4,7 @@
 // back to the form's values, names the saved scene file, and is refused for an unsaved one;
 // the studio refuses the same bad numbers with the same messages as the CLI.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QLineEdit>
 #include <QPushButton>

@@ -4,6 +4,7 @@
 // paused and resumed into a session folder whose manifest lists every capture, follow gaze
 // taking the HOE to the analyses' x_p(alpha), and the main window's Bench dock marked VIRTUAL.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QRegularExpression>
 

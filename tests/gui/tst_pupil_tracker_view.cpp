@@ -2,6 +2,7 @@
 // virtual IR eye camera, finds the pupil in the live frames (ellipse, glints, confidence
 // overlaid) and emits the tracked gaze, which lands within a degree of the eye's gaze.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QSignalSpy>
 

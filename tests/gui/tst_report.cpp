@@ -3,6 +3,7 @@
 // self-contained HTML's base64 images decoded, the gaze figures' ray fans counted (manifest
 // and pixels against the plain top view), and the argument / scene errors' exit codes.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QImage>
 #include <QProcess>
@@ -235,7 +236,7 @@ class TestReport : public QObject {
 
   void argumentAndSceneErrors() {
     QCOMPARE(run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.pdf", "--tolerance-spec",
-                                  FOVEA_SOURCE_DIR "/resources/tolerance/prototype-tolerance.json"})
+                                  QString(FOVEA_SOURCE_DIR) + "/resources/tolerance/prototype-tolerance.json"})
                  .code,
              2);  // without trials
     QCOMPARE(run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.txt"}).code, 2);

@@ -6,6 +6,7 @@
 // comparing). On a mismatch the rendered image and a difference image are written to
 // $FOVEA_TEST_TMP/view_baselines/.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QPainter>
 #include <QVBoxLayout>
@@ -46,7 +47,7 @@ constexpr double kMeanLimit = 2.0;
 constexpr double kOutlierLimit = 0.01;
 
 QString baselinePath(const QString& name) {
-  return QStringLiteral(FOVEA_SOURCE_DIR "/tests/baselines/") + name;
+  return (QString(FOVEA_SOURCE_DIR) + "/tests/baselines/") + name;
 }
 
 QString scratch(const QString& name) {

@@ -1,6 +1,7 @@
 // Beam-shaping lens (A.2): the pixel-beam model's closed forms, the thin-lens limits, and
 // the optimiser beating the unshaped beam.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,5 +1,6 @@
 // Scene files: the loader's messages for bad input, exact round trips, atomic saves.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cmath>

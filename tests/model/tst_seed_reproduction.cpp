@@ -4,6 +4,7 @@
 // the document's "ours, fitted" column claims (within the tolerances stated there), so that
 // the document cannot drift silently from the code.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <cmath>
 #include <map>
