@@ -36,6 +36,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_bench {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -424,4 +425,5 @@ void install(CLI::App& app) {
 const Registrar reg{"bench", &install};
 
 }  // namespace
+}  // namespace cmd_bench
 }  // namespace fovea::cli

@@ -8,6 +8,7 @@
 #include "model/image/foveation.h"
 
 namespace fovea::cli {
+namespace cmd_blend_profile {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -57,4 +58,5 @@ void install(CLI::App& app) {
 const Registrar reg{"blend-profile", &install};
 
 }  // namespace
+}  // namespace cmd_blend_profile
 }  // namespace fovea::cli

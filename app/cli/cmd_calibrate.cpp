@@ -23,6 +23,7 @@
 #include "model/image/geometric_calibration.h"
 
 namespace fovea::cli {
+namespace cmd_calibrate {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 using devices::DeviceError;
@@ -162,4 +163,5 @@ void install(CLI::App& app) {
 const Registrar reg{"calibrate", &install};
 
 }  // namespace
+}  // namespace cmd_calibrate
 }  // namespace fovea::cli

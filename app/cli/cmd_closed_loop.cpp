@@ -12,6 +12,7 @@
 #include "devices/bench/closed_gaze_loop.h"
 
 namespace fovea::cli {
+namespace cmd_closed_loop {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 // Mean, 95th percentile and maximum; null when there were no values (e.g. no saccade settled).
@@ -141,4 +142,5 @@ void install(CLI::App& app) {
 const Registrar reg{"closed-loop", &install};
 
 }  // namespace
+}  // namespace cmd_closed_loop
 }  // namespace fovea::cli

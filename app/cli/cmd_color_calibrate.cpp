@@ -15,6 +15,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_color_calibrate {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 nlohmann::json xyJson(color::Xy p) {
@@ -126,4 +127,5 @@ void install(CLI::App& app) {
 const Registrar reg{"color-calibrate", &install};
 
 }  // namespace
+}  // namespace cmd_color_calibrate
 }  // namespace fovea::cli

@@ -7,6 +7,7 @@
 #include "model/color/color_calibration.h"
 
 namespace fovea::cli {
+namespace cmd_color_map {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -50,4 +51,5 @@ void install(CLI::App& app) {
 const Registrar reg{"color-map", &install};
 
 }  // namespace
+}  // namespace cmd_color_map
 }  // namespace fovea::cli

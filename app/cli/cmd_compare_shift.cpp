@@ -8,6 +8,7 @@
 #include "app/cli/study_cli.h"
 
 namespace fovea::cli {
+namespace cmd_compare_shift {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -39,4 +40,5 @@ void install(CLI::App& app) {
 const Registrar reg{"compare-shift", &install};
 
 }  // namespace
+}  // namespace cmd_compare_shift
 }  // namespace fovea::cli

@@ -12,6 +12,7 @@
 #include "model/image/image_io.h"
 
 namespace fovea::cli {
+namespace cmd_composite {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 // A display's geometric pre-warp from a fit-warp pairs file: src = physical display pixel,
@@ -132,4 +133,5 @@ void install(CLI::App& app) {
 const Registrar reg{"composite", &install};
 
 }  // namespace
+}  // namespace cmd_composite
 }  // namespace fovea::cli

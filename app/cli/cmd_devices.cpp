@@ -9,6 +9,7 @@
 #include "devices/transport/libusb_transport.h"
 
 namespace fovea::cli {
+namespace cmd_devices {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -76,4 +77,5 @@ void install(CLI::App& app) {
 const Registrar reg{"devices", &install};
 
 }  // namespace
+}  // namespace cmd_devices
 }  // namespace fovea::cli

@@ -14,6 +14,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_fit {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 struct Args {
@@ -89,4 +90,5 @@ void install(CLI::App& app) {
 const Registrar reg{"fit", &install};
 
 }  // namespace
+}  // namespace cmd_fit
 }  // namespace fovea::cli

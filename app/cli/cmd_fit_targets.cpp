@@ -11,6 +11,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_fit_targets {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 struct Args {
@@ -70,4 +71,5 @@ void install(CLI::App& app) {
 const Registrar reg{"fit-targets", &install};
 
 }  // namespace
+}  // namespace cmd_fit_targets
 }  // namespace fovea::cli

@@ -10,6 +10,7 @@
 #include "model/image/warp.h"
 
 namespace fovea::cli {
+namespace cmd_fit_warp {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 Eigen::Vector2d point(const nlohmann::json& j, const std::string& where) {
@@ -93,4 +94,5 @@ void install(CLI::App& app) {
 const Registrar reg{"fit-warp", &install};
 
 }  // namespace
+}  // namespace cmd_fit_warp
 }  // namespace fovea::cli

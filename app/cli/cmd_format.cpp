@@ -13,6 +13,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_format {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 constexpr std::size_t kMaxGrowth = 16;
@@ -47,4 +48,5 @@ void install(CLI::App& app) {
 const Registrar reg{"format", &install};
 
 }  // namespace
+}  // namespace cmd_format
 }  // namespace fovea::cli

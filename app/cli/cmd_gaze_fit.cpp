@@ -10,6 +10,7 @@
 #include "model/gaze/gaze_calibration.h"
 
 namespace fovea::cli {
+namespace cmd_gaze_fit {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 nlohmann::json pair(const std::array<double, 2>& a) {
@@ -82,4 +83,5 @@ void install(CLI::App& app) {
 const Registrar reg{"gaze-fit", &install};
 
 }  // namespace
+}  // namespace cmd_gaze_fit
 }  // namespace fovea::cli

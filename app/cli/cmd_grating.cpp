@@ -17,6 +17,7 @@
 #include "model/rigorous/rcwa_grating_request.h"
 
 namespace fovea::cli {
+namespace cmd_grating {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 // A grating model answers one validated request with at least the contract's keys
@@ -192,4 +193,5 @@ void install(CLI::App& app) {
 const Registrar reg{"grating", &install};
 
 }  // namespace
+}  // namespace cmd_grating
 }  // namespace fovea::cli

@@ -13,6 +13,7 @@
 
 namespace fovea::cli {
 
+namespace cmd_merge {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -73,4 +74,5 @@ void install(CLI::App& app) {
 const Registrar reg{"merge", &install};
 
 }  // namespace
+}  // namespace cmd_merge
 }  // namespace fovea::cli

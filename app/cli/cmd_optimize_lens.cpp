@@ -13,6 +13,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_optimize_lens {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -86,4 +87,5 @@ void install(CLI::App& app) {
 const Registrar reg{"optimize-lens", &install};
 
 }  // namespace
+}  // namespace cmd_optimize_lens
 }  // namespace fovea::cli

@@ -29,6 +29,7 @@
 #include "model/io/save_temporaries.h"
 
 namespace fovea::cli {
+namespace cmd_report {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 struct ReportArgs {
@@ -183,4 +184,5 @@ void install(CLI::App& app) {
 const Registrar reg{"report", &install};
 
 }  // namespace
+}  // namespace cmd_report
 }  // namespace fovea::cli

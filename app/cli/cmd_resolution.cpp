@@ -11,6 +11,7 @@
 #include "model/analysis/study_analyses.h"
 
 namespace fovea::cli {
+namespace cmd_resolution {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -53,4 +54,5 @@ void install(CLI::App& app) {
 const Registrar reg{"resolution", &install};
 
 }  // namespace
+}  // namespace cmd_resolution
 }  // namespace fovea::cli

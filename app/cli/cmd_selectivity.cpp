@@ -16,6 +16,7 @@
 #include "model/analysis/study_analyses.h"
 
 namespace fovea::cli {
+namespace cmd_selectivity {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -47,4 +48,5 @@ void install(CLI::App& app) {
 const Registrar reg{"selectivity", &install};
 
 }  // namespace
+}  // namespace cmd_selectivity
 }  // namespace fovea::cli

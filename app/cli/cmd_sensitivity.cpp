@@ -10,6 +10,7 @@
 #include "app/cli/study_cli.h"
 
 namespace fovea::cli {
+namespace cmd_sensitivity {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -41,4 +42,5 @@ void install(CLI::App& app) {
 const Registrar reg{"sensitivity", &install};
 
 }  // namespace
+}  // namespace cmd_sensitivity
 }  // namespace fovea::cli

@@ -38,6 +38,7 @@
 #include "devices/virtual/virtual_transport.h"
 
 namespace fovea::cli {
+namespace cmd_stage {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 using devices::DeviceError;
@@ -333,4 +334,5 @@ void install(CLI::App& app) {
 const Registrar reg{"stage", &install};
 
 }  // namespace
+}  // namespace cmd_stage
 }  // namespace fovea::cli

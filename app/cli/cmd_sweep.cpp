@@ -12,6 +12,7 @@
 #include "model/analysis/sweep_shards.h"
 
 namespace fovea::cli {
+namespace cmd_sweep {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -67,4 +68,5 @@ void install(CLI::App& app) {
 const Registrar reg{"sweep", &install};
 
 }  // namespace
+}  // namespace cmd_sweep
 }  // namespace fovea::cli

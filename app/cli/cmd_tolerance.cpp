@@ -23,6 +23,7 @@
 
 namespace fovea::cli {
 
+namespace cmd_tolerance {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 struct Args {
@@ -207,4 +208,5 @@ void install(CLI::App& app) {
 const Registrar reg{"tolerance", &install};
 
 }  // namespace
+}  // namespace cmd_tolerance
 }  // namespace fovea::cli

@@ -17,6 +17,7 @@
 #include "model/physics/trace_pipeline.h"
 
 namespace fovea::cli {
+namespace cmd_trace {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 struct TraceArgs {
@@ -68,4 +69,5 @@ void install(CLI::App& app) {
 const Registrar reg{"trace", &install};
 
 }  // namespace
+}  // namespace cmd_trace
 }  // namespace fovea::cli

@@ -19,6 +19,7 @@
 #include "model/image/image_io.h"
 
 namespace fovea::cli {
+namespace cmd_track {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 nlohmann::json point(const cv::Point2d& p) {
@@ -181,4 +182,5 @@ void install(CLI::App& app) {
 const Registrar reg{"track", &install};
 
 }  // namespace
+}  // namespace cmd_track
 }  // namespace fovea::cli

@@ -5,6 +5,7 @@
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
+namespace cmd_validate {  // one per command file: fovea-cli compiles in unity batches
 namespace {
 
 void install(CLI::App& app) {
@@ -34,4 +35,5 @@ void install(CLI::App& app) {
 const Registrar reg{"validate", &install};
 
 }  // namespace
+}  // namespace cmd_validate
 }  // namespace fovea::cli
