@@ -12,6 +12,7 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper2D.h>
 #include <vtkProperty2D.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -22,8 +23,6 @@
 namespace fovea::viz {
 
 namespace {
-constexpr double kLeader_px = 42.0;  // anchor to label distance
-constexpr double kStep_px = 16.0;    // further out per overlap
 constexpr int kFontSize = 15;
 }  // namespace
 
@@ -104,8 +103,13 @@ void ElementLabels::setColor(double r, double g, double b, double background) {
   leaders_->GetProperty()->SetOpacity(0.7);
 }
 
+void ElementLabels::setAvoid(const std::vector<LabelRect>& normalizedRects) {
+  avoid_ = normalizedRects;
+}
+
 void ElementLabels::layout() {
   shown_ = 0;
+  boxes_.clear();
   vtkPolyData* data = vtkPolyData::SafeDownCast(leaders_->GetMapper()->GetInputDataObject(0, 0));
   vtkNew<vtkCellArray> lines;
   leaderPoints_->Reset();
@@ -128,7 +132,6 @@ void ElementLabels::layout() {
     Eigen::Vector2d anchor;
   };
   std::vector<Placed> onScreen;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   for (std::size_t i = 0; i < labels_.size(); ++i) {
     const Eigen::Vector3d& a = labels_[i].anchor_mm;
     if ((a - eye).dot(ahead) <= 1.0) continue;  // behind (or at) the camera
@@ -138,52 +141,48 @@ void ElementLabels::layout() {
     renderer_->GetDisplayPoint(d);
     if (d[0] < origin[0] || d[0] > origin[0] + size[0] || d[1] < origin[1] || d[1] > origin[1] + size[1]) continue;
     onScreen.push_back({i, {d[0], d[1]}});
-    centre += Eigen::Vector2d(d[0], d[1]);
   }
   if (onScreen.empty()) {
     leaders_->VisibilityOff();
     data->SetLines(lines);
     return;
   }
-  centre /= static_cast<double>(onScreen.size());
-  struct Box {
-    double x0, y0, x1, y1;
-  };
-  std::vector<Box> taken;
   // Sizes in pixels of the frame being drawn (smaller while a drag draws at reduced resolution).
   const double px = pixelScale(renderer_);
-  const double w_per_char = 0.62 * kFontSize * px, h = (kFontSize + 6.0) * px;
+  std::vector<LabelRequest> requests;
   for (const Placed& p : onScreen) {
-    Eigen::Vector2d dir = p.anchor - centre;
-    // Mostly sideways and upwards: labels read best beside an element.
-    if (dir.norm() < 1e-6) dir = {0.0, 1.0};
-    dir.normalize();
-    dir = (dir + Eigen::Vector2d(0.0, 0.35)).normalized();
-    const double w = w_per_char * static_cast<double>(labels_[p.index].text.size()) + 8.0 * px;
-    Eigen::Vector2d at;
-    Box box{};
-    for (int k = 0; k < 10; ++k) {
-      at = p.anchor + (kLeader_px + k * kStep_px) * px * dir;
-      // Keep the label inside the viewport.
-      at.x() = std::clamp(at.x(), origin[0] + 4.0 * px, origin[0] + size[0] - 4.0 * px);
-      at.y() = std::clamp(at.y(), origin[1] + h, origin[1] + size[1] - h);
-      const bool right = dir.x() >= 0.0;
-      box = right ? Box{at.x(), at.y() - h / 2, at.x() + w, at.y() + h / 2}
-                  : Box{at.x() - w, at.y() - h / 2, at.x(), at.y() + h / 2};
-      if (box.x0 < origin[0]) box = {origin[0] + 0.0, box.y0, origin[0] + w, box.y1};
-      if (box.x1 > origin[0] + size[0]) box = {origin[0] + size[0] - w, box.y0, origin[0] + size[0] + 0.0, box.y1};
-      const bool clash = std::any_of(taken.begin(), taken.end(), [&](const Box& o) {
-        return box.x0 < o.x1 && o.x0 < box.x1 && box.y0 < o.y1 && o.y0 < box.y1;
-      });
-      if (!clash) break;
-    }
-    taken.push_back(box);
     vtkTextActor* t = texts_[p.index];
     t->SetInput(labels_[p.index].text.toUtf8().constData());
     t->GetTextProperty()->SetJustificationToLeft();
+    // The text's own extent (the font's metrics), with a little padding; the estimate from the
+    // character count only when the text renderer gives none.
+    double bb[4] = {0, 0, 0, 0};
+    t->GetBoundingBox(renderer_, bb);
+    double w = bb[1] - bb[0], h = bb[3] - bb[2];
+    if (!(w > 1.0 && h > 1.0)) {
+      w = 0.62 * kFontSize * px * static_cast<double>(labels_[p.index].text.size());
+      h = kFontSize * px;
+    }
+    requests.push_back({p.anchor, w + 8.0 * px, h + 6.0 * px});
+  }
+  // The triad's viewport (and any other overlay the view reports) in display pixels.
+  std::vector<LabelRect> obstacles;
+  if (vtkRenderWindow* win = renderer_->GetRenderWindow()) {
+    const int* ws = win->GetSize();
+    for (const LabelRect& o : avoid_) obstacles.push_back({o.x0 * ws[0], o.y0 * ws[1], o.x1 * ws[0], o.y1 * ws[1]});
+  }
+  const LabelRect viewport{origin[0] + 2.0 * px, origin[1] + 2.0 * px, origin[0] + size[0] - 2.0 * px,
+                           origin[1] + size[1] - 2.0 * px};
+  const std::vector<PlacedLabel> placed = placeLabels(requests, viewport, obstacles, px);
+  obstacles_ = obstacles;
+  for (std::size_t k = 0; k < onScreen.size(); ++k) {
+    const Placed& p = onScreen[k];
+    const LabelRect& box = placed[k].box;
+    boxes_.push_back(box);
+    vtkTextActor* t = texts_[p.index];
     t->SetDisplayPosition(static_cast<int>(box.x0 + 4.0 * px), static_cast<int>((box.y0 + box.y1) / 2));
     t->VisibilityOn();
-    const Eigen::Vector2d end(dir.x() >= 0.0 ? box.x0 : box.x1, (box.y0 + box.y1) / 2);
+    const Eigen::Vector2d& end = placed[k].leaderEnd;
     // The 2-D mapper draws in viewport pixels: relative to the renderer's origin.
     const vtkIdType ids[2] = {leaderPoints_->InsertNextPoint(p.anchor.x() - origin[0], p.anchor.y() - origin[1], 0.0),
                               leaderPoints_->InsertNextPoint(end.x() - origin[0], end.y() - origin[1], 0.0)};

@@ -1,10 +1,9 @@
 #pragma once
 // Names on the bench in the 3-D view: "projector", "HOE", "eye", "micro-OLED", "combiner",
-// "lens", each a 2-D text with a leader line to its element. Before every render the labels
-// are placed at a fixed pixel distance from their anchor, pushed outwards from the middle of
-// the bench on screen and along that direction until they overlap no other label, so they
-// never sit on the elements' crowded middle. Anchors come from the model's geometry
-// (model/scene/scene_geometry.h); the labels compute no physics.
+// "lens", each a 2-D text with a leader line to its element. Before every render (so also
+// after a dock resizes the view) the labels are placed on screen by viz/label_placement.h:
+// none overlaps another or the axes triad, leaders avoid crossing labels and each other. Anchors come from the model's
+// geometry (model/scene/scene_geometry.h); the labels compute no physics.
 
 #include <QString>
 
@@ -15,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "model/scene/scene.h"
+#include "viz/label_placement.h"
 
 class vtkActor2D;
 class vtkCallbackCommand;
@@ -49,6 +49,12 @@ class ElementLabels {
   int shownCount() const { return shown_; }
   // Places the labels for the renderer's current camera (called before each render).
   void layout();
+  // Screen areas to keep free, in the render window's normalised coordinates (0..1, y up):
+  // the axes triad's viewport.
+  void setAvoid(const std::vector<LabelRect>& normalizedRects);
+  // The last layout's label boxes and the areas avoided, in display pixels (y up).
+  const std::vector<LabelRect>& boxes() const { return boxes_; }
+  const std::vector<LabelRect>& obstacles() const { return obstacles_; }
 
  private:
   static void onStart(vtkObject*, unsigned long, void* clientData, void*);
@@ -62,6 +68,9 @@ class ElementLabels {
   double background_ = 0.08;
   bool visible_ = true;
   int shown_ = 0;
+  std::vector<LabelRect> avoid_;
+  std::vector<LabelRect> boxes_;
+  std::vector<LabelRect> obstacles_;
 };
 
 }  // namespace fovea::viz

@@ -122,7 +122,10 @@ void SceneView::layoutViewports() {
   legend_->SetViewport(fx, 0.0, 1.0, 1.0);
   footer_->SetViewport(0.0, 0.0, fx, fy);
   const double axes_px = 110.0 * dpr;
-  axesWidget_->SetViewport(0.0, fy, std::min(fx, axes_px / w), std::min(1.0, fy + axes_px / h));
+  const double ax1 = std::min(fx, axes_px / w), ay1 = std::min(1.0, fy + axes_px / h);
+  axesWidget_->SetViewport(0.0, fy, ax1, ay1);
+  // The labels keep off the triad (its whole viewport: the axes turn inside it).
+  if (labels_) labels_->setAvoid({LabelRect{0.0, fy, ax1, ay1}});
 }
 
 void SceneView::resizeGL(int w, int h) {
@@ -159,6 +162,14 @@ void SceneView::setLabelsVisible(bool on) {
 
 bool SceneView::labelsVisible() const {
   return labels_->isVisible();
+}
+
+std::vector<LabelRect> SceneView::labelBoxes() const {
+  return labels_->boxes();
+}
+
+std::vector<LabelRect> SceneView::labelObstacles() const {
+  return labels_->obstacles();
 }
 
 int SceneView::labelsShown() const {

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "model/scene/scene.h"
+#include "viz/label_placement.h"
 #include "viz/scene_layer.h"
 #include "viz/vtk_gl_widget.h"
 
@@ -94,6 +95,10 @@ class SceneView : public VtkGlWidget {
   void setLabelsVisible(bool on);
   bool labelsVisible() const;
   int labelsShown() const;
+  // The last render's label boxes and the areas they keep off (the axes triad), in the render
+  // window's pixels (y up), for tests.
+  std::vector<LabelRect> labelBoxes() const;
+  std::vector<LabelRect> labelObstacles() const;
   // The look of a printed figure: a light background, dark scale bar and colour-bar text,
   // no selection highlight and no interaction handles. Off restores the studio's look.
   void setPrintLook(bool on);

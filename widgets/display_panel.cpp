@@ -22,15 +22,27 @@ DisplayPanel::DisplayPanel(QWidget* parent) : QWidget(parent) {
   rays_ = new QCheckBox(tr("Ray fans projector → HOE → eye"), this);
   rays_->setObjectName("showRays");
   rays_->setChecked(true);
+  rays_->setToolTip(
+      tr("Draw the traced rays from the projector through the HOE into the eye, coloured by "
+         "diffraction efficiency (dashed after the HOE when a ray misses the pupil)"));
   effmap_ = new QCheckBox(tr("Efficiency map on the HOE"), this);
   effmap_->setObjectName("showEffmap");
+  effmap_->setToolTip(
+      tr("Colour the HOE by the efficiency with which it sends the projector's light into the "
+         "pupil"));
   fan_ = new QComboBox(this);
   fan_->setObjectName("fanPattern");
   fan_->addItems({tr("Horizontal fan"), tr("Vertical fan"), tr("Grid")});
+  fan_->setToolTip(
+      tr("Which projector rays the 3-D view draws: a horizontal or a vertical fan through the "
+         "field's centre, or a grid over the whole field"));
   fanRays_ = new QSpinBox(this);
   fanRays_->setObjectName("fanRays");
   fanRays_->setRange(3, 200);
   fanRays_->setValue(25);
+  fanRays_->setToolTip(
+      tr("Rays drawn per fan (per grid row for the grid), per wavelength: drawing only, the FOV "
+         "numbers come from the traced rays"));
   traceRays_ = new QSpinBox(this);
   traceRays_->setObjectName("traceRays");
   traceRays_->setRange(200, 40000);
@@ -90,6 +102,7 @@ void DisplayPanel::setWavelengths(const std::vector<double>& wavelengths) {
   for (double nm : wavelengths) {
     auto* box = new QCheckBox(QStringLiteral("%1 nm").arg(nm), this);
     box->setObjectName(QStringLiteral("wavelength%1").arg(std::lround(nm)));
+    box->setToolTip(tr("Show the %1 nm rays (and their layer's efficiency map); hidden ones are still traced").arg(nm));
     const auto c = color::wavelengthColor(nm);
     box->setStyleSheet(QStringLiteral("QCheckBox { color: rgb(%1,%2,%3); font-weight: bold; }")
                            .arg(std::lround(c[0] * 200 + 30))

@@ -7,7 +7,10 @@ namespace fovea::widgets {
 MessageLog::MessageLog(QWidget* parent) : QPlainTextEdit(parent) {
   setReadOnly(true);
   setMaximumBlockCount(5000);
-  setLineWrapMode(QPlainTextEdit::NoWrap);
+  // Long messages wrap at the dock's width: with no wrapping the view scrolled sideways to the
+  // end of the newest line and every line seemed to start mid-word.
+  setLineWrapMode(QPlainTextEdit::WidgetWidth);
+  setWordWrapMode(QTextOption::WrapAtWordBoundaryOrAnywhere);
   QFont mono("monospace");
   mono.setStyleHint(QFont::Monospace);
   setFont(mono);

@@ -22,6 +22,7 @@
 #include "model/image/image_io.h"
 #include "model/image/test_target.h"
 #include "model/scene/scene_compare.h"
+#include "widgets/dialog_start.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
@@ -239,7 +240,7 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   connect(pitch_, &QSlider::valueChanged, this, gazeMoved);
   connect(blend_, &QCheckBox::toggled, this, [this] { rebuild(); });
   connect(open, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Target image"), {},
+    const QString path = QFileDialog::getOpenFileName(this, tr("Target image"), dialogStart(document_),
                                                       tr("Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.hdr *.bmp)"));
     if (!path.isEmpty()) loadTarget(path);
   });

@@ -2,7 +2,9 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QEvent>
 #include <QGridLayout>
+#include <QKeyEvent>
 #include <QLabel>
 #include <QLineEdit>
 #include <QScrollArea>
@@ -31,6 +33,7 @@ PropertyEditor::PropertyEditor(SceneDocument* document, QWidget* parent)
   auto* scroll = new QScrollArea(this);
   scroll->setWidgetResizable(true);
   scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setFocusPolicy(Qt::NoFocus);  // Tab goes to the fields, not to the frameless area
   form_ = new QWidget(scroll);
   grid_ = new QGridLayout(form_);
   grid_->setColumnStretch(1, 1);
@@ -119,8 +122,12 @@ void PropertyEditor::rebuild() {
         connect(edit, &QLineEdit::editingFinished, this, [this, row, edit] {
           if (!edit->isModified()) return;
           edit->setModified(false);
-          commitText(rows_[static_cast<std::size_t>(row)].spec.key, edit->text());
+          const QString key = rows_[static_cast<std::size_t>(row)].spec.key;
+          // Refused as the focus left the field (Tab, a click elsewhere): the field shows the
+          // model's value again, the refusal stays written under it.
+          if (!commitText(key, edit->text()).isEmpty() && !edit->hasFocus()) revert(key, true);
         });
+        edit->installEventFilter(this);
         field = edit;
         break;
       }
@@ -160,7 +167,51 @@ void PropertyEditor::refreshValues() {
   }
 }
 
+bool PropertyEditor::eventFilter(QObject* watched, QEvent* event) {
+  auto* edit = qobject_cast<QLineEdit*>(watched);
+  if (!edit) return QWidget::eventFilter(watched, event);
+  const bool esc = (event->type() == QEvent::KeyPress || event->type() == QEvent::ShortcutOverride) &&
+                   static_cast<QKeyEvent*>(event)->key() == Qt::Key_Escape;
+  for (auto& r : rows_) {
+    if (r.field != edit) continue;
+    const bool refused = r.refused;
+    // Esc: the typing (or a refused value) is dropped and the model's value comes back. The
+    // override is taken only then, so Esc stays the e-stop everywhere else.
+    if (esc && (edit->isModified() || refused)) {
+      event->accept();
+      if (event->type() == QEvent::KeyPress) revert(r.spec.key, false);
+      return true;
+    }
+    // The focus leaves a field that still shows a refused value: back to the model's value.
+    if (event->type() == QEvent::FocusOut && refused && !edit->isModified()) revert(r.spec.key, true);
+    break;
+  }
+  return QWidget::eventFilter(watched, event);
+}
+
+void PropertyEditor::revert(const QString& key, bool keepMessage) {
+  for (auto& r : rows_) {
+    if (r.spec.key != key) continue;
+    const QString why = r.message->text();
+    if (auto* edit = qobject_cast<QLineEdit*>(r.field)) {
+      const QString shown = formatValue(r.spec, toDisplay(r.spec, r.spec.get(document_->scene()), units_));
+      edit->setText(shown);
+      edit->setModified(false);
+      setMessage(r, {});
+      // Kept as a note (not red: the field's value is the model's again).
+      if (keepMessage && !why.isEmpty()) {
+        r.message->setText(
+            tr("%1 (kept %2)")
+                .arg(why, shown + (r.unit && !r.unit->text().isEmpty() ? " " + r.unit->text() : QString())));
+        r.message->setVisible(true);
+      }
+    }
+    return;
+  }
+}
+
 void PropertyEditor::setMessage(Row& r, const QString& message) {
+  r.refused = !message.isEmpty();
   r.message->setText(message);
   r.message->setVisible(!message.isEmpty());
   r.field->setStyleSheet(message.isEmpty() ? QString() : QStringLiteral("background: #5a2020; color: white;"));

@@ -2,7 +2,8 @@
 // Property editor of the selected scene element: one typed field per property with its
 // unit and range. A value is applied when editing finishes, through SceneDocument::applyEdit
 // (an undoable command); a value the scene rules refuse stays in the field, marked red, with
-// the rule's message shown under it, and the model is left unchanged.
+// the rule's message shown under it, and the model is left unchanged. Esc, or the focus
+// leaving the field, puts the model's value back in it (the refusal stays as a note).
 // Lengths (mm) and angles (deg) are shown and typed in the preferred display units
 // (Preferences, property_units.h) and converted back to mm / deg on edit; changing the
 // preference updates the open editor.
@@ -52,11 +53,15 @@ class PropertyEditor : public QWidget {
     QPointer<QWidget> field;
     QPointer<QLabel> message;
     QPointer<QLabel> unit;
+    bool refused = false;  // the field shows a value the model refused
   };
   void rebuild();
   void refreshValues();
   void commit(int row, const QVariant& value);
   void setMessage(Row& row, const QString& message);
+  // The field of `key` shows the model's value again; `keepMessage`: the refusal stays as a note.
+  void revert(const QString& key, bool keepMessage);
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
   SceneDocument* document_;
   QString element_;

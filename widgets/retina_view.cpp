@@ -1,7 +1,9 @@
 #include "widgets/retina_view.h"
 
+#include <QFontMetricsF>
 #include <QPainter>
 #include <QPainterPath>
+#include <QStringList>
 
 #include <algorithm>
 #include <cmath>
@@ -73,7 +75,43 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
         yaw_half = std::max(yaw_half, std::ceil(std::abs(r.field_deg[0]) / 10.0) * 10.0);
         pitch_half = std::max(pitch_half, std::ceil(std::abs(r.field_deg[1]) / 10.0) * 10.0);
       }
-  const QRectF plot = QRectF(area).adjusted(44, 58, -58, -30);
+  // The numbers above the plot, as pieces wrapped to the width (a narrow dock gets more
+  // lines, never a clipped number).
+  QFont bold = small;
+  bold.setBold(true);
+  const QString head = tr("Retina: field seen through the pupil");
+  QStringList pieces;
+  if (!result_) {
+    pieces << tr("tracing…");
+  } else if (!result_->error.empty()) {
+    pieces << tr("trace failed: %1").arg(QString::fromStdString(result_->error));
+  } else {
+    const TraceResult& t = result_->trace;
+    pieces << QString::fromUtf8("gaze %1°, %2°").arg(t.gaze_deg[0], 0, 'f', 1).arg(t.gaze_deg[1], 0, 'f', 1)
+           << QString::fromUtf8("FOV %1° × %2° (diagonal %3°)")
+                  .arg(t.fov_deg.horizontal, 0, 'f', 1)
+                  .arg(t.fov_deg.vertical, 0, 'f', 1)
+                  .arg(t.fov_deg.diagonal, 0, 'f', 1)
+           << QString::fromUtf8("mean η %1").arg(t.mean_efficiency, 0, 'f', 2)
+           << tr("%1 rays in the pupil").arg(t.rays_in_pupil);
+    if (result_->hoe_shift_mm[0] != 0.0 || result_->hoe_shift_mm[1] != 0.0)
+      pieces << QString::fromUtf8("HOE x_p %1, %2 mm")
+                    .arg(result_->hoe_shift_mm[0], 0, 'f', 2)
+                    .arg(result_->hoe_shift_mm[1], 0, 'f', 2);
+  }
+  QStringList lines;
+  {
+    const QFontMetricsF fm(small);
+    const double room = area.width() - 16.0;
+    for (const QString& piece : pieces) {
+      if (!lines.isEmpty() && fm.horizontalAdvance(lines.back() + "   " + piece) <= room)
+        lines.back() += "   " + piece;
+      else
+        lines << piece;
+    }
+  }
+  const double headerBottom = 20.0 + 15.0 * lines.size() + 8.0;
+  const QRectF plot = QRectF(area).adjusted(44, std::max(58.0, headerBottom), -58, -30);
   const double scale = std::min(plot.width() / (2 * yaw_half), plot.height() / (2 * pitch_half));
   const QPointF centre = plot.center();
   auto at = [&](double yaw, double pitch) { return QPointF(centre.x() + yaw * scale, centre.y() - pitch * scale); };
@@ -90,6 +128,11 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
     p.drawText(QRectF(at(-yaw_half, d) + QPointF(-40, -7), QSizeF(36, 14)), Qt::AlignRight | Qt::AlignVCenter,
                QString::number(d));
   p.drawText(QRectF(frame.left(), frame.bottom() + 14, frame.width(), 14), Qt::AlignCenter, tr("yaw (deg)"));
+  p.save();  // the pitch axis's title, upwards along the left edge
+  p.translate(frame.left() - 34, frame.center().y());
+  p.rotate(-90);
+  p.drawText(QRectF(-60, -14, 120, 14), Qt::AlignCenter, tr("pitch (deg)"));
+  p.restore();
 
   cells_ = 0;
   if (result_ && result_->grid[0] > 1 && result_->grid[1] > 1) {
@@ -147,36 +190,14 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
                QString::fromUtf8("%1°").arg(box_.pitch_max - box_.pitch_min, 0, 'f', 1));
     p.restore();
   }
-  // Numbers.
-  QFont bold = small;
-  bold.setBold(true);
+  // The numbers, wrapped to the width (computed first: the plot starts below them).
   p.setFont(bold);
   p.setPen(QColor(235, 235, 235));
-  QString head = tr("Retina: field seen through the pupil");
-  QString line, line2;
-  if (!result_) {
-    line = tr("tracing…");
-  } else if (!result_->error.empty()) {
-    line = tr("trace failed: %1").arg(QString::fromStdString(result_->error));
-  } else {
-    const TraceResult& t = result_->trace;
-    line = QString::fromUtf8("gaze %1°, %2°   FOV %3° × %4° (diagonal %5°)")
-               .arg(t.gaze_deg[0], 0, 'f', 1)
-               .arg(t.gaze_deg[1], 0, 'f', 1)
-               .arg(t.fov_deg.horizontal, 0, 'f', 1)
-               .arg(t.fov_deg.vertical, 0, 'f', 1)
-               .arg(t.fov_deg.diagonal, 0, 'f', 1);
-    line2 =
-        QString::fromUtf8("mean η %1   %2 rays in the pupil").arg(t.mean_efficiency, 0, 'f', 2).arg(t.rays_in_pupil);
-    if (result_->hoe_shift_mm[0] != 0.0 || result_->hoe_shift_mm[1] != 0.0)
-      line2 += QString::fromUtf8("   HOE x_p %1, %2 mm")
-                   .arg(result_->hoe_shift_mm[0], 0, 'f', 2)
-                   .arg(result_->hoe_shift_mm[1], 0, 'f', 2);
-  }
   p.drawText(QRectF(area.left() + 8, area.top() + 4, area.width() - 16, 16), Qt::AlignLeft | Qt::AlignVCenter, head);
   p.setFont(small);
-  p.drawText(QRectF(area.left() + 8, area.top() + 20, area.width() - 16, 16), Qt::AlignLeft | Qt::AlignVCenter, line);
-  p.drawText(QRectF(area.left() + 8, area.top() + 35, area.width() - 16, 16), Qt::AlignLeft | Qt::AlignVCenter, line2);
+  for (int i = 0; i < lines.size(); ++i)
+    p.drawText(QRectF(area.left() + 8, area.top() + 20 + 15 * i, area.width() - 16, 16),
+               Qt::AlignLeft | Qt::AlignVCenter, lines[i]);
   // Colour scale at the right.
   const QRectF bar(area.right() - 40, plot.top() + 22, 12, plot.height() * 0.55);
   for (int i = 0; i < 64; ++i) {

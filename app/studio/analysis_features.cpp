@@ -27,6 +27,7 @@
 #include "model/scene/scene_io.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/autosave.h"
+#include "widgets/dialog_start.h"
 #include "widgets/gaze_panel.h"
 #include "widgets/message_log.h"
 #include "widgets/plots/plot_builders.h"
@@ -60,6 +61,7 @@ AnalysisFeatures::AnalysisFeatures(MainWindow* window) : QObject(window), window
   analyses_ = new widgets::AnalysesPanel(window->document(), window);
   analysesDock_ = window->addPanel(analyses_, tr("Analyses"), "AnalysesDock", Qt::RightDockWidgetArea);
   plots_ = new widgets::PlotsPanel(window);
+  plots_->setDocument(window->document());  // exports open in the scene's folder
   plotsDock_ = window->addPanel(plots_, tr("Plots"), "PlotsDock", Qt::BottomDockWidgetArea);
   if (auto* props = window->findChild<QDockWidget*>("PropertiesDock")) {
     window->tabifyDockWidget(props, analysesDock_);
@@ -373,7 +375,8 @@ void AnalysisFeatures::exportReportDialog() {
     options.gazes_deg << gz;
   }
   const QString base = QFileInfo(window_->document()->displayName()).completeBaseName();
-  const QString path = QFileDialog::getSaveFileName(window_, tr("Export report"), base + "-report.pdf",
+  const QString path = QFileDialog::getSaveFileName(window_, tr("Export report"),
+                                                    widgets::dialogStart(window_->document(), base + "-report.pdf"),
                                                     tr("PDF documents (*.pdf);;HTML pages (*.html)"));
   if (path.isEmpty()) return;
   QString error;

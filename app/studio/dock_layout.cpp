@@ -31,10 +31,15 @@ const std::vector<DockGroup>& defaultGroups() {
 }  // namespace
 
 QWidget* scrollableDockContent(QWidget* panel) {
+  // One scroll area per dock: a panel that scrolls its own form (the properties, the
+  // analyses) keeps its buttons in view and is not put in a second, outer one.
+  if (qobject_cast<QAbstractScrollArea*>(panel) || panel->findChild<QScrollArea*>()) return panel;
   auto* scroll = new QScrollArea;
   scroll->setObjectName(panel->objectName().isEmpty() ? QString("dockScroll") : panel->objectName() + "Scroll");
   scroll->setWidgetResizable(true);
   scroll->setFrameShape(QFrame::NoFrame);
+  // Tab goes to the fields inside, not to the frameless (so invisible) scroll area itself.
+  scroll->setFocusPolicy(Qt::NoFocus);
   scroll->setWidget(panel);
   return scroll;
 }

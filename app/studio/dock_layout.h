@@ -16,6 +16,7 @@ void applyDefaultDockLayout(QMainWindow* window);
 
 // A dock's content wrapped in a frameless, resizable scroll area, so that a panel taller
 // than the space left to it scrolls instead of forcing the window taller than the screen.
+// A panel that has a scroll area of its own is returned as it is (one scroll area per dock).
 QWidget* scrollableDockContent(QWidget* panel);
 
 }  // namespace fovea::studio

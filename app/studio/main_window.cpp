@@ -19,17 +19,20 @@
 #include "app/studio/about_text.h"
 #include "app/studio/analysis_features.h"
 #include "app/studio/dock_layout.h"
+#include "app/studio/help_dialogs.h"
 #include "app/studio/live_trace_features.h"
 #include "app/studio/undo_shortcuts.h"
 #include "app/studio/window_capture.h"
 #include "model/scene/scene_io.h"
 #include "viz/scene_view.h"
 #include "widgets/bench/devices_panel.h"
+#include "widgets/dialog_start.h"
 #include "widgets/message_log.h"
 #include "widgets/preview_panel.h"
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
 #include "widgets/scene_tree.h"
+#include "widgets/wheel_guard.h"
 
 // The resources live in the static fovea_app library: register them explicitly.
 static void initStudioResources() {
@@ -49,6 +52,9 @@ const char* kSceneFilter = "Scene files (*.json);;All files (*)";
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   initStudioResources();
+  // Before any field exists: the wheel changes a spin box, combo or slider of any dock or
+  // dialog only while it has the focus (widgets/wheel_guard.h).
+  widgets::installWheelGuard();
   setObjectName("MainWindow");
   setWindowIcon(QIcon(":/icons/fovea-studio.svg"));
   document_ = new widgets::SceneDocument(this);
@@ -135,6 +141,8 @@ void MainWindow::createDocks() {
   // Esc in the 3-D view is the e-stop too (the panel has its own; dialogs keep theirs).
   auto* esc = new QShortcut(QKeySequence(Qt::Key_Escape), view_);
   esc->setContext(Qt::WidgetWithChildrenShortcut);
+  esc->setWhatsThis(tr("Emergency stop of every axis"));
+  esc->setProperty("where", tr("3-D view"));
   connect(esc, &QShortcut::activated, devices_, &widgets::DevicesPanel::emergencyStop);
   resizeDocks({findChild<QDockWidget*>("SceneTreeDock"), findChild<QDockWidget*>("PropertiesDock")}, {300, 380},
               Qt::Horizontal);
@@ -202,6 +210,11 @@ void MainWindow::createMenus() {
   createBenchMenu();
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&User Guide"), QKeySequence::HelpContents, this, [this] { showUserGuide(this); })
+      ->setObjectName("userGuideAction");
+  help->addAction(tr("&Keyboard Shortcuts"), QKeySequence(tr("Ctrl+/")), this, [this] { showKeyboardShortcuts(this); })
+      ->setObjectName("shortcutsAction");
+  help->addSeparator();
   help->addAction(tr("&About Foveated AR Studio"), this, &MainWindow::showAbout);
   help->addAction(tr("About &Qt"), qApp, &QApplication::aboutQt);
 }
@@ -297,8 +310,8 @@ void MainWindow::newScene() {
 
 void MainWindow::openDialog() {
   if (!maybeDiscardChanges()) return;
-  const QString dir = document_->filePath().isEmpty() ? QString() : QFileInfo(document_->filePath()).absolutePath();
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), dir, tr(kSceneFilter));
+  const QString path =
+      QFileDialog::getOpenFileName(this, tr("Open scene"), widgets::dialogStart(document_), tr(kSceneFilter));
   if (!path.isEmpty()) openFile(path);
 }
 
@@ -308,15 +321,15 @@ bool MainWindow::save() {
 }
 
 bool MainWindow::saveAsDialog() {
-  QString suggestion = document_->filePath();
-  if (suggestion.isEmpty()) suggestion = document_->displayName().section(' ', 0, 0);
+  const QString suggestion = widgets::dialogStart(
+      document_, document_->filePath().isEmpty() ? document_->displayName().section(' ', 0, 0) : document_->filePath());
   const QString path = QFileDialog::getSaveFileName(this, tr("Save scene as"), suggestion, tr(kSceneFilter));
   return !path.isEmpty() && saveTo(path);
 }
 
 void MainWindow::exportScreenshotDialog() {
-  const QString path =
-      QFileDialog::getSaveFileName(this, tr("Export screenshot"), "fovea-studio.png", tr("PNG images (*.png)"));
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Export screenshot"), widgets::dialogStart(document_, "fovea-studio.png"), tr("PNG images (*.png)"));
   if (path.isEmpty()) return;
   if (captureWindow().save(path, "PNG"))
     log_->info(tr("Screenshot saved to %1").arg(path));

@@ -283,6 +283,37 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
        "The eye's view along its gaze: what the HOE covers of the visual field."},
   };
   for (const auto& s : standard) {
+    if (s.v == viz::StandardView::EyeView) {
+      // From the pupil the plate alone is an orange slab filling the frame: draw what the eye
+      // sees of it, the area whose rays enter the pupil coloured by their efficiency, from the
+      // trace at the scene's gaze (else the first traced gaze, the eye turned to it).
+      const GazeTrace* trace = d.traces.isEmpty() ? nullptr : &d.traces.front();
+      for (const GazeTrace& t : d.traces)
+        if (t.gaze_deg == d.scene.eye.gaze_deg) trace = &t;
+      QString caption = s.caption;
+      if (trace) {
+        Scene turned = d.scene;
+        turned.eye.gaze_deg = trace->gaze_deg;
+        view->setScene(turned);
+        const Frame plate = frameOf(d.scene.hoe.pose);
+        view->setHoeDisplayShift(trace->hoe_shift_mm[0] * plate.x() + trace->hoe_shift_mm[1] * plate.y());
+        view->showStandardView(s.v);
+        overlay->show(turned, trace->rays, trace->grid, trace->hoe_shift_mm, viz::TraceOverlayOptions{});
+        caption = QString(
+                      "The eye's view along its gaze %1: the part of the HOE whose rays enter the pupil, "
+                      "coloured by their mean diffraction efficiency (colour bar), on the plate seen from the "
+                      "pupil.")
+                      .arg(gazeText(trace->gaze_deg, u));
+      } else {
+        view->showStandardView(s.v);
+      }
+      ReportFigure f{s.id, caption, capture3d(view), {}};
+      if (!f.image.isNull()) views.figures << f;
+      overlay->clear();
+      view->setScene(d.scene);
+      view->setHoeDisplayShift(Eigen::Vector3d::Zero());
+      continue;
+    }
     view->showStandardView(s.v);
     ReportFigure f{s.id, s.caption, capture3d(view), {}};
     if (!f.image.isNull()) views.figures << f;

@@ -21,6 +21,7 @@
 
 #include "widgets/analyses/analysis_summary.h"
 #include "widgets/analyses/fit_form_extras.h"
+#include "widgets/dialog_start.h"
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
@@ -35,19 +36,29 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
   combo_->setObjectName("analysis");
   for (const AnalysisSpec& s : analysisCatalog()) combo_->addItem(s.title, s.id);
   layout->addWidget(combo_);
-  description_ = new QLabel(this);
-  description_->setWordWrap(true);
-  description_->setObjectName("description");
-  layout->addWidget(description_);
-
+  // The description and the form scroll; the buttons, progress and status below stay in
+  // view (the dock adds no scroll area of its own around a panel that has one).
   auto* scroll = new QScrollArea(this);
+  scroll->setObjectName("formScroll");
   scroll->setWidgetResizable(true);
   scroll->setFrameShape(QFrame::NoFrame);
-  formHost_ = new QWidget(scroll);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll->setFocusPolicy(Qt::NoFocus);  // Tab goes to the fields, not to the frameless area
+  auto* scrolled = new QWidget(scroll);
+  auto* column = new QVBoxLayout(scrolled);
+  column->setContentsMargins(0, 0, 0, 0);
+  description_ = new QLabel(scrolled);
+  description_->setWordWrap(true);
+  description_->setObjectName("description");
+  column->addWidget(description_);
+  formHost_ = new QWidget(scrolled);
   form_ = new QFormLayout(formHost_);
   form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
-  scroll->setWidget(formHost_);
-  layout->addWidget(scroll, 1);
+  form_->setRowWrapPolicy(QFormLayout::WrapLongRows);
+  column->addWidget(formHost_);
+  column->addStretch(1);
+  scroll->setWidget(scrolled);
+  layout->addWidget(scroll, 3);
 
   auto* buttons = new QHBoxLayout;
   runButton_ = new QPushButton(tr("Run"), this);
@@ -80,8 +91,8 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
   layout->addWidget(status_);
   summary_ = new QTextBrowser(this);
   summary_->setObjectName("summary");
-  summary_->setMinimumHeight(120);
-  layout->addWidget(summary_, 1);
+  summary_->setMinimumHeight(90);
+  layout->addWidget(summary_, 2);
 
   connect(combo_, &QComboBox::currentIndexChanged, this, [this] { rebuildForm(); });
   connect(runButton_, &QPushButton::clicked, this, [this] { run(); });
@@ -90,7 +101,7 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
   connect(cliButton_, &QPushButton::clicked, this, [this] {
     const QString cmd = cliCommand();
     if (!cmd.isEmpty()) QApplication::clipboard()->setText(cmd);
-    status_->setText(!cmd.isEmpty() ? tr("Copied: %1").arg(cmd) : cliUnavailableReason());
+    setStatus(currentAnalysis(), !cmd.isEmpty() ? tr("Copied: %1").arg(cmd) : cliUnavailableReason());
   });
   connect(runner_, &AnalysisRunner::progress, this,
           [this](const QString&, double f) { progress_->setValue(static_cast<int>(std::lround(1000.0 * f))); });
@@ -98,18 +109,18 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
     results_[r.id] = r;
     progress_->setValue(1000);
     const AnalysisSpec* s = findAnalysis(r.id);
-    status_->setText(tr("%1 finished in %2 s.").arg(s ? s->title : r.id).arg(r.seconds, 0, 'f', 1));
+    setStatus(r.id, tr("%1 finished in %2 s.").arg(s ? s->title : r.id).arg(r.seconds, 0, 'f', 1));
     showSummary(r);
     if (fitExtras_ && r.id == "fit") fitExtras_->setResult(r);
     emit resultReady(r);
   });
-  connect(runner_, &AnalysisRunner::failed, this, [this](const QString&, const QString& message) {
+  connect(runner_, &AnalysisRunner::failed, this, [this](const QString& id, const QString& message) {
     progress_->setValue(0);
-    status_->setText(tr("Failed: %1").arg(message));
+    setStatus(id, tr("Failed: %1").arg(message));
   });
-  connect(runner_, &AnalysisRunner::cancelled, this, [this](const QString&) {
+  connect(runner_, &AnalysisRunner::cancelled, this, [this](const QString& id) {
     progress_->setValue(0);
-    status_->setText(tr("Cancelled; no result."));
+    setStatus(id, tr("Cancelled; no result."));
   });
   connect(runner_, &AnalysisRunner::idle, this, [this] { setBusy(false); });
   connect(&Preferences::instance(), &Preferences::changed, this, [this] {
@@ -196,7 +207,8 @@ void AnalysesPanel::rebuildForm() {
         browse->setObjectName(p.key + "-browse");
         browse->setToolTip(tr("Choose the %1").arg(p.label.toLower()));
         connect(browse, &QToolButton::clicked, edit, [this, edit, label = p.label] {
-          const QString f = QFileDialog::getOpenFileName(this, label, edit->text(), tr("JSON (*.json);;All files (*)"));
+          const QString f = QFileDialog::getOpenFileName(this, label, dialogStart(document_, edit->text()),
+                                                         tr("JSON (*.json);;All files (*)"));
           if (!f.isEmpty()) edit->setText(f);
         });
         row = new QWidget(formHost_);
@@ -221,14 +233,21 @@ void AnalysesPanel::rebuildForm() {
         document_, [this](const QString& key) { return parameters().value(key); },
         [this](const QString& key, const QVariant& value) { setParameter(key, value); }, formHost_);
     fitExtras_->setResult(lastResult("fit"));
-    connect(fitExtras_, &FitFormExtras::applied, status_, &QLabel::setText);
+    connect(fitExtras_, &FitFormExtras::applied, this, [this](const QString& text) { setStatus("fit", text); });
     form_->addRow(QString(), fitExtras_);
   }
   cliButton_->setEnabled(spec->hasCliTwin);
+  status_->setText(statusOf_.value(spec->id, tr("Ready.")));
+  progress_->setValue(results_.contains(spec->id) ? 1000 : 0);
   if (results_.contains(spec->id))
     showSummary(results_[spec->id]);
   else
     summary_->clear();
+}
+
+void AnalysesPanel::setStatus(const QString& analysisId, const QString& text) {
+  statusOf_[analysisId] = text;
+  if (analysisId == currentAnalysis()) status_->setText(text);
 }
 
 AnalysisParams AnalysesPanel::parameters() const {
@@ -270,7 +289,7 @@ void AnalysesPanel::resetParameters() {
 
 bool AnalysesPanel::run() {
   if (runner_->isRunning()) {
-    status_->setText(tr("An analysis is already running."));
+    setStatus(currentAnalysis(), tr("An analysis is already running."));
     return false;
   }
   const AnalysisSpec* spec = findAnalysis(currentAnalysis());
@@ -278,11 +297,11 @@ bool AnalysesPanel::run() {
   AnalysisParams p = parameters();
   const QStringList problems = validateParameters(*spec, p);
   if (!problems.isEmpty()) {
-    status_->setText(tr("Not started: %1").arg(problems.join("; ")));
+    setStatus(spec->id, tr("Not started: %1").arg(problems.join("; ")));
     return false;
   }
   progress_->setValue(0);
-  status_->setText(tr("Running %1 on %2…").arg(spec->title, document_->displayName()));
+  setStatus(spec->id, tr("Running %1 on %2…").arg(spec->title, document_->displayName()));
   setBusy(true);
   runner_->start(spec->id, document_->scene(), p);
   return true;
@@ -292,7 +311,7 @@ void AnalysesPanel::cancel() {
   if (!runner_->isRunning()) return;
   runner_->cancel();
   cancelButton_->setEnabled(false);
-  status_->setText(tr("Cancelling: the running samples finish, no new one starts…"));
+  setStatus(currentAnalysis(), tr("Cancelling: the running samples finish, no new one starts…"));
 }
 
 std::optional<AnalysisResult> AnalysesPanel::lastResult(const QString& id) const {

@@ -58,6 +58,9 @@ class AnalysesPanel : public QWidget {
   void rememberForm();
   void setBusy(bool busy);
   void showSummary(const AnalysisResult& r);
+  // The status line belongs to one analysis: switching the form shows that analysis's last
+  // status (or "Ready."), never the previous analysis's.
+  void setStatus(const QString& analysisId, const QString& text);
 
   SceneDocument* document_;
   AnalysisRunner* runner_;
@@ -75,6 +78,7 @@ class AnalysesPanel : public QWidget {
   QTextBrowser* summary_ = nullptr;
   QMap<QString, AnalysisParams> edited_;  // per analysis, the values last in the form
   QMap<QString, AnalysisResult> results_;
+  QMap<QString, QString> statusOf_;     // per analysis, its last status line
   FitFormExtras* fitExtras_ = nullptr;  // the "fit" form's file chooser, paths and Apply (fit_form_extras.h)
 };
 

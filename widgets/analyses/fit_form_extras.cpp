@@ -9,6 +9,7 @@
 #include "model/analysis/fit_analysis.h"
 #include "model/scene/scene_fields.h"
 #include "model/scene/scene_parameters.h"
+#include "widgets/dialog_start.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
@@ -41,8 +42,9 @@ FitFormExtras::FitFormExtras(SceneDocument* document, std::function<QVariant(con
   rows->addWidget(browse);
   rows->addWidget(apply_);
   connect(browse, &QPushButton::clicked, this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, tr("Targets file"), parameter_("targets").toString(),
-                                                   tr("Targets (*.json);;All files (*)"));
+    const QString f =
+        QFileDialog::getOpenFileName(this, tr("Targets file"), dialogStart(document_, parameter_("targets").toString()),
+                                     tr("Targets (*.json);;All files (*)"));
     if (!f.isEmpty()) setParameter_("targets", f);
   });
   connect(add, &QPushButton::clicked, this, [this] { addFreeParameter(paths_->currentText()); });

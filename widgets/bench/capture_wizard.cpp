@@ -116,7 +116,7 @@ CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidg
   connect(pause_, &QPushButton::clicked, this, &CaptureWizard::pause);
   connect(import_, &QPushButton::clicked, this, [this] {
     const QString f = QFileDialog::getOpenFileName(
-        this, tr("Import colour measurements"), {},
+        this, tr("Import colour measurements"), folder_->text(),
         tr("Measurements (*.json *.csv);;Spectroradiometer readings (*.csv);;JSON (*.json)"));
     if (f.isEmpty()) return;
     QString error;

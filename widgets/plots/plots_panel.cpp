@@ -14,6 +14,7 @@
 #include <QVBoxLayout>
 
 #include "widgets/analyses/analysis_catalog.h"
+#include "widgets/dialog_start.h"
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plot_render.h"
 #include "widgets/preferences.h"
@@ -150,7 +151,8 @@ void PlotsPanel::exportDialog(const QString& id, const QString& ext) {
   const QString filter = ext == "png"   ? tr("PNG images (*.png)")
                          : ext == "svg" ? tr("SVG drawings (*.svg)")
                                         : tr("CSV tables (*.csv)");
-  QString path = QFileDialog::getSaveFileName(this, tr("Export %1").arg(plotTitle(id)), id + "." + ext, filter);
+  QString path = QFileDialog::getSaveFileName(this, tr("Export %1").arg(plotTitle(id)),
+                                              dialogStart(document_, id + "." + ext), filter);
   if (path.isEmpty()) return;
   if (!path.endsWith("." + ext, Qt::CaseInsensitive)) path += "." + ext;
   QString error;

@@ -21,10 +21,14 @@ QT_END_NAMESPACE
 
 namespace fovea::widgets {
 
+class SceneDocument;
+
 class PlotsPanel : public QWidget {
   Q_OBJECT
  public:
   explicit PlotsPanel(QWidget* parent = nullptr);
+  // The scene whose folder the export dialogs open in (widgets/dialog_start.h).
+  void setDocument(const SceneDocument* document) { document_ = document; }
 
   // Rebuilds the plots fed by this result (in the current display units) and shows the first.
   void showResult(const QString& analysisId, const nlohmann::json& result, const QString& source = {});
@@ -42,6 +46,7 @@ class PlotsPanel : public QWidget {
   void exportFailed(const QString& plotId, const QString& message);
 
  private:
+  const SceneDocument* document_ = nullptr;
   struct Page {
     QStackedWidget* stack = nullptr;
     QLabel* hint = nullptr;
