@@ -1,11 +1,13 @@
 #include "widgets/gaze_panel.h"
 
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QGridLayout>
 #include <QLabel>
 #include <QSlider>
 
+#include <algorithm>
 #include <cmath>
 
 #include "widgets/scene_document.h"
@@ -47,13 +49,23 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
       tr("Shift the HOE laterally by the travel x_p that maximises the FOV at this gaze "
          "(searched off the GUI thread; yaw moves it along its x, pitch along its y)"));
   grid->addWidget(follow_, 2, 0, 1, 3);
+  // The x_p rule lives in the scene too (view.xp_rule), read by every x_p caller (hoe_travel.h).
+  xpRule_ = new QComboBox(this);
+  xpRule_->setObjectName("xpRule");
+  xpRule_->addItem(tr("plateau middle (ours)"), QStringLiteral("plateau-middle"));
+  xpRule_->addItem(tr("focus on the pupil (seed)"), QStringLiteral("follow-focus"));
+  xpRule_->setToolTip(
+      tr("How x_p is chosen: the middle of the HOE shifts that keep the FOV within 5° of its best, or the shift "
+         "putting the diffracted rays' focus on the rotated pupil centre (the seed's rule); as --xp-rule"));
+  grid->addWidget(new QLabel(tr("x_p rule"), this), 3, 0);
+  grid->addWidget(xpRule_, 3, 1, 1, 2);
   readout_ = new QLabel(this);
   readout_->setObjectName("gazeReadout");
   readout_->setWordWrap(true);
   readout_->setTextFormat(Qt::PlainText);
-  grid->addWidget(readout_, 3, 0, 1, 3);
+  grid->addWidget(readout_, 4, 0, 1, 3);
   grid->setColumnStretch(1, 1);
-  grid->setRowStretch(4, 1);
+  grid->setRowStretch(5, 1);
 
   auto sliderMoved = [this] {
     if (refreshing_) return;
@@ -79,6 +91,12 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
       document_->applyEdit(on ? tr("HOE follows gaze") : tr("HOE stops following gaze"),
                            [on](Scene& s) { s.view.hoe_follows_gaze = on; });
     emit followGazeChanged(on);
+  });
+  connect(xpRule_, &QComboBox::currentIndexChanged, this, [this] {
+    if (refreshing_) return;
+    const std::string rule = xpRule_->currentData().toString().toStdString();
+    if (document_->scene().view.xp_rule != rule)
+      document_->applyEdit(tr("x_p rule: %1").arg(xpRule_->currentText()), [rule](Scene& s) { s.view.xp_rule = rule; });
   });
   connect(document_, &SceneDocument::sceneChanged, this, &GazePanel::refreshFromScene);
   refreshFromScene();
@@ -123,6 +141,7 @@ void GazePanel::refreshFromScene() {
   yawSpin_->setValue(g[0]);
   pitchSpin_->setValue(g[1]);
   follow_->setChecked(document_->scene().view.hoe_follows_gaze);
+  xpRule_->setCurrentIndex(std::max(0, xpRule_->findData(QString::fromStdString(document_->scene().view.xp_rule))));
   refreshing_ = false;
 }
 
@@ -136,19 +155,24 @@ void GazePanel::showResult(const std::shared_ptr<const LiveTraceResult>& r, bool
     return;
   }
   const TraceResult& t = r->trace;
-  QString text = QString::fromUtf8("FOV %1° × %2° (diagonal %3°)\nmean efficiency %4 · %5 of %6 rays in the pupil")
-                     .arg(t.fov_deg.horizontal, 0, 'f', 1)
-                     .arg(t.fov_deg.vertical, 0, 'f', 1)
-                     .arg(t.fov_deg.diagonal, 0, 'f', 1)
+  // The exact FOV (model/analysis/trace_fov.h), the one `fovea-cli trace` and `sweep` give;
+  // named: ours (arrival directions), not the seed's lit footprint.
+  QString text = QString::fromUtf8(
+                     "FOV %1° × %2° (diagonal %3°)\n  ours (arrival directions), exact edges\n"
+                     "mean efficiency %4 · %5 of %6 rays in the pupil")
+                     .arg(r->fov.horizontal, 0, 'f', 2)
+                     .arg(r->fov.vertical, 0, 'f', 2)
+                     .arg(r->fov.diagonal, 0, 'f', 2)
                      .arg(t.mean_efficiency, 0, 'f', 3)
                      .arg(t.rays_in_pupil)
                      .arg(t.rays);
   const bool coarse = r->detail == TraceDetail::Coarse;
   if (r->settings.follow_gaze)
-    text += QString::fromUtf8("\nHOE travel x_p: %1 mm (x), %2 mm (y)%3")
+    text += QString::fromUtf8("\nHOE travel x_p: %1 mm (x), %2 mm (y)%3, %4")
                 .arg(r->hoe_shift_mm[0], 0, 'f', 2)
                 .arg(r->hoe_shift_mm[1], 0, 'f', 2)
-                .arg(r->shift_source.empty() ? QString() : tr(" (%1)").arg(QString::fromStdString(r->shift_source)));
+                .arg(r->shift_source.empty() ? QString() : tr(" (%1)").arg(QString::fromStdString(r->shift_source)))
+                .arg(QString::fromStdString(r->scene.view.xp_rule));
   text += tr("\ntrace %1 ms%2%3")
               .arg(r->compute_ms, 0, 'f', 0)
               .arg(coarse                  ? tr(" · coarse, %1 rays per wavelength").arg(r->settings.coarse_rays)

@@ -10,6 +10,7 @@
 #include "widgets/live_trace.h"
 
 class QCheckBox;
+class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QSlider;
@@ -50,6 +51,7 @@ class GazePanel : public QWidget {
   QDoubleSpinBox* yawSpin_ = nullptr;
   QDoubleSpinBox* pitchSpin_ = nullptr;
   QCheckBox* follow_ = nullptr;
+  QComboBox* xpRule_ = nullptr;
   QLabel* readout_ = nullptr;
   int gesture_ = -1;  // merge id of the slider drag in progress (-1: none)
   bool refreshing_ = false;

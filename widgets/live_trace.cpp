@@ -7,8 +7,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "model/analysis/gaze_studies.h"
-#include "model/analysis/trace_evaluator.h"
+#include "model/analysis/hoe_travel.h"
+#include "model/analysis/trace_fov.h"
 #include "model/physics/projector_rays.h"
 
 namespace fovea::widgets {
@@ -33,7 +33,6 @@ struct LiveTrace::Cache {
   // x_p for one (scene without gaze, gaze).
   std::optional<Scene> shift_scene;
   std::array<double, 2> shift_gaze{0, 0};
-  int shift_rays = 0;
   std::array<double, 2> shift{0, 0};
 };
 
@@ -194,28 +193,23 @@ std::shared_ptr<LiveTraceResult> LiveTrace::run(const Job& job, Cache& cache, co
       bool cached = false;
       {
         std::lock_guard lock(cache.mutex);
-        if (cache.shift_scene && *cache.shift_scene == base && cache.shift_gaze == gaze &&
-            cache.shift_rays == job.settings.search_rays) {
+        if (cache.shift_scene && *cache.shift_scene == base && cache.shift_gaze == gaze) {
           shift = cache.shift;
           cached = true;
         }
       }
       if (!cached) {
-        TraceEvaluatorOptions eo;
-        eo.rays = job.settings.search_rays;
-        const FovEvaluator inner = traceEvaluator(eo);
+        // The one x_p source (model/analysis/hoe_travel.h: sweep's x_p, the scene's rule),
+        // its evaluator wrapped only to stop a superseded job between evaluations.
+        const FovEvaluator inner = hoeTravelEvaluator();
         const FovEvaluator eval = [&](const Scene& s, const FovQuery& q) {
           if (stale()) throw Superseded{};
           return inner(s, q);
         };
-        if (gaze[0] != 0.0)
-          shift[0] = optimiseShift(job.scene, eval, gaze[0], GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm;
-        if (gaze[1] != 0.0)
-          shift[1] = optimiseShift(job.scene, eval, gaze[1], GazeAxis::Pitch, ShiftMethod::Hoe).shift_mm;
+        shift = hoeTravel(job.scene, gaze, sceneXpRule(job.scene), eval).shift_mm;
         std::lock_guard lock(cache.mutex);
         cache.shift_scene = base;
         cache.shift_gaze = gaze;
-        cache.shift_rays = job.settings.search_rays;
         cache.shift = shift;
       }
     }
@@ -245,6 +239,11 @@ std::shared_ptr<LiveTraceResult> LiveTrace::run(const Job& job, Cache& cache, co
     if (stale()) return nullptr;
     result->trace = evaluateGaze(job.scene, *diffracted, o);
     result->grid = projectorGrid(job.scene.projector, o.rays);
+    // The FOV the docks show: the exact one, as `fovea-cli trace` and `sweep` (trace_fov.h).
+    TraceOptions fo = o;
+    fo.gaze_deg = gaze;
+    result->fov = exactTraceFov(job.scene, fo);
+    result->fov_dense = denseTraceFov(result->trace, o.efficiency_threshold);
     if (!coarse) result->cloud = gratingVectorCloud(job.scene, result->trace.ray_list, shift);
   } catch (const Superseded&) {
     return nullptr;

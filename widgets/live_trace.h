@@ -8,9 +8,12 @@
 //    result is never delivered; only the newest request's result reaches resultReady().
 //  - The gaze-independent half (diffractScene) is cached: a gaze change without "HOE follows
 //    gaze" only re-evaluates the pupil (evaluateGaze, ~1 ms).
-//  - "HOE follows gaze": the lateral HOE shift x_p(alpha) maximising the FOV at the gaze
-//    (model/analysis/gaze_studies.h optimiseShift: yaw -> HOE local x, pitch -> local y,
-//    each searched at the other component zero) is found first, then applied to the trace.
+//  - "HOE follows gaze": the lateral HOE shift x_p(alpha) at the gaze from the one x_p
+//    source (model/analysis/hoe_travel.h hoeTravel with the scene's view.xp_rule: yaw -> HOE
+//    local x, pitch -> local y, each searched at the other component zero; what `fovea-cli
+//    sweep` reports) is found first, then applied to the trace.
+//  - The FOV shown (LiveTraceResult::fov) is the exact one (model/analysis/trace_fov.h), the
+//    number `fovea-cli trace` prints as fov_deg for the same scene, gaze and shift.
 //  - Coarse while the hand moves (request(..., TraceDetail::Coarse), during a slider or
 //    handle drag): few rays (coarse_rays) and x_p interpolated in the gaze study's table
 //    (devices/bench/follow_gaze_table.h, computed in the background for the scene once it
@@ -46,7 +49,7 @@ enum class TraceDetail { Refined, Coarse };
 
 struct LiveTraceSettings {
   int rays = 4000;           // rays per wavelength of the displayed trace
-  int search_rays = 1000;    // rays per wavelength of each x_p search evaluation
+  int search_rays = 1000;    // unused: x_p comes from hoe_travel.h (exact FOV, ray count irrelevant)
   int coarse_rays = 500;     // rays per wavelength of a coarse (dragging) trace
   bool follow_gaze = false;  // apply x_p(alpha)
   bool operator==(const LiveTraceSettings&) const = default;
@@ -59,6 +62,8 @@ struct LiveTraceResult {
   std::array<double, 2> hoe_shift_mm{0, 0};  // x_p applied (zero unless follow_gaze)
   std::array<int, 2> grid{0, 0};             // projector ray grid (columns, rows) per wavelength
   TraceResult trace;                         // ray_list filled, wavelength blocks of grid[0]*grid[1]
+  FovDeg fov;                                // the exact FOV (trace_fov.h), what the docks show
+  FovDeg fov_dense;                          // the dense continuous FOV of `trace`'s rays (comparison)
   std::vector<GratingVectorSample> cloud;
   double compute_ms = 0;
   bool reused_diffraction = false;  // only the gaze stage ran

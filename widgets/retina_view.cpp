@@ -88,10 +88,11 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
   } else {
     const TraceResult& t = result_->trace;
     pieces << QString::fromUtf8("gaze %1°, %2°").arg(t.gaze_deg[0], 0, 'f', 1).arg(t.gaze_deg[1], 0, 'f', 1)
-           << QString::fromUtf8("FOV %1° × %2° (diagonal %3°)")
-                  .arg(t.fov_deg.horizontal, 0, 'f', 1)
-                  .arg(t.fov_deg.vertical, 0, 'f', 1)
-                  .arg(t.fov_deg.diagonal, 0, 'f', 1)
+           // The exact FOV (trace_fov.h), named: ours (arrival directions), as the Gaze dock.
+           << QString::fromUtf8("FOV %1° × %2° (diagonal %3°), ours, exact")
+                  .arg(result_->fov.horizontal, 0, 'f', 2)
+                  .arg(result_->fov.vertical, 0, 'f', 2)
+                  .arg(result_->fov.diagonal, 0, 'f', 2)
            << QString::fromUtf8("mean η %1").arg(t.mean_efficiency, 0, 'f', 2)
            << tr("%1 rays in the pupil").arg(t.rays_in_pupil);
     if (result_->hoe_shift_mm[0] != 0.0 || result_->hoe_shift_mm[1] != 0.0)

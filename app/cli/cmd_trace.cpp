@@ -48,11 +48,14 @@ void install(CLI::App& app) {
       o.cull_to_pupil = a->cull;
       TraceStats stats;
       const TraceResult r = pipeline.run(scene, o, &stats);
-      nlohmann::json out = traceResultJson(r, o);
+      const TraceFov fov = traceFov(scene, r, o);
+      const FovMethod method = analysis::traceFovMethodFrom(values);
+      nlohmann::json out = traceResultJson(r, o, fov, method);
       if (a->stats) out["stats"] = {{"stages_recomputed", stats.stages_recomputed}, {"evaluations", stats.evaluations}};
       if (!a->json) {
-        std::cout << "gaze " << r.gaze_deg[0] << "," << r.gaze_deg[1] << ": FOV " << r.fov_deg.horizontal << " x "
-                  << r.fov_deg.vertical << " deg (diagonal " << r.fov_deg.diagonal << "), " << r.rays_efficient
+        const FovDeg f = fov.shown(method);
+        std::cout << "gaze " << r.gaze_deg[0] << "," << r.gaze_deg[1] << ": FOV (" << fovMethodName(method) << ") "
+                  << f.horizontal << " x " << f.vertical << " deg (diagonal " << f.diagonal << "), " << r.rays_efficient
                   << " of " << r.rays << " rays efficient, " << r.rays_in_pupil << " in the pupil, mean efficiency "
                   << r.mean_efficiency;
         if (a->stats)

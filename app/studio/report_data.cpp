@@ -5,8 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "model/analysis/gaze_studies.h"
-#include "model/analysis/trace_evaluator.h"
+#include "model/analysis/hoe_travel.h"
 #include "model/physics/projector_rays.h"
 #include "widgets/analyses/analysis_catalog.h"
 
@@ -75,15 +74,9 @@ std::optional<ReportData> computeReportData(const Scene& scene, const QString& s
     GazeTrace t;
     t.gaze_deg = options.gazes_deg[i];
     if (options.follow_gaze) {
-      // As the live trace: yaw -> HOE local x, pitch -> local y, each at the other component zero.
+      // The one x_p source (hoe_travel.h), as the live trace, the capture plan and the bench.
       try {
-        TraceEvaluatorOptions eo;
-        eo.rays = options.rays;
-        const FovEvaluator eval = traceEvaluator(eo);
-        if (t.gaze_deg[0] != 0.0)
-          t.hoe_shift_mm[0] = optimiseShift(scene, eval, t.gaze_deg[0], GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm;
-        if (t.gaze_deg[1] != 0.0)
-          t.hoe_shift_mm[1] = optimiseShift(scene, eval, t.gaze_deg[1], GazeAxis::Pitch, ShiftMethod::Hoe).shift_mm;
+        t.hoe_shift_mm = hoeTravel(scene, t.gaze_deg, sceneXpRule(scene)).shift_mm;
       } catch (const std::exception& e) {
         d.problems << QString("HOE shift at gaze %1,%2: %3").arg(t.gaze_deg[0]).arg(t.gaze_deg[1]).arg(e.what());
         t.hoe_shift_mm = {0, 0};

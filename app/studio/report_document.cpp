@@ -84,7 +84,7 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
                       .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))),
                            g(u.angleFromDeg(jsonNumber(f, {"vertical"}))), u.angleSymbol()) +
                   QString(" (diag. %1)").arg(g(u.angleFromDeg(jsonNumber(f, {"diagonal"})))),
-              QString("trace, %1 rays/λ").arg(d.options.rays));
+              QString("trace: exact FOV (field edges root-found, fov_edges.h; arrival directions, ours), as sweep"));
     QStringList per;
     for (const auto& w : t.json.value("per_wavelength", nlohmann::json::array()))
       per << QString("%1 nm: %2").arg(g(jsonNumber(w, {"wavelength_nm"}))).arg(pct(jsonNumber(w, {"mean_efficiency"})));
@@ -362,9 +362,10 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
     }
     QString caption = QString("Top view at gaze %1.").arg(gazeText(gz, u));
     if (trace) {
+      const auto& f = trace->json.value("fov_deg", nlohmann::json::object());  // the exact FOV, as the table
       caption +=
-          QString(" Retinal FOV there %1 × %2 %3, mean efficiency %4.")
-              .arg(g(u.angleFromDeg(trace->rays.fov_deg.horizontal)), g(u.angleFromDeg(trace->rays.fov_deg.vertical)),
+          QString(" Retinal FOV there (exact) %1 × %2 %3, mean efficiency %4.")
+              .arg(g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))), g(u.angleFromDeg(jsonNumber(f, {"vertical"}))),
                    u.angleSymbol(), pct(trace->rays.mean_efficiency));
       if (trace->hoe_shift_mm != std::array<double, 2>{0, 0})
         caption += QString(" HOE following the gaze, shifted by (%1, %2) %3.")

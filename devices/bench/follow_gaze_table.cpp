@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "model/analysis/trace_evaluator.h"
+#include "model/analysis/hoe_travel.h"
 
 namespace fovea::devices {
 
@@ -18,35 +18,35 @@ double interpolateClamped(const std::vector<double>& xs, const std::vector<doubl
 }
 
 std::array<double, 2> FollowGazeTable::hoeShift(std::array<double, 2> gaze_deg) const {
-  return {interpolateClamped(gazes_deg, shift_x_mm, gaze_deg[0]) - interpolateClamped(gazes_deg, shift_x_mm, 0.0),
-          interpolateClamped(gazes_deg, shift_y_mm, gaze_deg[1]) - interpolateClamped(gazes_deg, shift_y_mm, 0.0)};
+  // Absolute x_p as hoeTravel gives it (no longer referred to the zero-gaze optimum: that made
+  // the bench 0.17 mm off the sweep's x_p at 20 deg, issue 26).
+  return {gaze_deg[0] != 0.0 ? interpolateClamped(gazes_deg, shift_x_mm, gaze_deg[0]) : 0.0,
+          gaze_deg[1] != 0.0 ? interpolateClamped(gazes_deg, shift_y_mm, gaze_deg[1]) : 0.0};
 }
 
 StudyOutcome<FollowGazeTable> computeFollowGazeTable(const Scene& scene, const FollowGazeTableOptions& options,
                                                      const StudyControl& control) {
   StudyOutcome<FollowGazeTable> out;
-  TraceEvaluatorOptions to;
-  to.rays = options.rays;
-  const FovEvaluator eval = traceEvaluator(to);
+  const XpRule rule = sceneXpRule(scene);
   const double lo = scene.eye.gaze_range_deg[0], hi = scene.eye.gaze_range_deg[1];
   const int n = std::max(2, options.samples);
-  const double step = (hi - lo) / (n - 1);
   FollowGazeTable t;
-  for (GazeAxis axis : {GazeAxis::Yaw, GazeAxis::Pitch}) {
-    const auto sweep = sweepGaze(scene, eval, lo, hi, step, axis, ShiftMethod::Hoe, {}, control);
-    if (!sweep.ok()) return out;
-    std::vector<double>& shifts = axis == GazeAxis::Yaw ? t.shift_x_mm : t.shift_y_mm;
-    std::vector<double> gazes;
-    for (const auto& s : sweep.value->samples) {
-      gazes.push_back(s.gaze_deg);
-      shifts.push_back(s.shift_mm);
-    }
-    if (t.gazes_deg.empty()) t.gazes_deg = gazes;
-  }
-  if (t.shift_x_mm.size() != t.gazes_deg.size() || t.shift_y_mm.size() != t.gazes_deg.size()) return out;
+  for (int i = 0; i < n; ++i) t.gazes_deg.push_back(lo + (hi - lo) * i / (n - 1));
+  // One job per (axis, gaze): the x_p call of every other caller (hoe_travel.h).
+  auto runs = runSamples<double>(
+      2 * t.gazes_deg.size(),
+      [&](std::size_t j) {
+        const double g = t.gazes_deg[j % t.gazes_deg.size()];
+        const bool yaw = j < t.gazes_deg.size();
+        return hoeTravel(scene, yaw ? std::array{g, 0.0} : std::array{0.0, g}, rule).shift_mm[yaw ? 0 : 1];
+      },
+      control);
+  if (!runs.ok()) return out;
+  t.shift_x_mm.assign(runs.value->begin(), runs.value->begin() + static_cast<long>(t.gazes_deg.size()));
+  t.shift_y_mm.assign(runs.value->begin() + static_cast<long>(t.gazes_deg.size()), runs.value->end());
   char src[160];
-  std::snprintf(src, sizeof src, "gaze study: sweepGaze (traced HOE) over [%g, %g] deg, %zu gazes, %d rays", lo, hi,
-                t.gazes_deg.size(), options.rays);
+  std::snprintf(src, sizeof src, "gaze study: hoeTravel (%s, exact FOV) over [%g, %g] deg, %zu gazes", xpRuleName(rule),
+                lo, hi, t.gazes_deg.size());
   t.source = src;
   out.status = StudyStatus::Completed;
   out.value = std::move(t);

@@ -1,8 +1,10 @@
 #pragma once
 // The HOE travel x_p(alpha) that follow-gaze and the capture wizard drive the HOE stages to:
-// the gaze study's optimal HOE shift (sweepGaze, ShiftMethod::Hoe) tabulated over the
-// scene's gaze range, yaw -> x, pitch -> y, interpolated linearly between samples and
-// referred to the optimum at zero gaze (a zero gaze component keeps its stage at 0).
+// x_p from the one x_p source (model/analysis/hoe_travel.h hoeTravel, the scene's
+// view.xp_rule: what `fovea-cli sweep` reports and the studio's live trace applies)
+// tabulated over the scene's gaze range, yaw -> x, pitch -> y, interpolated linearly between
+// samples (at a sample gaze it is hoeTravel's value exactly); a zero gaze component keeps its
+// stage at 0, as hoeTravel does.
 //
 // Qt-free: the studio runs FollowGazeTableTask in the background and asks it for the table;
 // until it is ready the callers use the geometric guess and say so.
@@ -21,16 +23,15 @@ namespace fovea::devices {
 
 struct FollowGazeTable {
   std::vector<double> gazes_deg;   // sample gazes (yaw for x, pitch for y), ascending
-  std::vector<double> shift_x_mm;  // optimal HOE x for each yaw
-  std::vector<double> shift_y_mm;  // optimal HOE y for each pitch
-  std::string source;              // "gaze study: sweepGaze over [-20, 20] deg, 9 gazes, 800 rays"
-  // x_p(alpha) for a (yaw, pitch) gaze, relative to the optimum at zero gaze.
+  std::vector<double> shift_x_mm;  // x_p along HOE x for each yaw (hoeTravel at (yaw, 0))
+  std::vector<double> shift_y_mm;  // along HOE y for each pitch (hoeTravel at (0, pitch))
+  std::string source;              // "gaze study: hoeTravel (plateau-middle) over [-20, 20] deg, 9 gazes"
+  // x_p(alpha) for a (yaw, pitch) gaze: interpolated, a zero component 0.
   std::array<double, 2> hoeShift(std::array<double, 2> gaze_deg) const;
 };
 
 struct FollowGazeTableOptions {
-  int samples = 9;  // gazes per axis over the scene's gaze range
-  int rays = 800;   // traced rays per FOV evaluation
+  int samples = 9;  // gazes per axis over the scene's gaze range (the rule: the scene's view.xp_rule)
 };
 
 // Runs the two gaze sweeps (yaw, pitch). Cancelled: no value.

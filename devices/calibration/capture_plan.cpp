@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "model/analysis/gaze_studies.h"
-#include "model/analysis/trace_evaluator.h"
+#include "model/analysis/hoe_travel.h"
 
 namespace fovea::devices {
 
@@ -116,16 +116,8 @@ CaptureStep captureStepFromJson(const nlohmann::json& j) {
   }
 }
 
-std::function<std::array<double, 2>(std::array<double, 2>)> analysedHoeShift(const Scene& scene, int rays) {
-  TraceEvaluatorOptions o;
-  o.rays = rays;
-  const FovEvaluator eval = traceEvaluator(o);
-  return [scene, eval](std::array<double, 2> g) {
-    std::array<double, 2> s{0.0, 0.0};
-    if (g[0] != 0.0) s[0] = optimiseShift(scene, eval, g[0], GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm;
-    if (g[1] != 0.0) s[1] = optimiseShift(scene, eval, g[1], GazeAxis::Pitch, ShiftMethod::Hoe).shift_mm;
-    return s;
-  };
+std::function<std::array<double, 2>(std::array<double, 2>)> analysedHoeShift(const Scene& scene) {
+  return [scene](std::array<double, 2> g) { return hoeTravel(scene, g, sceneXpRule(scene)).shift_mm; };
 }
 
 image::DisplayPattern peripheralBoard(const Scene& scene, std::array<double, 2> gaze, std::array<int, 2> squares,

@@ -78,10 +78,10 @@ Plan geometricPlan(const Scene& scene, const GeometricPlanOptions& options = {})
 Plan colorPlan(const Scene& scene, std::vector<double> levels = {0.25, 0.5, 0.75, 1.0});
 Plan gazePlan(const Scene& scene, double offset_deg = 10.0);
 
-// x_p(alpha) from the analyses: the HOE shift that maximises the traced FOV for the gaze
-// (gaze_studies.h optimiseShift on the HOE ray tracer with `rays` per wavelength), yaw ->
-// HOE x and pitch -> HOE y; a zero gaze component keeps that shift at 0.
-std::function<std::array<double, 2>(std::array<double, 2>)> analysedHoeShift(const Scene& scene, int rays = 1000);
+// x_p(alpha) from the analyses: the one x_p source (model/analysis/hoe_travel.h hoeTravel
+// with the scene's view.xp_rule, what `sweep` reports), yaw -> HOE x and pitch -> HOE y; a
+// zero gaze component keeps that shift at 0.
+std::function<std::array<double, 2>(std::array<double, 2>)> analysedHoeShift(const Scene& scene);
 
 // Whether an element coordinate is inside its binding's soft limits (true when unbound).
 bool withinSoftLimits(const Scene& scene, const StageTarget& t);

@@ -24,8 +24,11 @@ nlohmann::json curveJson(const std::vector<SelectivitySample>& c, const char* x_
 
 }  // namespace
 
-nlohmann::json traceResultJson(const TraceResult& r, const TraceOptions& o) {
-  nlohmann::json out{{"fov_deg", fovDegJson(r.fov_deg)},
+nlohmann::json traceResultJson(const TraceResult& r, const TraceOptions& o, const TraceFov& fov, FovMethod method) {
+  nlohmann::json out{{"fov_deg", fovDegJson(fov.shown(method))},
+                     {"fov_method", fovMethodName(method)},
+                     {"fov_dense_deg", fovDegJson(fov.dense)},
+                     {"fov_extent_deg", fovDegJson(fov.extent)},
                      {"rays", r.rays},
                      {"rays_in_pupil", r.rays_in_pupil},
                      {"rays_efficient", r.rays_efficient},
@@ -78,7 +81,8 @@ nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis
          {"efficiency_uniformity", s.fov.efficiency_uniformity},
          {"pupil_position_mm", s.pupil_position_mm},
          {"shift_plateau_mm", s.plateau_mm},
-         {"best_fov_deg", s.best_fov_deg}});
+         {"best_fov_deg", s.best_fov_deg},
+         {"focus_axial_miss_mm", s.focus_axial_miss_mm}});
   j["samples"] = arr;
   j["eyebox_mm"] = r.eyebox.width_mm;
   j["eyebox"] = eyeBoxJson(r.eyebox);
@@ -133,7 +137,8 @@ nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& sampl
                    {"fov_deg", fovSampleJson(s.fov)},
                    {"mean_efficiency", s.fov.mean_efficiency},
                    {"efficiency_uniformity", s.fov.efficiency_uniformity},
-                   {"rays_in_pupil", s.fov.rays_in_pupil}});
+                   {"rays_in_pupil", s.fov.rays_in_pupil},
+                   {"hoe_shift_mm", s.hoe_shift_mm}});
   j["samples"] = arr;
   return j;
 }

@@ -13,12 +13,15 @@
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/hoe_selectivity.h"
+#include "model/analysis/trace_fov.h"
 #include "model/physics/trace.h"
 #include "model/rigorous/kogelnik_vs_rcwa.h"
 
 namespace fovea {
 
-nlohmann::json traceResultJson(const TraceResult& r, const TraceOptions& o);
+// fov_deg: the FOV of `method` (trace_fov.h; edges, the exact one, by default), beside
+// fov_method, fov_dense_deg (the dense continuous FOV) and fov_extent_deg (the lit extent).
+nlohmann::json traceResultJson(const TraceResult& r, const TraceOptions& o, const TraceFov& fov, FovMethod method);
 nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis);
 // One method's part of compare-shift ("hoe_shift" / "source_shift" values).
 nlohmann::json compareShiftMethodJson(const EyeBox& eb, ShiftMethod method, GazeAxis axis);

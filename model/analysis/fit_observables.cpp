@@ -41,7 +41,8 @@ const GazeSample& ObservableContext::optimalShift(double gaze_deg, GazeAxis axis
                                                   std::optional<double> wavelength_nm,
                                                   const GazeStudyOptions& options) {
   const std::string k =
-      keyOf({gaze_deg, double(axis), double(method), options.plateau_tolerance_deg}, laserKey(wavelength_nm));
+      keyOf({gaze_deg, double(axis), double(method), options.plateau_tolerance_deg, double(options.xp_rule)},
+            laserKey(wavelength_nm));
   auto it = shifts_.find(k);
   if (it == shifts_.end())
     it = shifts_.emplace(k, optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options)).first;
@@ -91,6 +92,7 @@ GazeStudyOptions studyOptions(const ObservableContext& ctx, const nlohmann::json
   if (p.contains("tolerance_deg")) o.tolerance_deg = num(p, "tolerance_deg");
   if (p.contains("plateau_tolerance_deg")) o.plateau_tolerance_deg = num(p, "plateau_tolerance_deg");
   if (p.contains("criterion") && txt(p, "criterion") == "centre-fov") o.criterion = EyeBoxCriterion::CentreFov;
+  if (p.contains("xp_rule")) o.xp_rule = parseXpRule(txt(p, "xp_rule")).value_or(XpRule::PlateauMiddle);
   return o;
 }
 
@@ -141,6 +143,13 @@ ObservableParameter gazeParam() {
 ObservableParameter axisParam() {
   return {"axis", "yaw", {"yaw", "pitch"}, "yaw: horizontal (HOE local x); pitch: vertical (HOE local y)"};
 }
+ObservableParameter xpRuleParam() {
+  return {"xp_rule",
+          "plateau-middle",
+          {"plateau-middle", "follow-focus"},
+          "how x_p is chosen (method hoe): the middle of the FOV plateau, or the diffracted rays' focus on the rotated "
+          "pupil centre (the seed's; gaze_studies.h)"};
+}
 ObservableParameter laserParam() {
   return {"wavelength_nm", nullptr, {}, "trace only the laser at this wavelength (null: every projector laser)"};
 }
@@ -155,7 +164,8 @@ std::vector<ObservableParameter> shiftParams() {
            {"hoe", "source", "source_axial"},
            "what moves: the HOE laterally, the point source along bench z, or along the projector's axis (the seed's "
            "z_s)"},
-          {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best (gaze_studies.h)"}};
+          {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best (gaze_studies.h)"},
+          xpRuleParam()};
 }
 std::vector<ObservableParameter> sweepParams(bool with_end) {
   std::vector<ObservableParameter> v{
@@ -207,16 +217,18 @@ std::vector<ObservableDefinition> buildTable() {
     t.push_back(d);
   }
   {
-    ObservableDefinition d{"x_p_mm",
-                           "mm",
-                           "travel at a gaze: the HOE shift x_p (method hoe) or the source shift z_s along bench z "
-                           "(method source) that maximises the FOV (gaze_studies.h optimiseShift)",
-                           {gazeParam(),
-                            axisParam(),
-                            {"method", "hoe", {"hoe", "source", "source_axial"}, "what moves"},
-                            {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best"},
-                            laserParam()},
-                           nullptr};
+    ObservableDefinition d{
+        "x_p_mm",
+        "mm",
+        "travel at a gaze: the HOE shift x_p (method hoe) or the source shift z_s along bench z "
+        "(method source) that maximises the FOV (gaze_studies.h optimiseShift; xp_rule picks the HOE's rule)",
+        {gazeParam(),
+         axisParam(),
+         {"method", "hoe", {"hoe", "source", "source_axial"}, "what moves"},
+         {"plateau_tolerance_deg", 5.0, {}, "x_p plateau: FOV within this of the best"},
+         xpRuleParam(),
+         laserParam()},
+        nullptr};
     d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) {
       return ctx.optimalShift(num(p, "gaze_deg"), axisOf(p), methodOf(p), laser(p), studyOptions(ctx, p)).shift_mm;
     };

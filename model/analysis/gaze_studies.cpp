@@ -45,6 +45,68 @@ double pupilPositionMm(const Scene& scene, double gaze_deg, GazeAxis axis) {
   return axis == GazeAxis::Yaw ? e.pupil_center.x() : e.pupil_center.y();
 }
 
+const char* xpRuleName(XpRule r) {
+  return r == XpRule::FollowFocus ? "follow-focus" : "plateau-middle";
+}
+
+std::optional<XpRule> parseXpRule(const std::string& name) {
+  if (name == "plateau-middle") return XpRule::PlateauMiddle;
+  if (name == "follow-focus") return XpRule::FollowFocus;
+  return std::nullopt;
+}
+
+namespace {
+
+// The seed's rule (header comment): the secant method on the focus's lateral miss m(s) of the
+// rotated pupil centre, from the geometric guess. m is piecewise smooth (the set of lit rays
+// changes by single rays as the plate moves), so the secant step is clamped and the iteration
+// stops at the tolerance or after a bounded number of steps, keeping the smallest |m| seen.
+GazeSample followFocusShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
+                            const GazeStudyOptions& options, double guess) {
+  const EyePlacement eye = axis == GazeAxis::Yaw ? placeEye(scene, gaze_deg, 0.0) : placeEye(scene, 0.0, gaze_deg);
+  const int k = axis == GazeAxis::Yaw ? 0 : 1;
+  auto missAt = [&](double s) -> Eigen::Vector3d {
+    const std::array<double, 2> shift = axis == GazeAxis::Yaw ? std::array<double, 2>{s, 0.0} : std::array{0.0, s};
+    const auto f = hoeFocus(scene, shift, options.focus);
+    if (!f)
+      throw std::runtime_error("follow-focus x_p: no lit ray leaves the HOE towards the eye at a shift of " +
+                               std::to_string(s) + " mm");
+    return f->focus.point - eye.pupil_center;
+  };
+  double s0 = guess, s1 = guess + 0.5;
+  Eigen::Vector3d m0 = missAt(s0), m1 = missAt(s1);
+  double best_s = std::abs(m0[k]) <= std::abs(m1[k]) ? s0 : s1;
+  Eigen::Vector3d best_m = std::abs(m0[k]) <= std::abs(m1[k]) ? m0 : m1;
+  for (int it = 0; it < 40 && std::abs(best_m[k]) > options.focus_tolerance_mm; ++it) {
+    const double slope = (m1[k] - m0[k]) / (s1 - s0);
+    // The focus follows the plate about one to one: a flat or reversed secant is a step of
+    // the lit-ray set, not the trend; then step by the miss itself.
+    const double step = slope > 0.2 && slope < 5.0 ? -m1[k] / slope : -m1[k];
+    const double s2 = s1 + std::clamp(step, -2.0, 2.0);
+    if (s2 == s1) break;
+    s0 = s1;
+    m0 = m1;
+    s1 = s2;
+    m1 = missAt(s1);
+    if (std::abs(m1[k]) < std::abs(best_m[k])) {
+      best_s = s1;
+      best_m = m1;
+    }
+  }
+  GazeSample out;
+  out.gaze_deg = gaze_deg;
+  out.shift_mm = best_s;
+  out.fov = eval(scene, gazeQuery(gaze_deg, axis, ShiftMethod::Hoe, best_s));
+  out.pupil_position_mm = k == 0 ? eye.pupil_center.x() : eye.pupil_center.y();
+  out.plateau_mm = {best_s, best_s};
+  out.best_fov_deg = axisFov(out.fov, axis);
+  out.focus_axial_miss_mm = best_m.dot(eye.gaze);
+  out.focus_lateral_miss_mm = best_m[k];
+  return out;
+}
+
+}  // namespace
+
 GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
                          ShiftMethod method, const GazeStudyOptions& options) {
   const double pupil = pupilPositionMm(scene, gaze_deg, axis);
@@ -53,6 +115,8 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
   // The source shift has no simple guess (it moves along z): bracket around zero, wider.
   const double guess = method == ShiftMethod::Hoe ? pupil - pupil0 : 0.0;
   const double half = method == ShiftMethod::Hoe ? options.shift_half_range_mm : 2.5 * options.shift_half_range_mm;
+  if (method == ShiftMethod::Hoe && options.xp_rule == XpRule::FollowFocus)
+    return followFocusShift(scene, eval, gaze_deg, axis, options, guess);
   const int n = std::max(3, options.bracket_points);
   auto fovAt = [&](double s) { return axisFov(eval(scene, gazeQuery(gaze_deg, axis, method, s)), axis); };
   if (method == ShiftMethod::None) {
@@ -210,7 +274,8 @@ StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator
 
 StudyOutcome<std::vector<SensitivitySample>> sensitivitySweep(const Scene& scene, const FovEvaluator& eval,
                                                               const std::string& path, double from, double to,
-                                                              int steps, const StudyControl& control) {
+                                                              int steps, const StudyControl& control,
+                                                              const std::optional<GazeStudyOptions>& follow) {
   if (steps < 1) throw std::invalid_argument("steps must be >= 1");
   std::vector<double> values(steps);
   std::vector<Scene> scenes;
@@ -224,7 +289,13 @@ StudyOutcome<std::vector<SensitivitySample>> sensitivitySweep(const Scene& scene
       [&](std::size_t i) {
         FovQuery q;
         q.gaze_deg = scenes[i].eye.gaze_deg;
-        return SensitivitySample{values[i], eval(scenes[i], q)};
+        if (follow)
+          for (int k = 0; k < 2; ++k)
+            if (q.gaze_deg[k] != 0.0)
+              q.hoe_shift_mm[k] = optimiseShift(scenes[i], eval, q.gaze_deg[k],
+                                                k == 0 ? GazeAxis::Yaw : GazeAxis::Pitch, ShiftMethod::Hoe, *follow)
+                                      .shift_mm;
+        return SensitivitySample{values[i], eval(scenes[i], q), q.hoe_shift_mm};
       },
       control);
 }

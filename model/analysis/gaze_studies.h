@@ -15,6 +15,13 @@
 // midpoint and the FOV reported is the one traced at x_p. (The seed's "shift giving the
 // maximum FOV" in A.3; the midpoint is that maximum made well-defined and centres the
 // Maxwellian focus on the pupil.)
+// The seed's x_p rule (XpRule::FollowFocus, `--xp-rule follow-focus`): the HOE shift at which
+// the least-squares focus of the rays leaving the HOE towards the eye (hoe_focus.h) lies on
+// the rotated pupil centre along the axis (bench x for yaw, y for pitch). The focus moves with
+// the plate, so its lateral miss m(s) is nearly s + m(0): the root is found by the secant
+// method from the geometric guess to focus_tolerance_mm. What remains is the axial miss, the
+// focus's offset from the pupil centre along the line of sight (GazeSample::focus_axial_miss_mm,
+// + towards the HOE). This rule applies to the HOE; a source shift keeps the plateau middle.
 // Eye box: the pupil-centre positions (bench mm along the axis) over the contiguous gaze
 // range around zero gaze whose optimised FOV stays within tolerance_deg of the zero-gaze
 // FOV; its borders are refined by bisection of the gaze angle.
@@ -40,6 +47,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -47,6 +55,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/analysis/hoe_focus.h"
 #include "model/analysis/study_runner.h"
 #include "model/scene/scene.h"
 #include "model/scene/scene_parameters.h"  // withParameter, parameterValue
@@ -59,6 +68,12 @@ enum class GazeAxis { Yaw, Pitch };
 enum class ShiftMethod { Hoe, Source, None, SourceAxial };
 
 enum class EyeBoxCriterion { Tolerance, CentreFov };
+
+// How x_p is chosen (header comment): the middle of the FOV plateau (ours, the default) or
+// the shift putting the diffracted rays' focus on the rotated pupil centre (the seed's).
+enum class XpRule { PlateauMiddle, FollowFocus };
+const char* xpRuleName(XpRule r);  // "plateau-middle", "follow-focus"
+std::optional<XpRule> parseXpRule(const std::string& name);
 inline constexpr double kCentreFovSlackDeg = 0.01;  // 2 x the exact estimator's edge tolerance
 
 struct FovSample {
@@ -89,6 +104,9 @@ struct GazeStudyOptions {
   // Evaluate every bracket point (the reference) instead of walking out from the guess until
   // two consecutive points fall below the plateau level (same result, fewer traces).
   bool full_bracket = false;
+  XpRule xp_rule = XpRule::PlateauMiddle;  // HOE shifts only (header comment)
+  HoeFocusOptions focus;                   // FollowFocus: the rays whose focus is followed
+  double focus_tolerance_mm = 1e-3;        // FollowFocus: lateral miss of the focus at x_p
 };
 
 struct GazeSample {
@@ -98,6 +116,10 @@ struct GazeSample {
   double pupil_position_mm = 0;            // pupil centre along the axis (bench x for yaw, y for pitch)
   std::array<double, 2> plateau_mm{0, 0};  // shifts whose FOV is within plateau_tolerance_deg of the best
   double best_fov_deg = 0;                 // best FOV of the bracket (F*)
+  // FollowFocus only (NaN otherwise): the focus's miss of the rotated pupil centre at x_p,
+  // along the line of sight (+ towards the HOE) and along the axis (<= focus_tolerance_mm).
+  double focus_axial_miss_mm = std::numeric_limits<double>::quiet_NaN();
+  double focus_lateral_miss_mm = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct EyeBox {
@@ -154,11 +176,16 @@ StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator
 struct SensitivitySample {
   double value = 0;
   FovSample fov;
+  std::array<double, 2> hoe_shift_mm{0, 0};  // x_p applied (follow set), else 0
 };
 
-// FOV, mean efficiency and uniformity at the scene's gaze over values of one parameter.
+// FOV, mean efficiency and uniformity at the scene's gaze over values of one parameter. With
+// `follow` the HOE follows the gaze: each value's scene is traced with its own x_p, found per
+// gaze component by optimiseShift with these options (as hoe_travel.h does; a zero component
+// keeps 0).
 StudyOutcome<std::vector<SensitivitySample>> sensitivitySweep(const Scene& scene, const FovEvaluator& eval,
                                                               const std::string& path, double from, double to,
-                                                              int steps, const StudyControl& control = {});
+                                                              int steps, const StudyControl& control = {},
+                                                              const std::optional<GazeStudyOptions>& follow = {});
 
 }  // namespace fovea

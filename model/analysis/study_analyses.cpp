@@ -7,6 +7,7 @@
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/lens_catalog.h"
 #include "model/analysis/trace_evaluator.h"
+#include "model/analysis/trace_fov.h"
 
 namespace fovea::analysis {
 
@@ -52,6 +53,7 @@ void addDefinitions(nlohmann::json& out, const nlohmann::json& v) {
   out["fov_method"] = textOf(v, "fov-method");
   out["fov_definition"] = textOf(v, "fov-definition");
   out["eyebox_criterion"] = textOf(v, "eyebox-criterion");
+  out["xp_rule"] = textOf(v, "xp-rule");
 }
 
 OptionGroup gazeGroup(bool repeatable) {
@@ -72,7 +74,10 @@ std::vector<ParameterSpec> studyParameters() {
                  "zero-gaze FOV (the seed's A.3)"),
           choice("fov-definition", "FOV definition", {"ours", "seed"}, "ours",
                  "ours: span of the lit rays' arrival directions; seed: span of their plate points seen from the "
-                 "pupil centre, the lit footprint (C.2, Fig. S5; needs fov-method edges)")};
+                 "pupil centre, the lit footprint (C.2, Fig. S5; needs fov-method edges)"),
+          choice("xp-rule", "x_p rule", {"plateau-middle", "follow-focus"}, "plateau-middle",
+                 "how the HOE shift x_p is chosen: plateau-middle, the middle of the FOV plateau (ours); follow-focus, "
+                 "the diffracted rays' least-squares focus on the rotated pupil centre (the seed's; gaze_studies.h)")};
 }
 
 std::optional<std::array<double, 2>> gazeFrom(const nlohmann::json& v) {
@@ -90,7 +95,12 @@ TraceOptions traceOptionsFrom(const nlohmann::json& v) {
   o.rays = integerOf(v, "rays");
   o.efficiency_threshold = numberOf(v, "threshold");
   o.polarization = polarizationFrom(v);
+  o.keep_field_rays = true;  // the dense continuous FOV (fov_dense_deg)
   return o;
+}
+
+FovMethod traceFovMethodFrom(const nlohmann::json& v) {
+  return parseFovMethod(textOf(v, "fov-method")).value_or(FovMethod::Edges);
 }
 
 FovEvaluator evaluatorFrom(const nlohmann::json& v) {
@@ -105,6 +115,7 @@ GazeStudyOptions gazeStudyOptionsFrom(const nlohmann::json& v) {
   GazeStudyOptions g;
   g.tolerance_deg = numberOf(v, "tolerance-deg");
   g.criterion = textOf(v, "eyebox-criterion") == "centre-fov" ? EyeBoxCriterion::CentreFov : EyeBoxCriterion::Tolerance;
+  g.xp_rule = parseXpRule(textOf(v, "xp-rule")).value_or(XpRule::PlateauMiddle);
   return g;
 }
 
@@ -144,13 +155,17 @@ AnalysisDefinition traceAnalysis() {
       integer("rays", "Rays per wavelength", 4000, 1, 10000000,
               "approximate rays per wavelength over the projector FOV"),
       number("threshold", "Efficiency threshold", "", 0.1, 0, 1, 3, "rays below it do not count for the FOV"),
-      choice("polarization", "Polarisation", kPolarizations, "unpolarized", "projector light")};
+      choice("polarization", "Polarisation", kPolarizations, "unpolarized", "projector light"),
+      choice("fov-method", "FOV estimator", {"edges", "dense"}, "edges",
+             "fov_deg from edges: the exact estimator, the field's edges root-found to 0.005 deg (fov_edges.h, as "
+             "sweep); dense: counted on the traced ray grid (also always in fov_dense_deg)")};
   d.option_groups = {
       gazeGroup(true),
       {"hoe-shift-mm", {"hoe-shift-x", "hoe-shift-y"}, "X[,Y] lateral HOE shift in its local frame (mm)"}};
   d.run = [](const Scene& scene, const nlohmann::json& v, const StudyControl&) -> std::optional<nlohmann::json> {
     const TraceOptions o = traceOptionsFrom(v);
-    return traceResultJson(traceScene(scene, o), o);
+    const TraceResult r = traceScene(scene, o);
+    return traceResultJson(r, o, traceFov(scene, r, o), traceFovMethodFrom(v));
   };
   return d;
 }
@@ -232,7 +247,8 @@ AnalysisDefinition sensitivityAnalysis() {
   d.title = "Sensitivity to one scene parameter";
   d.description =
       "FOV, mean efficiency and efficiency uniformity at the scene's gaze over values of any numeric scene "
-      "parameter (its JSON path in the scene file).";
+      "parameter (its JSON path in the scene file); when the scene's HOE follows the gaze (view.hoe_follows_gaze) "
+      "each value is traced with its own x_p (xp-rule).";
   d.parameters = {text("parameter", "Parameter (JSON path)",
                        {"eye.relief_mm", "eye.pupil_diameter_mm", "hoe_layers[1].shrinkage_percent", "hoe_layers[1].n1",
                         "hoe_layers[1].thickness_um", "hoe.rotation_deg[0]", "projector.position_mm[2]"},
@@ -255,11 +271,14 @@ AnalysisDefinition sensitivityAnalysis() {
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("parameter: ") + e.what());
     }
+    std::optional<GazeStudyOptions> follow;
+    if (scene.view.hoe_follows_gaze) follow = gazeStudyOptionsFrom(v);
     const auto r = sensitivitySweep(scene, evaluatorFrom(v), path, numberOf(v, "from"), numberOf(v, "to"),
-                                    integerOf(v, "steps"), control);
+                                    integerOf(v, "steps"), control, follow);
     if (!r.ok()) return std::nullopt;
     nlohmann::json out = sensitivityResultJson(*r.value, path, nominal);
     addDefinitions(out, v);
+    out["hoe_follows_gaze"] = scene.view.hoe_follows_gaze;
     return out;
   };
   return d;

@@ -9,6 +9,7 @@
 #include "model/analysis/analysis_registry.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/hoe_selectivity.h"
+#include "model/analysis/trace_evaluator.h"
 #include "model/physics/trace.h"
 
 namespace fovea::analysis {
@@ -27,6 +28,8 @@ AnalysisDefinition kogelnikVsRcwaAnalysis();
 std::vector<ParameterSpec> studyParameters();
 
 TraceOptions traceOptionsFrom(const nlohmann::json& values);
+// The trace's "fov-method": which FOV is its fov_deg (trace_fov.h; edges by default).
+FovMethod traceFovMethodFrom(const nlohmann::json& values);
 // The gaze of "gaze-yaw"/"gaze-pitch": nothing when both are unset (the scene's gaze).
 std::optional<std::array<double, 2>> gazeFrom(const nlohmann::json& values);
 FovEvaluator evaluatorFrom(const nlohmann::json& values);

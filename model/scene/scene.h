@@ -170,6 +170,8 @@ struct StageBinding {
 // older files and older studios are unaffected).
 struct ViewState {
   bool hoe_follows_gaze = false;  // the HOE travels by x_p(alpha), the FOV-maximising shift (A.4)
+  // How x_p is chosen (model/analysis/gaze_studies.h XpRule): "plateau-middle" or "follow-focus".
+  std::string xp_rule = "plateau-middle";
   bool operator==(const ViewState&) const = default;
 };
 

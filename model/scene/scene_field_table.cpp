@@ -260,6 +260,11 @@ FieldTable<ViewState> makeView() {
   t.add<&V::hoe_follows_gaze>("hoe_follows_gaze", "", Range::any(), kOpt, {"HOE follows gaze"},
                               "the HOE travels by x_p(alpha), the shift that maximises the FOV (A.4)")
       .omitDefault();
+  t.text<&V::xp_rule>("xp_rule", kOpt, "x_p rule",
+                      "how x_p is chosen: plateau-middle, the middle of the FOV plateau (ours); follow-focus, the "
+                      "diffracted rays' focus on the rotated pupil centre (the seed's)",
+                      {"plateau-middle", "follow-focus"})
+      .omitDefault();
   return t;
 }
 

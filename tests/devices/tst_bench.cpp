@@ -163,19 +163,19 @@ class TestBench : public QObject {
     }
   }
 
-  void followGazeTableInterpolatesFromTheZeroGazeOptimum() {
-    // A hand-made gaze-study table: x_p(alpha) is relative to the optimum at zero gaze,
-    // linear between samples, clamped beyond the studied range.
+  void followGazeTableInterpolatesTheAbsoluteXp() {
+    // A hand-made gaze-study table: x_p(alpha) as hoeTravel gives it (absolute, issue 26),
+    // linear between samples, clamped beyond the studied range, 0 at a zero gaze component.
     FollowGazeTable t;
     t.gazes_deg = {-10.0, 0.0, 10.0};
     t.shift_x_mm = {-2.0, 0.5, 3.0};
     t.shift_y_mm = {1.0, -1.0, -4.0};
     auto s = t.hoeShift({5.0, 0.0});
-    QCOMPARE(s[0], 1.25);  // (0.5 + 3) / 2 - 0.5
-    QCOMPARE(s[1], 0.0);   // zero pitch: y stays at its zero-gaze optimum
+    QCOMPARE(s[0], 1.75);  // (0.5 + 3) / 2
+    QCOMPARE(s[1], 0.0);   // zero pitch: y stays at the design position
     s = t.hoeShift({-20.0, 10.0});
-    QCOMPARE(s[0], -2.5);  // clamped to the -10 deg sample
-    QCOMPARE(s[1], -3.0);
+    QCOMPARE(s[0], -2.0);  // clamped to the -10 deg sample
+    QCOMPARE(s[1], -4.0);
     QCOMPARE(interpolateClamped({1.0}, {7.0}, 3.0), 7.0);
     QCOMPARE(interpolateClamped({}, {}, 3.0), 0.0);
   }
