@@ -2,12 +2,17 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 
 #include "app/embedded_scene.h"
+#include "model/io/output_file.h"
+#include "model/io/save_temporaries.h"
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
@@ -46,7 +51,36 @@ nlohmann::json sanitize(const nlohmann::json& j) {
 }  // namespace
 
 void printJson(const nlohmann::json& j, bool compact) {
-  std::cout << sanitize(j).dump(compact ? -1 : 2) << std::endl;
+  printText(sanitize(j).dump(compact ? -1 : 2) + "\n");
+}
+
+void printText(const std::string& text) {
+  std::cout.flush();  // what was printed before stays before
+  errno = 0;
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0) {
+    const int e = errno;
+    inputError(std::string("stdout: write failed: ") + (e ? std::strerror(e) : "output error"));
+  }
+}
+
+void checkOutputOption(const CLI::Option* option, const std::string& path) {
+  if (option == nullptr || option->count() == 0) return;
+  const std::string name = option->get_name();
+  if (path.empty()) usageError(name + ": an empty path names no file");
+  if (const auto why = cannotWriteFile(path)) usageError(name + ": " + path + ": " + *why);
+}
+
+void checkDistinctOutputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  if (const auto why = sameOutputTwice(outputs)) usageError(*why);
+}
+
+std::uint64_t parseSeed(const std::string& text, const std::string& argName) {
+  std::uint64_t v = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, v);  // digits only: no sign, no exponent
+  if (text.empty() || ec != std::errc{} || ptr != end)
+    usageError(argName + ": expected an integer in [0, 18446744073709551615], got '" + text + "'");
+  return v;
 }
 
 std::pair<int, int> parseShard(const std::string& s) {

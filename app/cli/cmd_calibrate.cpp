@@ -21,6 +21,7 @@
 #include "devices/bench/live_bench.h"
 #include "devices/transport/device_error.h"
 #include "model/image/geometric_calibration.h"
+#include "model/io/output_file.h"
 
 namespace fovea::cli {
 namespace cmd_calibrate {  // one per command file: fovea-cli compiles in unity batches
@@ -110,7 +111,11 @@ void run(const Args& a) {
                           {"skipped", plan.skipped},
                           {"boards_not_found", missing},
                           {"per_capture", per_capture}};
-    std::ofstream(std::filesystem::path(a.output) / "calibration.json") << report.dump(2) << "\n";
+    try {
+      writeOutputFile(std::filesystem::path(a.output) / "calibration.json", report.dump(2) + "\n");
+    } catch (const OutputError& e) {
+      inputError(e.what());
+    }
   }
   if (!missing.empty()) {
     std::string list;
@@ -146,7 +151,7 @@ void install(CLI::App& app) {
       ->check(CLI::IsMember({"optimal", "geometric"}));
   addCheckedOption(geo, "--noise", a->noise,
                    analysis::number("noise", "Read noise", "DN", 2.0, 0.0, 50.0, 2, "camera read noise"));
-  geo->add_option("--seed", a->seed, "camera noise seed (default 1)");
+  addSeedOption(geo, a->seed, "camera noise seed (default 1)");
   geo->callback([a] {
     try {
       run(*a);

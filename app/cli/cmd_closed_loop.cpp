@@ -77,7 +77,7 @@ void install(CLI::App& app) {
   auto a = std::make_shared<Args>();
   cmd->add_option("SCENE", a->scene, "scene file")->required();
   cmd->add_option("--saccades", a->saccades, "number of saccades (default 10)")->check(CLI::Range(1, 1000));
-  cmd->add_option("--seed", a->seed, "seed of the saccades and frames (default 1)");
+  addSeedOption(cmd, a->seed, "seed of the saccades and frames (default 1)");
   cmd->add_option("--stage-model", a->stage_model, "stage model of every axis (default: the scene's)")
       ->check(CLI::IsMember({"MTS25-Z8", "Z825B", "DDSM50"}));
   cmd->add_option("--fps", a->fps, "eye-camera frame rate (default 120)")->check(CLI::Range(1.0, 2000.0));

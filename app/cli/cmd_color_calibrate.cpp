@@ -12,6 +12,7 @@
 #include "app/cli/preview_json_io.h"
 #include "model/color/color_calibration.h"
 #include "model/color/measurement_csv.h"
+#include "model/io/json_input.h"
 #include "model/scene/scene_io.h"
 
 namespace fovea::cli {
@@ -35,13 +36,14 @@ void install(CLI::App& app) {
   cmd->add_option("--measurements", a->csv,
                   "spectroradiometer readings CSV (display,channel,level,x,y,Y,repeat) instead of MEAS")
       ->excludes(meas);
-  cmd->add_option("--out", a->out, "calibration file to write")->required();
+  auto* out_option = cmd->add_option("--out", a->out, "calibration file to write")->required();
   cmd->add_option("--white-xy", a->white, "white point chromaticity x,y (default D65 0.3127,0.3290)");
   cmd->add_option("--gamma", a->gamma, "gamma of the calibrated display (default 2.2)");
   cmd->add_option("--report-grid", a->grid, "targets per channel of the dE00 report grid (default 9)")
       ->check(CLI::Range(2, 64));
   cmd->add_flag("--json", a->json, "print the result as JSON");
-  cmd->callback([a] {
+  cmd->callback([a, out_option] {
+    checkOutputOption(out_option, a->out);
     color::ColorCalibrationOptions o;
     if (!a->white.empty()) {
       const auto w = parseNumberList(a->white, "--white-xy", 2, 2);
@@ -56,11 +58,9 @@ void install(CLI::App& app) {
     try {
       color::ColorMeasurements m;
       if (!a->csv.empty()) {
-        std::ifstream in(a->csv, std::ios::binary);
-        if (!in) inputError(a->csv + ": cannot read the measurements");
-        std::ostringstream text;
-        text << in.rdbuf();
-        const color::MeasurementImport imp = color::importSpectroradiometerCsv(text.str());
+        auto text = readInputFile(a->csv, color::kMaxMeasurementCsvBytes);  // regular file, <= 64 MiB
+        if (text.index() == 1) inputError(a->csv + ": cannot read the measurements: " + std::get<1>(text));
+        const color::MeasurementImport imp = color::importSpectroradiometerCsv(std::get<0>(text));
         if (!imp.ok())
           inputError(std::to_string(imp.problems.size()) + " problem(s) in the measurements, nothing calibrated:\n" +
                      color::formatProblems(imp, a->csv));

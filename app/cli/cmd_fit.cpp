@@ -61,17 +61,16 @@ void install(CLI::App& app) {
   cmd->add_option("--starts", a->starts, def.parameter("starts")->help);
   cmd->add_option("--seed", a->seed, def.parameter("seed")->help);
   cmd->add_option("--max-evals", a->max_evals, def.parameter("max-evals")->help);
-  cmd->add_option("--write-scene", a->write_scene, "write the fitted scene to this file");
+  auto* write_scene = cmd->add_option("--write-scene", a->write_scene, "write the fitted scene to this file");
   cmd->add_flag("--json", a->json, "print the fit document (JSON)");
-  cmd->callback([a, &def] {
+  cmd->callback([a, &def, write_scene] {
     std::string free;
     for (const auto& f : a->free) free += (free.empty() ? "" : " ") + f;
     nlohmann::json values{
         {"targets", a->targets}, {"free", free}, {"starts", a->starts}, {"seed", a->seed}, {"max-evals", a->max_evals}};
     for (const auto& p : analysis::validateValues(def, values)) usageError(p.text("--"));
     const Scene scene = loadSceneOrExit(a->scene);
-    if (!a->write_scene.empty())
-      if (const auto why = cannotWriteFile(a->write_scene)) usageError("--write-scene: " + *why);
+    checkOutputOption(write_scene, a->write_scene);
     const nlohmann::json out = runStudy(def, scene, values);
     if (!a->write_scene.empty()) {
       try {

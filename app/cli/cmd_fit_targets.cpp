@@ -26,9 +26,10 @@ void install(CLI::App& app) {
   cmd->add_option("MANIFEST", a->manifest, "manifest.json of a capture session, or its folder")->required();
   cmd->add_option("--sigma-mm", a->sigma_mm, "uncertainty of each x_p (default 0.05 mm)");
   cmd->add_option("--source", a->source, "source of the targets (default \"bench\"; the step id is added)");
-  cmd->add_option("--out", a->out, "also write the targets file here");
+  auto* out = cmd->add_option("--out", a->out, "also write the targets file here");
   cmd->add_flag("--json", a->json, "print the targets file (JSON) with the captures skipped");
-  cmd->callback([a] {
+  cmd->callback([a, out] {
+    checkOutputOption(out, a->out);
     if (!std::isfinite(a->sigma_mm) || !(a->sigma_mm > 0))
       usageError("--sigma-mm: must be a finite number > 0, got " + std::to_string(a->sigma_mm));
     std::filesystem::path path = a->manifest;

@@ -42,7 +42,7 @@ void install(CLI::App& app) {
       ->check(CLI::IsMember({"poly1", "poly2", "poly3", "homography"}));
   cmd->add_option("--holdout-fraction", a->holdout, "fraction of pairs held out for the residual (default 0)")
       ->check(CLI::Range(0.0, 0.95));
-  cmd->add_option("--seed", a->seed, "seed of the hold-out split (default 1)");
+  addSeedOption(cmd, a->seed, "seed of the hold-out split (default 1)");
   cmd->add_flag("--json", a->json, "print the result as JSON");
   cmd->callback([a] {
     const nlohmann::json in = readJsonFileOrExit(a->pairs);

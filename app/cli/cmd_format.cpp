@@ -34,7 +34,7 @@ void install(CLI::App& app) {
                  std::to_string(kMaxGrowth) + " times the file's " + std::to_string(input_bytes) +
                  " bytes: refused (deeply nested notes?)");
     if (!*inPlace) {
-      std::cout << text;
+      printText(text);
       return;
     }
     try {

@@ -42,12 +42,12 @@ void install(CLI::App& app) {
         Progress progress("merge");
         StudyControl control;
         control.on_progress = [&progress](double f) { progress.update(f); };
-        const auto merged = analysis::mergeSweepParts(docs, control);
+        const auto merged = analysis::mergeSweepParts(docs, control, *parts);
         if (!merged) inputError("merge did not complete");
         r = *merged;
         r["cached"] = false;  // as `fovea-cli sweep` prints a computed sweep
       } else if (kind == "fovea-tolerance-part") {
-        r = mergeToleranceParts(docs);
+        r = mergeToleranceParts(docs, *parts);
       } else {
         inputError("merge: part 1 is neither a fovea-tolerance-part nor a fovea-sweep-part (" + (*parts)[0] + ")");
       }

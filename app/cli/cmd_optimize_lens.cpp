@@ -28,10 +28,12 @@ void install(CLI::App& app) {
   cmd->add_option("SCENE", *path, "scene file (default: the embedded prototype bench)");
   cmd->add_option("--catalog", *catalog, "lens catalogue JSON (default: the shipped resources/lenses/catalog.json)");
   const auto options = addAnalysisOptions(cmd, "optimize-lens");
-  cmd->add_option("--apply", *apply, "write the scene with the optimised lens enabled to this file");
+  auto* apply_option =
+      cmd->add_option("--apply", *apply, "write the scene with the optimised lens enabled to this file");
   cmd->add_flag("--json", *json, "print JSON");
   addNoCacheFlag(cmd, *no_cache);
-  cmd->callback([path, catalog, apply, options, json, no_cache] {
+  cmd->callback([path, catalog, apply, options, json, no_cache, apply_option] {
+    checkOutputOption(apply_option, *apply);
     const nlohmann::json values = options->values();
     const Scene scene = loadSceneOrExit(*path);
     std::vector<StockLens> lenses;

@@ -21,21 +21,34 @@
 // --virtual-fault reject makes it answer every motion command with HW_RICHRESPONSE (to
 // exercise controller errors, reported in the controller's words, exit 1).
 // --transcript FILE records every message with its link-clock time (devices/replay).
+// --replay TRANSCRIPT plays a recorded transcript as the device (devices/replay/
+// replay_transport.h) instead of the USB link or the emulator: the device is named as when it
+// was recorded (--serial SERIAL or --virtual MODEL); a host message that differs from the
+// transcript's is a protocol error naming the line (exit 1).
+// --trace and --transcript are written (atomically, by the one output writer) once the
+// command has talked to the device; a command refused before any byte leaves them untouched.
+// They must name different files (exit 2).
 //
 // Refused before any byte (exit 2): targets outside the soft limits or the stage's travel
 // (whatever --soft-limits says; an override is intersected with the travel), targets and
 // distances that do not fit the protocol's signed 32-bit counts, --soft-limits MIN,MAX with
 // MIN >= MAX, a --timeout outside (0, 3600] s.
 #include <cmath>
+#include <functional>
 #include <iostream>
+#include <mutex>
 #include <optional>
+#include <span>
+#include <tuple>
 
 #include "app/cli/cli_common.h"
+#include "devices/replay/replay_transport.h"
 #include "devices/replay/transcript.h"
 #include "devices/stage/stage.h"
 #include "devices/stage/stage_binding.h"
 #include "devices/transport/libusb_transport.h"
 #include "devices/virtual/virtual_transport.h"
+#include "model/io/output_file.h"
 
 namespace fovea::cli {
 namespace cmd_stage {  // one per command file: fovea-cli compiles in unity batches
@@ -44,13 +57,38 @@ namespace {
 using devices::DeviceError;
 
 struct StageArgs {
-  std::string virtual_model, serial, trace, transcript, command, arg, scene, fault, soft_limits;
+  std::string virtual_model, serial, trace, transcript, replay, command, arg, scene, fault, soft_limits;
+  bool trace_given = false, transcript_given = false, replay_given = false;
   int channel = 1;
   bool json = false, immediate = false;
   double timeout_s = 2.0;
 };
 
 constexpr double kMaxTimeout_s = 3600.0;
+
+// A log sink that keeps its lines in memory; the file is written once, at the end, by the one
+// output writer (checked, atomic): a refused command or a full disk never leaves it truncated.
+class BufferedLog : public devices::AptLogSink {
+ public:
+  BufferedLog(std::string path, std::string header, std::function<double()> clock)
+      : path_(std::move(path)), text_(std::move(header)), clock_(std::move(clock)), t0_(clock_ ? clock_() : 0.0) {}
+  void message(bool transmitted, std::span<const std::uint8_t> raw) override {
+    std::lock_guard lock(mutex_);
+    text_ +=
+        (clock_ ? devices::transcriptLine(clock_() - t0_, transmitted, raw) : devices::aptLogLine(transmitted, raw)) +
+        "\n";
+  }
+  void write() {
+    std::lock_guard lock(mutex_);
+    writeOutputFile(path_, text_);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::string path_, text_;
+  std::function<double()> clock_;
+  double t0_ = 0;
+};
 
 int exitCodeFor(DeviceError::Kind k) {
   switch (k) {
@@ -134,6 +172,23 @@ void run(const StageArgs& a) {
                "' (info, enable, disable, home, move-abs MM, move-rel MM, jog forward|reverse, stop, position)");
   if (!a.fault.empty() && a.fault != "mute" && a.fault != "reject")
     usageError("--virtual-fault: expected 'mute' or 'reject', got '" + a.fault + "'");
+  for (const auto& [given, name, path] :
+       {std::tuple{a.trace_given, "--trace", a.trace}, std::tuple{a.transcript_given, "--transcript", a.transcript}}) {
+    if (!given) continue;
+    if (path.empty()) usageError(std::string(name) + ": an empty path names no file");
+    if (const auto why = outputPathProblem(path)) usageError(std::string(name) + ": " + path + ": " + *why);
+  }
+  checkDistinctOutputs({{"--trace", a.trace}, {"--transcript", a.transcript}, {"--replay", a.replay}});
+  if (a.replay_given && a.replay.empty()) usageError("--replay: an empty path names no file");
+  if (a.replay_given && !a.fault.empty()) usageError("--replay and --virtual-fault exclude each other");
+  std::vector<devices::TranscriptEntry> replay;
+  if (a.replay_given) {
+    try {
+      replay = devices::readTranscriptFile(a.replay);
+    } catch (const std::invalid_argument& e) {
+      inputError(std::string("--replay: ") + e.what());
+    }
+  }
 
   const Scene scene = loadSceneOrExit(a.scene);
   std::optional<StageBinding> binding;
@@ -204,22 +259,43 @@ void run(const StageArgs& a) {
       usageError(buf);
     }
   }
+  if (a.replay_given) {
+    // The recorded session plays the device's side: the same controller and stage, the link
+    // replaced.
+    devices::DeviceInfo info;
+    info.model = controller->name;
+    info.serial = emulator ? emulator->config().serial : a.serial;
+    info.description = "replay of " + a.replay;
+    transport = std::make_unique<devices::ReplayTransport>(std::move(replay), info, a.replay);
+  }
   config.channel = static_cast<std::uint8_t>(a.channel);
   config.reply_timeout = std::chrono::milliseconds(static_cast<long>(a.timeout_s * 1000));
 
   std::shared_ptr<devices::AptLogSink> trace;
-  try {
-    std::vector<std::shared_ptr<devices::AptLogSink>> sinks;
-    if (!a.trace.empty()) sinks.push_back(std::make_shared<devices::AptFileLog>(a.trace));
-    if (!a.transcript.empty()) {
-      devices::Transport* link = transport.get();
-      sinks.push_back(std::make_shared<devices::TranscriptRecorder>(a.transcript, [link] { return link->now(); }));
-    }
-    if (sinks.size() == 1) trace = sinks[0];
-    if (sinks.size() == 2) trace = std::make_shared<devices::TraceFanout>(sinks);
-  } catch (const std::exception& e) {
-    inputError(e.what());
+  std::vector<std::shared_ptr<BufferedLog>> logs;
+  if (a.trace_given) logs.push_back(std::make_shared<BufferedLog>(a.trace, "", nullptr));
+  if (a.transcript_given) {
+    devices::Transport* link = transport.get();
+    logs.push_back(std::make_shared<BufferedLog>(
+        a.transcript,
+        "# fovea APT transcript: seconds since the link opened, TX/RX bytes (see devices/replay/transcript.h)\n",
+        [link] { return link->now(); }));
   }
+  if (logs.size() == 1) trace = logs[0];
+  if (logs.size() == 2)
+    trace = std::make_shared<devices::TraceFanout>(
+        std::vector<std::shared_ptr<devices::AptLogSink>>(logs.begin(), logs.end()));
+  // Written once the device was talked to, whatever the outcome (a timeout's trace is the
+  // evidence); a failed write is exit 1 naming the file.
+  const auto writeLogs = [&logs] {
+    for (const auto& l : logs) {
+      try {
+        l->write();
+      } catch (const OutputError& e) {
+        inputError(e.what());
+      }
+    }
+  };
   const std::string unit = stage->unit();
   // Absolute targets are checked before anything touches the device.
   std::optional<double> target;
@@ -234,8 +310,10 @@ void run(const StageArgs& a) {
       usageError("jog: expected 'forward' or 'reverse', got '" + a.arg + "'");
   }
 
+  auto* replay_link = dynamic_cast<devices::ReplayTransport*>(transport.get());
   devices::Stage s(std::move(transport), config, trace);
   nlohmann::json out;
+  bool talked = false;
   try {
     // The same checks as Stage::startMove*, before even opening the link.
     const std::string device = controller->name + " " + (emulator ? emulator->config().serial : a.serial);
@@ -246,6 +324,7 @@ void run(const StageArgs& a) {
       std::snprintf(what, sizeof what, "relative move by %.4f %s", *target, unit.c_str());
       devices::checkEncodable(config, *target, what);
     }
+    talked = true;
     s.connect();
     if (a.command == "enable")
       s.setEnabled(true);
@@ -279,8 +358,18 @@ void run(const StageArgs& a) {
       out["counts_source"] = config.stage.source;
     }
   } catch (const DeviceError& e) {
+    if (talked) {
+      try {
+        s.disconnect();
+      } catch (...) {  // the device error is the one to report
+      }
+      writeLogs();
+    }
     throw CliError(exitCodeFor(e.kind()), e.what());
   }
+  if (replay_link) out["replay"] = {{"file", a.replay}, {"entries_not_played", replay_link->remaining()}};
+  s.disconnect();
+  writeLogs();
   out["command"] = a.command;
   out["device"] = {{"kind", "stage-controller"},
                    {"model", controller->name},
@@ -315,7 +404,7 @@ void install(CLI::App& app) {
   auto* s = cmd->add_option("--serial", a->serial, "serial number of a USB controller");
   v->excludes(s);
   cmd->add_option("--channel", a->channel, "controller channel (default 1)");
-  cmd->add_option("--trace", a->trace, "write every APT message as 'TX|RX HH HH ...' lines to FILE");
+  auto* trace = cmd->add_option("--trace", a->trace, "write every APT message as 'TX|RX HH HH ...' lines to FILE");
   cmd->add_flag("--json", a->json, "print the result as JSON");
   cmd->add_flag("--immediate", a->immediate, "stop: immediate instead of profiled");
   cmd->add_option("--scene", a->scene, "scene with the stage bindings (default: the prototype bench)");
@@ -323,12 +412,21 @@ void install(CLI::App& app) {
   cmd->add_option("--soft-limits", a->soft_limits, "override the soft limits: MIN,MAX in mm (deg)");
   cmd->add_option("--virtual-fault", a->fault,
                   "make the virtual device misbehave: mute (never answers), reject (HW_RICHRESPONSE to every move)");
-  cmd->add_option("--transcript", a->transcript,
-                  "write every APT message as 'SECONDS TX|RX HH HH ...' lines to FILE (a replayable transcript)");
+  auto* transcript =
+      cmd->add_option("--transcript", a->transcript,
+                      "write every APT message as 'SECONDS TX|RX HH HH ...' lines to FILE (a replayable transcript)");
+  auto* replay = cmd->add_option("--replay", a->replay,
+                                 "play a recorded transcript as the device (name it with --serial or --virtual as "
+                                 "when it was recorded)");
   cmd->add_option("COMMAND", a->command, "info|enable|disable|home|move-abs|move-rel|jog|stop|position")->required();
   cmd->add_option("ARG", a->arg, "distance in mm (deg) for move-abs/move-rel, forward|reverse for jog");
   cmd->positionals_at_end(false);
-  cmd->callback([a] { run(*a); });
+  cmd->callback([a, trace, transcript, replay] {
+    a->trace_given = trace->count() > 0;
+    a->transcript_given = transcript->count() > 0;
+    a->replay_given = replay->count() > 0;
+    run(*a);
+  });
 }
 
 const Registrar reg{"stage", &install};

@@ -41,9 +41,9 @@ ToleranceSpec loadSpec(const std::string& path) {
     inputError(std::string("--spec ") + e.what());
   }
   try {
-    return parseToleranceSpec(j);
+    return parseToleranceSpec(j, path);  // "PATH: json.path: problem"
   } catch (const std::invalid_argument& e) {
-    inputError(std::string(e.what()) + " (" + path + ")");
+    inputError(e.what());
   }
 }
 
@@ -124,7 +124,8 @@ void install(CLI::App& app) {
   cmd->add_option("SCENE", a->scene, "scene file (default: the embedded prototype bench)");
   cmd->add_option("--spec", a->spec, "tolerance spec (JSON, docs/tolerancing.md)")->required();
   cmd->add_option("--trials", a->trials, "number of trials (default 100)")->check(CLI::Range(1ULL, 10000000ULL));
-  cmd->add_option("--seed", a->seed, "random seed (default 1); trial i depends only on (seed, i)");
+  addSeedOption(cmd, a->seed,
+                "random seed (default 1, an integer in [0, 2^64 - 1]); trial i depends only on (seed, i)");
   cmd->add_option("--shard", a->shard, "run only shard K/N (0-based) and print its part for `fovea-cli merge`");
   cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--slurm", a->slurm_dir, "write a Slurm job array (one shard per task) and merge step to DIR");
@@ -143,6 +144,11 @@ void install(CLI::App& app) {
     if (a->submit && a->slurm_dir.empty()) usageError("--submit needs --slurm DIR");
     const ToleranceSpec spec = loadSpec(a->spec);
     const Scene scene = loadSceneOrExit(a->scene);
+    try {
+      checkToleranceSpecPaths(spec, scene, a->spec);
+    } catch (const std::invalid_argument& e) {
+      inputError(e.what());
+    }
     if (!a->slurm_dir.empty()) {
       if (!a->shard.empty()) usageError("--shard and --slurm exclude each other (each array task runs a shard)");
       SlurmJob job;

@@ -72,7 +72,7 @@ void install(CLI::App& app) {
   cmd->add_option("IMAGE", a->images, "eye-camera images (PNG, JPEG, ...)");
   auto* v = cmd->add_option("--virtual", a->virtual_frames, "track N synthetic frames with ground truth")
                 ->check(CLI::Range(1, 100000));
-  cmd->add_option("--seed", a->seed, "seed of the synthetic frames (default 1)");
+  addSeedOption(cmd, a->seed, "seed of the synthetic frames (default 1)");
   cmd->add_flag("--json", a->json, "print the result as JSON");
   cmd->callback([a, v] {
     const bool virt = v->count() > 0;

@@ -4,6 +4,7 @@
 
 #include "app/cli/cli_common.h"
 #include "fovea/version.h"
+#include "model/io/output_file.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"fovea-cli: headless Foveated AR Studio (JSON output)", "fovea-cli"};
@@ -28,6 +29,11 @@ int main(int argc, char** argv) {
     return e.code();
   } catch (const std::exception& e) {
     std::cerr << "fovea-cli: error: " << e.what() << "\n";
+    return 1;
+  }
+  // Output nobody could read is not a success: a full disk, `> /dev/full`, a closed pipe.
+  if (const auto why = fovea::checkStdout()) {
+    std::cerr << "fovea-cli: " << *why << "\n";
     return 1;
   }
   return 0;

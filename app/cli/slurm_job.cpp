@@ -1,6 +1,7 @@
 #include "app/cli/slurm_job.h"
 
 #include "model/io/json_input.h"
+#include "model/io/output_file.h"
 
 #include <sys/wait.h>
 
@@ -23,9 +24,7 @@ std::string quote(const std::string& s) {  // POSIX shell single quotes
 }
 
 void writeFile(const std::string& path, const std::string& text, bool executable) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!(f << text)) throw std::runtime_error("cannot write " + path);
-  f.close();
+  writeOutputFile(path, text);  // checked, fsync'ed, atomic: a full disk leaves no empty script
   if (executable)
     std::filesystem::permissions(path, std::filesystem::perms::owner_exec | std::filesystem::perms::group_exec,
                                  std::filesystem::perm_options::add);

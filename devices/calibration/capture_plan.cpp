@@ -7,6 +7,8 @@
 
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/hoe_travel.h"
+#include "model/analysis/trace_evaluator.h"
+#include "model/io/json_fields.h"
 
 namespace fovea::devices {
 
@@ -94,26 +96,27 @@ nlohmann::json toJson(const CaptureStep& s) {
           {"instruction", s.instruction}};
 }
 
-CaptureStep captureStepFromJson(const nlohmann::json& j) {
+CaptureStep captureStepFromJson(const nlohmann::json& j, const std::string& path) {
+  // Typed fields with their JSON path in every message (model/io/json_fields.h).
+  const JsonFields f(j, "", path);
+  CaptureStep s;
+  s.id = f.text("id", {}, std::nullopt, true);
+  const auto kind = captureKindFromString(f.text("kind"));
+  if (!kind) f.fail(f.at("kind"), "unknown kind \"" + j["kind"].get<std::string>() + "\"");
+  s.kind = *kind;
+  s.display = f.text("display", {"peripheral", "foveal"}) == "foveal" ? BenchDisplay::Foveal : BenchDisplay::Peripheral;
+  const auto gaze = f.numbers("gaze_deg", Range::closed(-90, 90), 2);
+  s.gaze_deg = {gaze[0], gaze[1]};
+  for (const JsonFields& t : f.objects("targets", true, 64))
+    s.targets.push_back({t.text("element"), t.text("axis"), t.number("value", Range::any())});
+  f.get("pattern", true);
   try {
-    CaptureStep s;
-    s.id = j.at("id").get<std::string>();
-    const auto kind = captureKindFromString(j.at("kind").get<std::string>());
-    if (!kind) throw std::invalid_argument("step " + s.id + ": unknown kind");
-    s.kind = *kind;
-    const std::string d = j.at("display").get<std::string>();
-    if (d != "peripheral" && d != "foveal") throw std::invalid_argument("step " + s.id + ": unknown display " + d);
-    s.display = d == "foveal" ? BenchDisplay::Foveal : BenchDisplay::Peripheral;
-    s.gaze_deg = j.at("gaze_deg").get<std::array<double, 2>>();
-    for (const auto& t : j.at("targets"))
-      s.targets.push_back(
-          {t.at("element").get<std::string>(), t.at("axis").get<std::string>(), t.at("value").get<double>()});
-    s.pattern = image::patternFromJson(j.at("pattern"));
-    s.instruction = j.value("instruction", "");
-    return s;
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(std::string("capture step: ") + e.what());
+    s.pattern = image::patternFromJson(j["pattern"]);
+  } catch (const std::exception&) {
+    f.fail(f.at("pattern"), "not a display pattern (docs/calibration.md)");
   }
+  s.instruction = f.text("instruction", {}, std::string());
+  return s;
 }
 
 std::function<std::array<double, 2>(std::array<double, 2>)> analysedHoeShift(const Scene& scene) {

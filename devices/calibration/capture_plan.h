@@ -47,7 +47,8 @@ struct CaptureStep {
   bool operator==(const CaptureStep&) const = default;
 };
 nlohmann::json toJson(const CaptureStep& s);
-CaptureStep captureStepFromJson(const nlohmann::json& j);  // throws std::invalid_argument
+// Throws std::invalid_argument "PATH.key: problem" (PATH: where the step is, e.g. "steps[3]").
+CaptureStep captureStepFromJson(const nlohmann::json& j, const std::string& path = "step");
 
 struct GeometricPlanOptions {
   std::vector<double> gazes_yaw_deg;  // default: 5 over the scene's gaze range

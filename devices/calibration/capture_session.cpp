@@ -15,7 +15,9 @@
 #include "devices/bench/bench.h"
 #include "devices/stage/stage_binding.h"
 #include "model/color/color_calibration.h"
+#include "model/image/image_io.h"
 #include "model/io/json_input.h"
+#include "model/io/output_file.h"
 
 namespace fovea::devices {
 
@@ -72,15 +74,7 @@ CaptureRecord recordFromJson(const nlohmann::json& j) {
 }
 
 void writeAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
+  writeOutputFile(path, text);  // the one output writer: checked, fsync'ed, renamed while locked
 }
 
 }  // namespace
@@ -140,7 +134,13 @@ cv::Mat CaptureSession::image(const std::string& id) const {
   if (auto it = frames_.find(id); it != frames_.end()) return it->second;
   const CaptureRecord* r = record(id);
   if (!r || folder_.empty()) return {};
-  return cv::imread((folder_ / r->image).string(), cv::IMREAD_GRAYSCALE);
+  const std::string path = (folder_ / r->image).string();
+  try {
+    image::checkImageFile(path);  // regular, bounded, header <= 50 Mpixel: before OpenCV decodes
+  } catch (const image::ImageIoError&) {
+    return {};  // as an unreadable file: no frame
+  }
+  return cv::imread(path, cv::IMREAD_GRAYSCALE);
 }
 
 const CaptureRecord& CaptureSession::capture(std::size_t index, BenchRig& rig) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "devices/apt/apt_message.h"
+#include "model/io/json_input.h"
 
 namespace fovea::devices {
 
@@ -68,11 +69,10 @@ std::vector<TranscriptEntry> parseTranscript(const std::string& text, const std:
 }
 
 std::vector<TranscriptEntry> readTranscriptFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument("cannot read the transcript '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parseTranscript(s.str(), path);
+  // A regular file of bounded size (a FIFO, a device or /dev/zero is refused, not read forever).
+  auto text = readInputFile(path, kMaxTranscriptBytes);
+  if (text.index() == 1) throw std::invalid_argument("cannot read the transcript '" + path + "': " + std::get<1>(text));
+  return parseTranscript(std::get<0>(text), path);
 }
 
 std::string transcriptLine(double t_s, bool transmitted, std::span<const std::uint8_t> raw) {

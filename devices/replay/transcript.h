@@ -35,6 +35,8 @@ struct TranscriptEntry {
 
 // Throws std::invalid_argument "NAME:LINE: ..." naming the first malformed line.
 std::vector<TranscriptEntry> parseTranscript(const std::string& text, const std::string& name = "transcript");
+// The largest transcript file read (a recorded session of hours is a few MB).
+inline constexpr std::size_t kMaxTranscriptBytes = 16u << 20;
 std::vector<TranscriptEntry> readTranscriptFile(const std::string& path);  // also throws for an unreadable file
 std::string transcriptLine(double t_s, bool transmitted, std::span<const std::uint8_t> raw);
 

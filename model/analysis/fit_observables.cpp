@@ -1,5 +1,7 @@
 #include "model/analysis/fit_observables.h"
 
+#include "model/scene/scene_fields.h"  // Range
+
 #include <cmath>
 #include <stdexcept>
 
@@ -352,9 +354,20 @@ nlohmann::json completeObservableParameters(const ObservableDefinition& def, con
   }
   for (const auto& p : def.parameters)
     if (!out.contains(p.name)) out[p.name] = p.default_value;
-  for (const char* angle : {"gaze_deg", "eccentricity_deg"})
+  for (const char* angle : {"gaze_deg", "eccentricity_deg", "gaze_from", "gaze_to"})
     if (out.contains(angle) && std::abs(out[angle].get<double>()) > analysis::kGazeLimitDeg)
       throw std::invalid_argument(std::string(angle) + ": must lie in [-80, 80] deg, got " + out[angle].dump());
+  // The other numbers' ranges: those of the CLI options and the scene that they stand for
+  // (trace's --wavelength-nm, the sweep's --gaze-step, the eye-box tolerance).
+  const std::pair<const char*, Range> ranges[] = {
+      {"wavelength_nm", Range::openClosed(0, 2000)}, {"gaze_step", Range::openClosed(0, 160)},
+      {"tolerance_deg", Range::openClosed(0, 90)},   {"plateau_tolerance_deg", Range::openClosed(0, 90)},
+      {"shift_mm", Range::closed(-1000, 1000)},
+  };
+  for (const auto& [key, range] : ranges)
+    if (out.contains(key) && out[key].is_number())
+      if (const std::string p = range.check(out[key].get<double>()); !p.empty())
+        throw std::invalid_argument(std::string(key) + ": " + p);
   return out;
 }
 

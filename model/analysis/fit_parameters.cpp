@@ -74,16 +74,27 @@ FreeParameter parseFreeParameter(const Scene& scene, const std::string& spec) {
     }
     if (!(p.lower < p.upper)) throw std::invalid_argument("free parameter \"" + spec + "\": needs LO < HI");
   }
-  // Clip to the field's range when the bounds were defaulted; refuse explicit ones outside it.
-  const double margin = 1e-9 * (p.upper - p.lower);
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  if (range.low != Range::Bound::None) lo = range.lo + (range.low == Range::Bound::Open ? margin : 0.0);
-  if (range.high != Range::Bound::None) hi = range.hi - (range.high == Range::Bound::Open ? margin : 0.0);
+  // Clip to the field's range when the bounds were defaulted or given as +-D; refuse explicit
+  // LO:HI outside it. An open bound is kept a margin inside: 1e-9 of the window *after*
+  // clipping (of the unclipped +-D window, a large D would push the margin past the scene's
+  // own value), and never more than half the way from the scene's value to the bound.
+  using Bound = Range::Bound;
   if (eq == std::string::npos || spec.find("=+-") != std::string::npos) {
-    p.lower = std::max(p.lower, lo);
-    p.upper = std::min(p.upper, hi);
-  } else if (p.lower < lo || p.upper > hi) {
-    throw std::invalid_argument("free parameter \"" + spec + "\": bounds leave the field's range " + info->rangeText());
+    if (range.low != Bound::None) p.lower = std::max(p.lower, range.lo);
+    if (range.high != Bound::None) p.upper = std::min(p.upper, range.hi);
+    const double margin = 1e-9 * (p.upper - p.lower);
+    if (range.low == Bound::Open)
+      p.lower = std::max(p.lower, range.lo + std::min(margin, 0.5 * (p.initial - range.lo)));
+    if (range.high == Bound::Open)
+      p.upper = std::min(p.upper, range.hi - std::min(margin, 0.5 * (range.hi - p.initial)));
+  } else {
+    const double margin = 1e-9 * (p.upper - p.lower);
+    double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+    if (range.low != Bound::None) lo = range.lo + (range.low == Bound::Open ? margin : 0.0);
+    if (range.high != Bound::None) hi = range.hi - (range.high == Bound::Open ? margin : 0.0);
+    if (p.lower < lo || p.upper > hi)
+      throw std::invalid_argument("free parameter \"" + spec + "\": bounds leave the field's range " +
+                                  info->rangeText());
   }
   if (p.initial < p.lower || p.initial > p.upper)
     throw std::invalid_argument("free parameter \"" + spec + "\": the scene's value " + std::to_string(p.initial) +

@@ -4,6 +4,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "model/scene/scene_fields.h"  // Range
+
 namespace fovea {
 
 namespace {
@@ -22,10 +24,14 @@ FitTarget parseTarget(const nlohmann::json& j, const std::string& where) {
       throw std::invalid_argument(where + ": \"" + key + "\" must be a non-empty string");
     return j[key].get<std::string>();
   };
-  auto number = [&](const char* key) {
+  // Value and sigma in ranges that keep every residual (value - model) / sigma and its square
+  // finite: sigma 5e-324 or a value of 1e308 would make chi2 inf (printed null).
+  auto number = [&](const char* key, const Range& range) {
     if (!j.contains(key)) throw std::invalid_argument(where + ": missing \"" + key + "\"");
-    if (!j[key].is_number() || !std::isfinite(j[key].get<double>()))
-      throw std::invalid_argument(where + ": \"" + key + "\" must be a finite number, got " + j[key].dump());
+    if (!j[key].is_number())
+      throw std::invalid_argument(where + "." + key + ": must be a finite number, got " + j[key].dump());
+    if (const std::string p = range.check(j[key].get<double>()); !p.empty())
+      throw std::invalid_argument(where + "." + key + ": " + p);
     return j[key].get<double>();
   };
   t.id = text("id", true);
@@ -35,9 +41,8 @@ FitTarget parseTarget(const nlohmann::json& j, const std::string& where) {
   if (!def)
     throw std::invalid_argument(at + ": unknown observable \"" + t.observable + "\" (known: " + observableNames() +
                                 ")");
-  t.value = number("value");
-  t.sigma = number("sigma");
-  if (!(t.sigma > 0)) throw std::invalid_argument(at + ": \"sigma\" must be > 0, got " + j["sigma"].dump());
+  t.value = number("value", Range::closed(-kMaxFitTargetValue, kMaxFitTargetValue));
+  t.sigma = number("sigma", Range::closed(kMinFitTargetSigma, kMaxFitTargetValue));
   if (j.contains("unit") && !j["unit"].is_string())
     throw std::invalid_argument(at + ": \"unit\" must be a string, got " + j["unit"].dump());
   t.unit = j.value("unit", def->unit);
@@ -61,14 +66,17 @@ FitTarget parseTarget(const nlohmann::json& j, const std::string& where) {
 std::vector<FitTarget> parseFitTargets(const nlohmann::json& j) {
   const nlohmann::json* list = &j;
   if (j.is_object()) {
-    if (j.value("format", std::string()) != kFitTargetsFormat)
+    if (!j.contains("format") || !j["format"].is_string() || j["format"].get<std::string>() != kFitTargetsFormat)
       throw std::invalid_argument(std::string("targets: \"format\" must be \"") + kFitTargetsFormat + "\"");
-    if (j.value("version", 0) != 1) throw std::invalid_argument("targets: \"version\" must be 1");
+    if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<long long>() != 1)
+      throw std::invalid_argument("version: must be 1");
     if (!j.contains("targets")) throw std::invalid_argument("targets: missing \"targets\" (the list of targets)");
     list = &j["targets"];
   }
   if (!list->is_array()) throw std::invalid_argument("targets: must be a list of targets");
   if (list->empty()) throw std::invalid_argument("targets: the list is empty");
+  if (list->size() > kMaxFitTargets)
+    throw std::invalid_argument("targets: more than " + std::to_string(kMaxFitTargets) + " targets");
   std::vector<FitTarget> out;
   std::set<std::string> ids;
   for (std::size_t i = 0; i < list->size(); ++i) {

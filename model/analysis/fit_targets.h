@@ -25,6 +25,11 @@ struct FitTarget {
 };
 
 inline constexpr const char* kFitTargetsFormat = "fovea-fit-targets";
+// |value| <= 1e9 and 1e-9 <= sigma <= 1e9 (in the observable's unit): every residual and chi2 finite.
+inline constexpr double kMaxFitTargetValue = 1e9;
+inline constexpr double kMinFitTargetSigma = 1e-9;
+// At most this many targets in a file.
+inline constexpr std::size_t kMaxFitTargets = 100000;
 
 // Throws std::invalid_argument naming the target (its id or index) and the key.
 std::vector<FitTarget> parseFitTargets(const nlohmann::json& j);

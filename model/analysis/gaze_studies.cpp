@@ -1,5 +1,7 @@
 #include "model/analysis/gaze_studies.h"
 
+#include "model/analysis/analysis_parameters.h"  // kMaxGazeSamples
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -185,9 +187,16 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
 
 std::vector<double> sweepGazes(double from_deg, double to_deg, double step_deg) {
   if (!(step_deg > 0) || !(to_deg >= from_deg)) throw std::invalid_argument("gaze range: need from <= to and step > 0");
+  // The count is bounded before the list is built: with from = to = 1e300 or a step of 5e-324,
+  // from + i * step never passes `to` and the loop alone would grow the list until bad_alloc.
+  const double span = (to_deg - from_deg) / step_deg;
+  constexpr auto kMax = static_cast<std::size_t>(analysis::kMaxGazeSamples);  // the CLI's cap
+  if (!(span <= static_cast<double>(kMax)))
+    throw std::invalid_argument("gaze range: from..to by step gives more than " + std::to_string(kMax) +
+                                " gaze samples");
   std::vector<double> gazes;
-  for (int i = 0;; ++i) {
-    const double g = from_deg + i * step_deg;
+  for (std::size_t i = 0; i <= kMax && static_cast<double>(i) <= span + 1e-6; ++i) {
+    const double g = from_deg + static_cast<double>(i) * step_deg;
     if (g > to_deg + 1e-9 * std::max(1.0, std::abs(to_deg))) break;
     gazes.push_back(g);
   }

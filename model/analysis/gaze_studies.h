@@ -46,6 +46,7 @@
 //    FOV within 81-87 deg, i.e. a tolerance criterion, not this one.
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -156,7 +157,9 @@ double pupilPositionMm(const Scene& scene, double gaze_deg, GazeAxis axis);
 GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double gaze_deg, GazeAxis axis,
                          ShiftMethod method, const GazeStudyOptions& options = {});
 
-// The gaze samples from..to by step (inclusive). Throws std::invalid_argument unless from <= to, step > 0.
+// The gaze samples from..to by step (inclusive). Throws std::invalid_argument unless from <= to,
+// step > 0 and the list has at most the CLI's analysis::kMaxGazeSamples intervals
+// (analysis_parameters.h).
 std::vector<double> sweepGazes(double from_deg, double to_deg, double step_deg);
 
 // Gaze sweep from..to by step (inclusive), each with its optimal shift, plus the eye box

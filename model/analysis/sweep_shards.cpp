@@ -1,5 +1,6 @@
 #include "model/analysis/sweep_shards.h"
 
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -28,16 +29,40 @@ nlohmann::json sampleJson(const GazeSample& s) {
           {"best_fov_deg", s.best_fov_deg}};
 }
 
-GazeSample sampleFrom(const nlohmann::json& j) {
+// A finite number at key of sample j, or the message "WHERE.key: problem".
+double sampleNumber(const nlohmann::json& j, const char* key, const std::string& where) {
+  if (!j.contains(key) || !j[key].is_number() || !std::isfinite(j[key].get<double>()))
+    throw std::invalid_argument(where + "." + key + ": must be a finite number");
+  return j[key].get<double>();
+}
+
+std::vector<double> sampleNumbers(const nlohmann::json& j, const char* key, std::size_t n, const std::string& where) {
+  if (!j.contains(key) || !j[key].is_array() || j[key].size() != n)
+    throw std::invalid_argument(where + "." + key + ": must be an array of " + std::to_string(n) + " numbers");
+  std::vector<double> out;
+  for (const auto& v : j[key]) {
+    // null: a non-finite figure written by the part's JSON printer (an FOV with no rays).
+    if (!v.is_number() && !v.is_null())
+      throw std::invalid_argument(where + "." + key + ": must be an array of " + std::to_string(n) + " numbers");
+    out.push_back(v.is_null() ? std::nan("") : v.get<double>());
+  }
+  return out;
+}
+
+GazeSample sampleFrom(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object()) throw std::invalid_argument(where + ": must be an object");
   GazeSample s;
-  s.gaze_deg = j.at("gaze_deg").get<double>();
-  s.shift_mm = j.at("shift_mm").get<double>();
-  const auto f = j.at("fov").get<std::vector<double>>();
-  if (f.size() != 7) throw std::invalid_argument("bad sample");
-  s.fov = {f[0], f[1], f[2], f[3], f[4], f[5], f[6], j.at("rays_in_pupil").get<int>()};
-  s.pupil_position_mm = j.at("pupil_position_mm").get<double>();
-  s.plateau_mm = j.at("plateau_mm").get<std::array<double, 2>>();
-  s.best_fov_deg = j.at("best_fov_deg").get<double>();
+  s.gaze_deg = sampleNumber(j, "gaze_deg", where);
+  s.shift_mm = sampleNumber(j, "shift_mm", where);
+  const auto f = sampleNumbers(j, "fov", 7, where);
+  if (!j.contains("rays_in_pupil") || !j["rays_in_pupil"].is_number_integer() ||
+      j["rays_in_pupil"].get<long long>() < 0 || j["rays_in_pupil"].get<long long>() > 2147483647)
+    throw std::invalid_argument(where + ".rays_in_pupil: must be an integer in [0, 2147483647]");
+  s.fov = {f[0], f[1], f[2], f[3], f[4], f[5], f[6], j["rays_in_pupil"].get<int>()};
+  s.pupil_position_mm = sampleNumber(j, "pupil_position_mm", where);
+  const auto plateau = sampleNumbers(j, "plateau_mm", 2, where);
+  s.plateau_mm = {plateau[0], plateau[1]};
+  s.best_fov_deg = sampleNumber(j, "best_fov_deg", where);
   return s;
 }
 
@@ -80,38 +105,60 @@ std::optional<nlohmann::json> sweepPartJson(const Scene& scene, const nlohmann::
   return j;
 }
 
-std::optional<nlohmann::json> mergeSweepParts(const std::vector<nlohmann::json>& parts, const StudyControl& control) {
+std::optional<nlohmann::json> mergeSweepParts(const std::vector<nlohmann::json>& parts, const StudyControl& control,
+                                              const std::vector<std::string>& sources) {
   const std::map<int, std::size_t> index =
-      indexShardParts(parts, "fovea-sweep-part", {"values", "scene_digest", "scene", "gaze_count"}, "sweep");
-  std::map<int, const nlohmann::json*> by_shard;
-  for (const auto& [k, i] : index) {
-    const nlohmann::json& p = parts[i];
-    const TrialRange range = shardRange(p.at("gaze_count").get<std::uint64_t>(), k, static_cast<int>(index.size()));
-    if (p.at("first_gaze").get<std::uint64_t>() != range.begin || p.at("samples").size() != range.end - range.begin ||
-        (k == 0 && !p.contains("reference")))
-      throw std::invalid_argument("merge: part " + std::to_string(i + 1) + ": shard " + std::to_string(k) +
-                                  " is incomplete");
-    by_shard[k] = &p;
-  }
-
+      indexShardParts(parts, "fovea-sweep-part", {"values", "scene_digest", "scene", "gaze_count"}, "sweep", sources);
+  const std::string first = shardPartName(sources, 0);
+  // The header: the values the sweep was run with, and the gazes they give.
+  if (!parts[0].contains("values") || !parts[0]["values"].is_object())
+    throw std::invalid_argument(first + ": values: must be an object");
   nlohmann::json values = parts[0]["values"];
   const AnalysisDefinition& def = sweepDefinition();
   const auto problems = validateValues(def, values);
-  if (!problems.empty()) throw std::invalid_argument("merge: the parts' sweep values: " + problems.front().text());
-  if (!parts[0]["scene"].is_string())
-    throw std::invalid_argument("merge: part 1: \"scene\" is not a scene file's text");
+  if (!problems.empty()) throw std::invalid_argument(first + ": values: " + problems.front().text());
+  const std::vector<double> gazes =
+      sweepGazes(numberOf(values, "gaze-from"), numberOf(values, "gaze-to"), numberOf(values, "gaze-step"));
+  if (!parts[0]["gaze_count"].is_number_unsigned() || parts[0]["gaze_count"].get<std::uint64_t>() != gazes.size())
+    throw std::invalid_argument(first + ": gaze_count: must be " + std::to_string(gazes.size()) +
+                                " (the gazes of its values' gaze-from, gaze-to and gaze-step), got " +
+                                parts[0]["gaze_count"].dump());
+  std::map<int, const nlohmann::json*> by_shard;
+  for (const auto& [k, i] : index) {
+    const nlohmann::json& p = parts[i];
+    const std::string where = shardPartName(sources, i);
+    const TrialRange range = shardRange(gazes.size(), k, static_cast<int>(index.size()));
+    if (!p.contains("first_gaze") || !p["first_gaze"].is_number_unsigned() ||
+        p["first_gaze"].get<std::uint64_t>() != range.begin || !p.contains("samples") || !p["samples"].is_array() ||
+        p["samples"].size() != range.end - range.begin || (k == 0 && !p.contains("reference")))
+      throw std::invalid_argument(where + ": shard " + std::to_string(k) + " is incomplete");
+    by_shard[k] = &p;
+  }
+
+  if (!parts[0]["scene"].is_string()) throw std::invalid_argument(first + ": scene: must be a scene file's text");
   SceneLoadResult loaded = parseScene(parts[0]["scene"].get<std::string>(), "the parts' scene");
-  if (!loaded.ok() || sceneDigest(*loaded.scene) != parts[0]["scene_digest"].get<std::string>())
-    throw std::invalid_argument("merge: the parts' scene does not match its digest");
+  if (!loaded.ok() || !parts[0]["scene_digest"].is_string() ||
+      sceneDigest(*loaded.scene) != parts[0]["scene_digest"].get<std::string>())
+    throw std::invalid_argument(first + ": scene: does not match its digest");
   std::vector<GazeSample> samples;
   GazeSample reference;
-  try {
-    for (const auto& [k, p] : by_shard)
-      for (const auto& s : (*p)["samples"]) samples.push_back(sampleFrom(s));
-    reference = sampleFrom((*by_shard[0])["reference"]);
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(std::string("merge: a malformed sample (") + e.what() + ")");
+  for (const auto& [k, p] : by_shard) {
+    const std::string where = shardPartName(sources, index.at(k));
+    const std::size_t begin = shardRange(gazes.size(), k, static_cast<int>(index.size())).begin;
+    for (std::size_t j = 0; j < (*p)["samples"].size(); ++j) {
+      const std::string at = where + ": samples[" + std::to_string(j) + "]";
+      samples.push_back(sampleFrom((*p)["samples"][j], at));
+      // A sample's gaze is the one its position in the run gives (to the digits JSON keeps).
+      const double expected = gazes[begin + j];
+      if (!(std::abs(samples.back().gaze_deg - expected) <= 1e-9 * std::max(1.0, std::abs(expected))))
+        throw std::invalid_argument(at + ".gaze_deg: must be " + formatNumber(expected) + " (gaze " +
+                                    std::to_string(begin + j) + " of the run), got " +
+                                    formatNumber(samples.back().gaze_deg));
+    }
   }
+  reference = sampleFrom((*by_shard[0])["reference"], shardPartName(sources, index.at(0)) + ": reference");
+  if (reference.gaze_deg != 0.0)
+    throw std::invalid_argument(shardPartName(sources, index.at(0)) + ": reference.gaze_deg: must be 0");
   const auto r = finishSweep(*loaded.scene, evaluatorFrom(values), std::move(samples), reference, axisFrom(values),
                              sweepMethodFrom(values), gazeStudyOptionsFrom(values), control);
   if (!r.ok()) return std::nullopt;

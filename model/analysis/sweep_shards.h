@@ -8,6 +8,7 @@
 // scene carried by the parts): the same document as `fovea-cli sweep --json`, byte for byte.
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -24,8 +25,11 @@ std::optional<nlohmann::json> sweepPartJson(const Scene& scene, const nlohmann::
 
 // The sweep document of the parts (any order; "cached" is not set). Throws
 // std::invalid_argument naming what does not fit (another run, a missing or repeated shard, an
-// incomplete part). Nothing when cancelled.
+// incomplete part, a gaze_count or a sample's gaze the values do not give) as
+// "merge: SOURCE: json.path: problem" (`sources`: the parts' files; else "part N").
+// Nothing when cancelled.
 std::optional<nlohmann::json> mergeSweepParts(const std::vector<nlohmann::json>& parts,
-                                              const StudyControl& control = {});
+                                              const StudyControl& control = {},
+                                              const std::vector<std::string>& sources = {});
 
 }  // namespace fovea::analysis

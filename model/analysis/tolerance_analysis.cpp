@@ -96,7 +96,10 @@ AnalysisDefinition toleranceAnalysis() {
   d.run = [](const Scene& scene, const nlohmann::json& v,
              const StudyControl& control) -> std::optional<nlohmann::json> {
     const nlohmann::json doc = toleranceSpecDocument(v);
-    const ToleranceSpec spec = parseToleranceSpec(doc);
+    const std::string source = v.contains("spec") && v["spec"].is_string() ? v["spec"].get<std::string>()
+                                                                           : std::string("the default tolerance spec");
+    const ToleranceSpec spec = parseToleranceSpec(doc, source);
+    checkToleranceSpecPaths(spec, scene, source);
     ToleranceRunInfo info;
     info.scene_name = scene.name;
     info.scene_digest = sceneDigest(scene);

@@ -3,7 +3,9 @@
 #include "model/analysis/shard_parts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -93,12 +95,41 @@ nlohmann::json recordJson(const ToleranceRecord& r) {
   return j;
 }
 
-ToleranceRecord recordFrom(const nlohmann::json& j) {
+// One number of a record: a JSON number, or null (a non-finite value: the part's writer prints
+// NaN and infinities as null), which reads back as NaN and is counted, not binned.
+double recordNumber(const nlohmann::json& v, const std::string& where) {
+  if (v.is_null()) return std::nan("");
+  if (!v.is_number())
+    throw std::invalid_argument(where + ": must be a number or null, got " + std::string(v.type_name()));
+  return v.get<double>();
+}
+
+std::vector<double> recordNumbers(const nlohmann::json& r, const char* key, std::size_t count,
+                                  const std::string& where) {
+  const std::string at = where + "." + key;
+  if (!r.contains(key)) throw std::invalid_argument(at + ": missing");
+  const nlohmann::json& a = r[key];
+  if (!a.is_array() || a.size() != count)
+    throw std::invalid_argument(at + ": must be an array of " + std::to_string(count) + " numbers (one per " +
+                                (std::string(key) == "inputs" ? "parameter" : "figure") + " of the spec), got " +
+                                (a.is_array() ? std::to_string(a.size()) + " elements" : std::string(a.type_name())));
+  std::vector<double> out;
+  out.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) out.push_back(recordNumber(a[i], at + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+// A record of a part, checked against the spec's shape: `where` is "SOURCE: records[i]".
+ToleranceRecord recordFrom(const nlohmann::json& j, std::size_t inputs, const std::string& where) {
+  if (!j.is_object()) throw std::invalid_argument(where + ": must be an object");
   ToleranceRecord r;
-  r.trial = j.at("trial").get<std::uint64_t>();
-  r.inputs = j.at("inputs").get<std::vector<double>>();
-  r.figures = j.at("figures").get<std::vector<double>>();
+  if (!j.contains("trial") || !j["trial"].is_number_unsigned())
+    throw std::invalid_argument(where + ".trial: must be an integer >= 0");
+  r.trial = j["trial"].get<std::uint64_t>();
+  r.inputs = recordNumbers(j, "inputs", inputs, where);
+  r.figures = recordNumbers(j, "figures", toleranceFigureNames().size(), where);
   if (j.contains("error")) {
+    if (!j["error"].is_string()) throw std::invalid_argument(where + ".error: must be a string");
     r.valid = false;
     r.error = j["error"].get<std::string>();
   }
@@ -134,31 +165,58 @@ nlohmann::json toleranceResultJson(const ToleranceSpec& spec, const ToleranceRun
   return j;
 }
 
-nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts) {
+nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts, const std::vector<std::string>& sources) {
   const std::map<int, std::size_t> by_shard = indexShardParts(
-      parts, "fovea-tolerance-part", {"scene", "scene_digest", "seed", "trials", "spec", "nominal"}, "run");
+      parts, "fovea-tolerance-part", {"scene", "scene_digest", "seed", "trials", "spec", "nominal"}, "run", sources);
+  const nlohmann::json& h = parts[0];
+  const std::string first = shardPartName(sources, 0);
+  // The header first: the spec gives the shape every record must have.
+  ToleranceSpec spec;
+  try {
+    spec = parseToleranceSpec(h.at("spec"));
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(first + ": spec: " + e.what());
+  }
+  auto unsignedAt = [&](const char* key, std::uint64_t max) {
+    if (!h.contains(key) || !h[key].is_number_unsigned() || h[key].get<std::uint64_t>() > max)
+      throw std::invalid_argument(first + ": " + key + ": must be an integer in [0, " + std::to_string(max) + "]");
+    return h[key].get<std::uint64_t>();
+  };
+  ToleranceRunInfo info;
+  info.seed = unsignedAt("seed", std::numeric_limits<std::uint64_t>::max());
+  info.trials = unsignedAt("trials", kMaxToleranceTrials);
+  if (info.trials < 1)
+    throw std::invalid_argument(first + ": trials: must be an integer in [1, " + std::to_string(kMaxToleranceTrials) +
+                                "]");
+  for (const char* key : {"scene", "scene_digest"})
+    if (!h.contains(key) || !h[key].is_string()) throw std::invalid_argument(first + ": " + key + ": must be a string");
+  info.scene_name = h["scene"].get<std::string>();
+  info.scene_digest = h["scene_digest"].get<std::string>();
+  if (!h.contains("nominal") || !h["nominal"].is_object())
+    throw std::invalid_argument(first + ": nominal: must be an object");
+  for (const auto& name : toleranceFigureNames()) {
+    if (!h["nominal"].contains(name)) throw std::invalid_argument(first + ": nominal." + name + ": missing");
+    info.nominal.push_back(recordNumber(h["nominal"][name], first + ": nominal." + name));
+  }
   std::map<std::uint64_t, ToleranceRecord> records;
   for (const auto& [k, i] : by_shard) {
     const nlohmann::json& p = parts[i];
-    const std::string where = "merge: part " + std::to_string(i + 1);
-    const TrialRange range = shardRange(p.at("trials").get<std::uint64_t>(), k, static_cast<int>(by_shard.size()));
-    if (p.at("records").size() != range.end - range.begin)
-      throw std::invalid_argument(where + ": shard " + std::to_string(k) + " is incomplete");
-    for (const auto& r : p["records"]) {
-      ToleranceRecord rec = recordFrom(r);
+    const std::string where = shardPartName(sources, i);
+    const TrialRange range = shardRange(info.trials, k, static_cast<int>(by_shard.size()));
+    if (!p.contains("records") || !p["records"].is_array())
+      throw std::invalid_argument(where + ": records: must be an array");
+    if (p["records"].size() != range.end - range.begin)
+      throw std::invalid_argument(where + ": shard " + std::to_string(k) + " is incomplete (" +
+                                  std::to_string(p["records"].size()) + " records of " +
+                                  std::to_string(range.end - range.begin) + ")");
+    for (std::size_t r = 0; r < p["records"].size(); ++r) {
+      ToleranceRecord rec =
+          recordFrom(p["records"][r], spec.parameters.size(), where + ": records[" + std::to_string(r) + "]");
       if (rec.trial < range.begin || rec.trial >= range.end || records.count(rec.trial))
         throw std::invalid_argument(where + ": trial " + std::to_string(rec.trial) + " out of its shard or repeated");
       records.emplace(rec.trial, std::move(rec));
     }
   }
-  const nlohmann::json& h = parts[0];
-  const ToleranceSpec spec = parseToleranceSpec(h["spec"]);
-  ToleranceRunInfo info;
-  info.scene_name = h["scene"].get<std::string>();
-  info.scene_digest = h["scene_digest"].get<std::string>();
-  info.seed = h["seed"].get<std::uint64_t>();
-  info.trials = h["trials"].get<std::uint64_t>();
-  for (const auto& name : toleranceFigureNames()) info.nominal.push_back(h["nominal"].at(name).get<double>());
   std::vector<ToleranceRecord> all;
   all.reserve(records.size());
   for (auto& [t, r] : records) all.push_back(std::move(r));

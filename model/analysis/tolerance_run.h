@@ -64,8 +64,13 @@ nlohmann::json tolerancePartJson(const ToleranceSpec& spec, const ToleranceRunIn
 // records: every trial 0..trials-1 in order.
 nlohmann::json toleranceResultJson(const ToleranceSpec& spec, const ToleranceRunInfo& info,
                                    const std::vector<ToleranceRecord>& records);
+// The CLI's cap of --trials, also the cap of a part's "trials".
+inline constexpr std::uint64_t kMaxToleranceTrials = 10000000;
+
 // Throws std::invalid_argument naming what does not fit (different runs, missing or repeated
-// shards or trials).
-nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts);
+// shards or trials, records whose inputs/figures do not have the spec's shape) as
+// "SOURCE: json.path: problem", SOURCE the part's file (`sources`, one per part) or "part N".
+nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts,
+                                   const std::vector<std::string>& sources = {});
 
 }  // namespace fovea

@@ -5,6 +5,11 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <variant>
+
+#include "model/io/json_fields.h"
+#include "model/scene/scene_fields.h"  // numberAt
+#include "model/scene/scene_io.h"      // formatNumber
 
 namespace fovea {
 
@@ -50,29 +55,6 @@ double normalQuantile(double p) {
   const double e = normalCdf(x) - p;
   const double u = e * std::sqrt(2 * std::numbers::pi) * std::exp(0.5 * x * x);
   return x - u / (1 + 0.5 * x * u);
-}
-
-[[noreturn]] void fail(const std::string& where, const std::string& why) {
-  throw std::invalid_argument("tolerance spec: " + where + ": " + why);
-}
-
-double positive(const nlohmann::json& j, const char* key, const std::string& where, bool required = true,
-                double fallback = 0) {
-  if (!j.contains(key)) {
-    if (required) fail(where, std::string("missing \"") + key + "\"");
-    return fallback;
-  }
-  if (!j[key].is_number()) fail(where, std::string("\"") + key + "\" must be a number");
-  const double v = j[key].get<double>();
-  if (!std::isfinite(v) || !(v > 0)) fail(where, std::string("\"") + key + "\" must be a finite number > 0");
-  return v;
-}
-
-double finiteNumber(const nlohmann::json& j, const char* key, const std::string& where, double fallback) {
-  if (!j.contains(key)) return fallback;
-  if (!j[key].is_number() || !std::isfinite(j[key].get<double>()))
-    fail(where, std::string("\"") + key + "\" must be a finite number");
-  return j[key].get<double>();
 }
 
 }  // namespace
@@ -122,136 +104,115 @@ const std::vector<std::string>& toleranceFigureNames() {
   return names;
 }
 
-ToleranceSpec parseToleranceSpec(const nlohmann::json& j) {
+ToleranceSpec parseToleranceSpec(const nlohmann::json& j, const std::string& source) {
   ToleranceSpec s;
   s.source = j;
-  if (!j.is_object()) fail("document", "must be a JSON object");
-  if (j.value("format", std::string()) != "fovea-tolerance") fail("format", "must be \"fovea-tolerance\"");
-  if (!j.contains("parameters") || !j["parameters"].is_array() || j["parameters"].empty())
-    fail("parameters", "must be a non-empty array");
-  for (std::size_t i = 0; i < j["parameters"].size(); ++i) {
-    const nlohmann::json& p = j["parameters"][i];
-    const std::string where = "parameters[" + std::to_string(i) + "]";
-    if (!p.is_object()) fail(where, "must be an object");
+  const JsonFields doc(j, source);  // every field typed and range-checked (model/io/json_fields.h)
+  doc.text("format", {"fovea-tolerance"});
+  const std::vector<JsonFields> params = doc.objects("parameters", true, kMaxToleranceParameters);
+  if (params.empty()) doc.fail("parameters", "must be a non-empty array");
+  const Range positive = Range::positive();
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    const JsonFields& p = params[i];
     ToleranceParameter t;
-    const std::string kind = p.value("kind", std::string("scene"));
+    const std::string kind = p.text(
+        "kind", {"scene", "laser_temperature", "stage_repeatability", "stage_backlash", "gaze_tracker"}, "scene");
     if (kind == "scene") {
       t.kind = ToleranceKind::Scene;
-      if (!p.contains("path") || !p["path"].is_string() || p["path"].get<std::string>().empty())
-        fail(where, "kind \"scene\" needs a \"path\" (a number of the scene file, e.g. \"hoe.position_mm[0]\")");
-      t.path = p["path"].get<std::string>();
+      // A number of the scene file; integer fields (pixel counts) are refused against the scene
+      // (checkToleranceSpecPaths), the path's syntax here.
+      t.path = p.text("path", {}, std::nullopt, true);
     } else if (kind == "laser_temperature") {
       t.kind = ToleranceKind::LaserTemperature;
-      if (!p.contains("drift_nm_per_K")) fail(where, "kind \"laser_temperature\" needs \"drift_nm_per_K\"");
-      const nlohmann::json& d = p["drift_nm_per_K"];
-      if (d.is_number()) {
-        t.drift_nm_per_K = {d.get<double>()};
-      } else if (d.is_array() && !d.empty()) {
-        for (const auto& v : d) {
-          if (!v.is_number()) fail(where, "\"drift_nm_per_K\" must hold numbers");
-          t.drift_nm_per_K.push_back(v.get<double>());
-        }
-      } else {
-        fail(where, "\"drift_nm_per_K\" must be a number or an array of numbers");
-      }
-      for (double v : t.drift_nm_per_K)
-        if (!std::isfinite(v)) fail(where, "\"drift_nm_per_K\" must be finite");
+      const nlohmann::json* d = p.get("drift_nm_per_K", true);
+      if (d->is_array())
+        t.drift_nm_per_K = p.numbers("drift_nm_per_K", Range::any(), 0, 16);
+      else
+        t.drift_nm_per_K = {p.number("drift_nm_per_K", Range::any())};
     } else if (kind == "stage_repeatability") {
       t.kind = ToleranceKind::StageRepeatability;
     } else if (kind == "stage_backlash") {
       t.kind = ToleranceKind::StageBacklash;
-    } else if (kind == "gaze_tracker") {
-      t.kind = ToleranceKind::GazeTracker;
     } else {
-      fail(where, "unknown kind \"" + kind +
-                      "\" (scene, laser_temperature, stage_repeatability, stage_backlash, gaze_tracker)");
+      t.kind = ToleranceKind::GazeTracker;
     }
-    t.name = p.value("name", t.kind == ToleranceKind::Scene ? t.path : kind);
-    const std::string dist = p.value("distribution", std::string("normal"));
-    t.mean = finiteNumber(p, "mean", where, 0.0);
+    t.name = p.text("name", {}, t.kind == ToleranceKind::Scene ? t.path : kind, true);
+    const std::string dist = p.text("distribution", {"normal", "uniform", "truncated_normal"}, "normal");
+    t.mean = p.number("mean", Range::any(), 0.0);
     if (dist == "normal") {
       t.distribution = Distribution::Normal;
-      t.sigma = positive(p, "sigma", where);
+      t.sigma = p.number("sigma", positive);
     } else if (dist == "uniform") {
       t.distribution = Distribution::Uniform;
-      t.half_width = positive(p, "half_width", where);
-    } else if (dist == "truncated_normal") {
-      t.distribution = Distribution::TruncatedNormal;
-      t.sigma = positive(p, "sigma", where);
-      t.limit = positive(p, "limit", where);
+      t.half_width = p.number("half_width", positive);
     } else {
-      fail(where, "unknown distribution \"" + dist + "\" (normal, uniform, truncated_normal)");
+      t.distribution = Distribution::TruncatedNormal;
+      t.sigma = p.number("sigma", positive);
+      t.limit = p.number("limit", positive);
     }
     for (const auto& q : s.parameters)
-      if (q.name == t.name) fail(where, "duplicate parameter name \"" + t.name + "\"");
+      if (q.name == t.name) p.fail(p.at("name"), "duplicate parameter name \"" + t.name + "\"");
     s.parameters.push_back(std::move(t));
   }
-  const nlohmann::json gaze = j.value("gaze", nlohmann::json::object());
-  if (!gaze.is_object()) fail("gaze", "must be an object");
-  const std::string axis = gaze.value("axis", std::string("yaw"));
-  if (axis == "yaw")
-    s.axis = GazeAxis::Yaw;
-  else if (axis == "pitch")
-    s.axis = GazeAxis::Pitch;
-  else
-    fail("gaze.axis", "must be \"yaw\" or \"pitch\"");
-  const double from = finiteNumber(gaze, "from_deg", "gaze", -20.0), to = finiteNumber(gaze, "to_deg", "gaze", 20.0);
-  const double step = positive(gaze, "step_deg", "gaze", false, 10.0);
-  if (!(to >= from) || (to - from) / step > 200) fail("gaze", "need from_deg <= to_deg and at most 200 steps");
-  for (int i = 0;; ++i) {
-    const double g = from + i * step;
-    if (g > to + 1e-9) break;
-    s.gazes_deg.push_back(g);
-  }
-  const std::string shift = j.value("shift", std::string("hoe"));
-  if (shift == "hoe")
-    s.method = ShiftMethod::Hoe;
-  else if (shift == "source")
-    s.method = ShiftMethod::Source;
-  else if (shift == "none")
-    s.method = ShiftMethod::None;
-  else
-    fail("shift", "must be \"hoe\", \"source\" or \"none\"");
-  const std::string comp = j.value("compensator", std::string("refind"));
-  if (comp == "refind")
-    s.compensator = Compensator::Refind;
-  else if (comp == "fixed")
-    s.compensator = Compensator::Fixed;
-  else
-    fail("compensator", "must be \"refind\" (x_p re-found per gaze on each unit) or \"fixed\" (the nominal x_p)");
-  s.eyebox_tolerance_deg = positive(j, "eyebox_tolerance_deg", "document", false, 3.0);
-  if (j.contains("pass")) {
-    if (!j["pass"].is_object()) fail("pass", "must be an object of figure -> {\"min\": .., \"max\": ..}");
+  const nlohmann::json no_gaze = nlohmann::json::object();
+  const JsonFields gaze = doc.has("gaze") ? *doc.object("gaze") : JsonFields(no_gaze, source, "gaze");
+  s.axis = gaze.text("axis", {"yaw", "pitch"}, "yaw") == "yaw" ? GazeAxis::Yaw : GazeAxis::Pitch;
+  // Gazes within the eye's range (the CLI's --gaze-* limit); at most 200 steps, the list built by
+  // count (from + i step never passes `to` when from = to = 1e300 or step = 5e-324).
+  const Range gaze_range = Range::closed(-kToleranceGazeLimitDeg, kToleranceGazeLimitDeg);
+  const double from = gaze.number("from_deg", gaze_range, -20.0), to = gaze.number("to_deg", gaze_range, 20.0);
+  const double step = gaze.number("step_deg", Range::openClosed(0, 2 * kToleranceGazeLimitDeg), 10.0);
+  if (!(to >= from)) gaze.fail("gaze", "need from_deg <= to_deg");
+  const double span = (to - from) / step;
+  if (!(span <= 200))
+    gaze.fail("gaze", "at most 200 steps from from_deg to to_deg, got " + formatNumber(std::floor(span)));
+  for (int i = 0; i <= static_cast<int>(std::floor(span + 1e-9)); ++i) s.gazes_deg.push_back(from + i * step);
+  const std::string shift = doc.text("shift", {"hoe", "source", "none"}, "hoe");
+  s.method = shift == "hoe" ? ShiftMethod::Hoe : shift == "source" ? ShiftMethod::Source : ShiftMethod::None;
+  s.compensator =
+      doc.text("compensator", {"refind", "fixed"}, "refind") == "refind" ? Compensator::Refind : Compensator::Fixed;
+  s.eyebox_tolerance_deg = doc.number("eyebox_tolerance_deg", positive, 3.0);
+  if (const auto pass = doc.object("pass")) {
+    const auto& names = toleranceFigureNames();
     for (const auto& [name, b] : j["pass"].items()) {
-      const auto& names = toleranceFigureNames();
-      if (std::find(names.begin(), names.end(), name) == names.end()) fail("pass." + name, "unknown figure");
-      if (!b.is_object() || (!b.contains("min") && !b.contains("max")))
-        fail("pass." + name, "must be an object with \"min\" and/or \"max\"");
+      const std::string at = pass->at(name);
+      if (std::find(names.begin(), names.end(), name) == names.end()) pass->fail(at, "unknown figure");
+      const JsonFields bound(b, source, at);
+      if (!bound.has("min") && !bound.has("max")) bound.fail(at, "must be an object with \"min\" and/or \"max\"");
       FigureBound fb;
-      if (b.contains("min")) fb.min = finiteNumber(b, "min", "pass." + name, 0);
-      if (b.contains("max")) fb.max = finiteNumber(b, "max", "pass." + name, 0);
+      if (bound.has("min")) fb.min = bound.number("min", Range::any());
+      if (bound.has("max")) fb.max = bound.number("max", Range::any());
       s.pass.emplace_back(name, fb);
     }
   }
-  s.target_yield = finiteNumber(j, "target_yield", "document", 0.9);
-  if (!(s.target_yield > 0 && s.target_yield < 1)) fail("target_yield", "must be in (0, 1)");
-  const std::string sens = j.value("sensitivity", std::string("saltelli"));
-  if (sens == "saltelli")
-    s.sobol = true;
-  else if (sens == "none")
-    s.sobol = false;
-  else
-    fail("sensitivity", "must be \"saltelli\" or \"none\"");
-  s.fov_tolerance_deg = positive(j, "fov_tolerance_deg", "document", false, 0.02);
-  if (j.contains("wavelength_nm")) s.wavelength_nm = positive(j, "wavelength_nm", "document");
-  const nlohmann::json opt = j.value("optimiser", nlohmann::json::object());
-  s.optimiser.bracket_points = opt.value("bracket_points", 9);
-  s.optimiser.edge_bisections = opt.value("edge_bisections", 4);
-  s.optimiser.plateau_tolerance_deg = opt.value("plateau_tolerance_deg", 2.0);
-  if (s.optimiser.bracket_points < 3 || s.optimiser.bracket_points > 65 || s.optimiser.edge_bisections < 0 ||
-      s.optimiser.edge_bisections > 20 || !(s.optimiser.plateau_tolerance_deg > 0))
-    fail("optimiser", "bracket_points 3..65, edge_bisections 0..20, plateau_tolerance_deg > 0");
+  s.target_yield = doc.number("target_yield", Range::open(0, 1), 0.9);
+  s.sobol = doc.text("sensitivity", {"saltelli", "none"}, "saltelli") == "saltelli";
+  s.fov_tolerance_deg = doc.number("fov_tolerance_deg", positive, 0.02);
+  if (doc.has("wavelength_nm")) s.wavelength_nm = doc.number("wavelength_nm", Range::openClosed(0, 2000));
+  if (const auto opt = doc.object("optimiser")) {
+    s.optimiser.bracket_points = static_cast<int>(opt->integer("bracket_points", 3, 65, 9));
+    s.optimiser.edge_bisections = static_cast<int>(opt->integer("edge_bisections", 0, 20, 4));
+    s.optimiser.plateau_tolerance_deg = opt->number("plateau_tolerance_deg", positive, 2.0);
+  }
   return s;
+}
+
+void checkToleranceSpecPaths(const ToleranceSpec& spec, const Scene& scene, const std::string& source) {
+  Scene copy = scene;
+  for (std::size_t i = 0; i < spec.parameters.size(); ++i) {
+    const ToleranceParameter& p = spec.parameters[i];
+    if (p.kind != ToleranceKind::Scene) continue;
+    const std::string at = source + ": parameters[" + std::to_string(i) + "].path: ";
+    std::variant<double*, int*> ref;
+    try {
+      ref = numberAt(copy, p.path);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(at + e.what());
+    }
+    if (std::holds_alternative<int*>(ref))
+      throw std::invalid_argument(at + "\"" + p.path +
+                                  "\" is an integer field of the scene; a tolerance offsets real numbers only");
+  }
 }
 
 std::vector<double> trialInputs(const ToleranceSpec& spec, std::uint64_t seed, std::uint64_t trial) {

@@ -75,8 +75,20 @@ struct ToleranceSpec {
   nlohmann::json source;       // the spec as read (echoed in the output)
 };
 
-// Throws std::invalid_argument naming the offending key.
-ToleranceSpec parseToleranceSpec(const nlohmann::json& j);
+// Limits of a spec: gazes within +-80 deg (the CLI's gaze limit), at most 64 parameters.
+inline constexpr double kToleranceGazeLimitDeg = 80.0;
+inline constexpr std::size_t kMaxToleranceParameters = 64;
+
+// Every field typed and range-checked through model/io/json_fields.h; throws
+// std::invalid_argument "SOURCE: json.path: problem" naming the first offending key.
+ToleranceSpec parseToleranceSpec(const nlohmann::json& j, const std::string& source = "tolerance spec");
+
+// The spec against the scene it tolerances: every "scene" parameter's path must name a real
+// number of the scene file (an integer field such as projector.pixels[0] cannot take an
+// offset: every unit would be invalid). Throws std::invalid_argument
+// "SOURCE: parameters[i].path: problem".
+void checkToleranceSpecPaths(const ToleranceSpec& spec, const Scene& scene,
+                             const std::string& source = "tolerance spec");
 
 // Names of the per-trial figures, in output order.
 const std::vector<std::string>& toleranceFigureNames();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 namespace fovea {
 
@@ -42,12 +44,41 @@ std::array<double, 2> wilsonInterval(double p, double n, double z) {
 
 namespace {
 
-nlohmann::json distribution(std::vector<double> v) {
+// Mean without overflow: a running mean stays within [min, max] of the data (the sum of two
+// numbers near 1e308 is inf).
+double runningMean(const std::vector<double>& v) {
+  double m = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) m += (v[i] - m) / static_cast<double>(i + 1);
+  return m;
+}
+
+// Where x falls in [lo, hi] as a fraction in [0, 1], computed on halves so that hi - lo cannot
+// overflow (lo = -1e308, hi = 1e308).
+double fractionIn(double x, double lo, double hi) {
+  const double span = 0.5 * hi - 0.5 * lo;
+  if (!(span > 0)) return 0.0;
+  return std::clamp((0.5 * x - 0.5 * lo) / span, 0.0, 1.0);
+}
+
+// Distribution of the finite values of v; non-finite ones (a figure or an input whose spread
+// overflowed a double) are counted in "non_finite" and kept out of every statistic and bin.
+nlohmann::json distribution(const std::vector<double>& all) {
+  std::vector<double> v;
+  v.reserve(all.size());
+  std::size_t non_finite = 0;
+  for (double x : all) {
+    if (std::isfinite(x))
+      v.push_back(x);
+    else
+      ++non_finite;
+  }
   nlohmann::json j;
   j["count"] = v.size();
+  j["non_finite"] = non_finite;
   if (v.empty()) return j;
   std::sort(v.begin(), v.end());
-  j["mean"] = mean(v);
+  const double sum_mean = mean(v);  // the plain sum, as before, unless it overflowed
+  j["mean"] = std::isfinite(sum_mean) ? sum_mean : runningMean(v);
   j["std"] = std::sqrt(variance(v));
   j["min"] = v.front();
   j["max"] = v.back();
@@ -56,13 +87,14 @@ nlohmann::json distribution(std::vector<double> v) {
   j["p95"] = quantile(v, 0.95);
   constexpr int kBins = 20;
   std::vector<int> counts(kBins, 0);
-  const double lo = v.front(), hi = v.back(), w = (hi - lo) / kBins;
+  const double lo = v.front(), hi = v.back();
   for (double x : v) {
-    const int b = w > 0 ? std::min(kBins - 1, static_cast<int>((x - lo) / w)) : 0;
-    ++counts[b];
+    // fractionIn is in [0, 1]: the index is always in 0 .. kBins - 1.
+    const int b = std::min(kBins - 1, static_cast<int>(fractionIn(x, lo, hi) * kBins));
+    ++counts[static_cast<std::size_t>(b)];
   }
   std::vector<double> edges(kBins + 1);
-  for (int b = 0; b <= kBins; ++b) edges[b] = lo + w * b;
+  for (int b = 0; b <= kBins; ++b) edges[b] = b == kBins ? hi : lo + (0.5 * hi - 0.5 * lo) * (2.0 * b / kBins);
   j["histogram"] = {{"edges", edges}, {"counts", counts}};
   return j;
 }
@@ -125,6 +157,11 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
   nlohmann::json out;
   const auto& names = toleranceFigureNames();
   const std::size_t k = spec.parameters.size(), n = records.size();
+  for (const auto& r : records)
+    if (r.inputs.size() != k || r.figures.size() != names.size())
+      throw std::invalid_argument("tolerance statistics: trial " + std::to_string(r.trial) + " has " +
+                                  std::to_string(r.inputs.size()) + " inputs and " + std::to_string(r.figures.size()) +
+                                  " figures, the spec " + std::to_string(k) + " and " + std::to_string(names.size()));
   std::vector<double> fail(n);
   std::size_t passed = 0, invalid = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -201,7 +238,13 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
     nlohmann::json arr = outputs[by];
     std::vector<nlohmann::json> rows(arr.begin(), arr.end());
     std::stable_sort(rows.begin(), rows.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
-      return a["total"].get<double>() > b["total"].get<double>();
+      // A non-finite or null index (outputs that overflowed) ranks last: NaN would break the
+      // strict weak order std::stable_sort needs.
+      auto key = [](const nlohmann::json& r) {
+        const double t = r["total"].is_number() ? r["total"].get<double>() : -HUGE_VAL;
+        return std::isfinite(t) ? t : -HUGE_VAL;
+      };
+      return key(a) > key(b);
     });
     nlohmann::json ranking = nlohmann::json::array();
     for (const auto& r : rows) ranking.push_back(r["parameter"]);

@@ -35,7 +35,10 @@ ChannelMeasurement parseChannel(const nlohmann::json& j, const std::string& wher
   const auto& Y = j["Y"];
   if (!Y.is_array() || Y.size() != 256)
     bad(where + ".Y must hold 256 luminances (codes 0..255), has " + std::to_string(Y.is_array() ? Y.size() : 0));
-  for (std::size_t i = 0; i < Y.size(); ++i) c.Y.push_back(number(Y[i], where + ".Y[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < Y.size(); ++i) {
+    c.Y.push_back(number(Y[i], where + ".Y[" + std::to_string(i) + "]"));
+    if (c.Y.back() < 0) bad(where + ".Y[" + std::to_string(i) + "] is a negative luminance");
+  }
   if (c.Y.back() <= c.Y.front()) bad(where + ".Y does not rise: Y[255] <= Y[0]");
   return c;
 }
@@ -70,9 +73,9 @@ void requireNonDegenerate(const Triangle& t, const std::string& what) {
 
 ColorMeasurements parseColorMeasurements(const nlohmann::json& j) {
   if (!j.is_object()) bad("colour measurements must be a JSON object");
-  if (j.value("format", std::string()) != "fovea-color-measurements")
+  if (!j.contains("format") || !j["format"].is_string() || j["format"].get<std::string>() != "fovea-color-measurements")
     bad("format must be \"fovea-color-measurements\"");
-  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<int>() != 1)
+  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<long long>() != 1)
     bad("version must be 1");
   for (const char* k : {"foveal", "peripheral"})
     if (!j.contains(k)) bad(std::string(k) + " is missing");

@@ -7,12 +7,14 @@
 #include <cstdlib>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 namespace fovea::color {
 
 namespace {
 
 constexpr int kLevels = 256;
+constexpr std::size_t kMaxProblems = 1000;
 const char* const kDisplays[2] = {"foveal", "peripheral"};
 const char* const kChannels[3] = {"R", "G", "B"};
 
@@ -68,9 +70,13 @@ struct Accumulator {
 
 }  // namespace
 
-MeasurementImport importSpectroradiometerCsv(const std::string& text) {
+MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
   MeasurementImport result;
   auto problem = [&](int line, const std::string& m) { result.problems.push_back({line, m}); };
+  // A UTF-8 byte order mark (spreadsheet exports write one) is not part of the first column's name.
+  const std::string_view bom = "\xEF\xBB\xBF";
+  const std::string text =
+      std::string_view(file_text).substr(0, bom.size()) == bom ? file_text.substr(bom.size()) : file_text;
   std::array<std::array<std::array<Accumulator, kLevels>, 3>, 2> acc{};
   std::map<std::array<int, 4>, int> seen;  // (display, channel, level, repeat) -> line
 
@@ -81,14 +87,18 @@ MeasurementImport importSpectroradiometerCsv(const std::string& text) {
   const std::vector<std::string> required = {"display", "channel", "level", "x", "y", "Y", "repeat"};
   while (std::getline(in, line)) {
     ++number_of_line;
+    if (result.problems.size() >= kMaxProblems) {  // a file of garbage: the first ones say enough
+      problem(number_of_line, "more than " + std::to_string(kMaxProblems) + " problems: stopped reading here");
+      return result;
+    }
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     const auto fields = split(line);
     if (column.empty()) {  // the header
       for (std::size_t i = 0; i < fields.size(); ++i) {
-        // x, y and Y differ only in case: those three are case-sensitive.
-        const std::string name =
-            (fields[i] == "x" || fields[i] == "y" || fields[i] == "Y") ? fields[i] : lower(fields[i]);
+        // x, y and Y differ only in case, and X, Y, Z are tristimulus values, not chromaticity:
+        // one-letter names are case-sensitive (an "X" column is not "x").
+        const std::string name = fields[i].size() == 1 ? fields[i] : lower(fields[i]);
         column.emplace(name, i);
       }
       std::string missing;
@@ -175,6 +185,12 @@ MeasurementImport importSpectroradiometerCsv(const std::string& text) {
       if (!missing.empty()) {
         problem(0, std::string(kDisplays[d]) + " " + kChannels[c] + ": no readings for level" +
                        (missing.size() > 1 ? "s " : " ") + ranges(missing));
+        continue;
+      }
+      // The same rule as the JSON measurements: the curve must rise (all zero: no light measured).
+      if (!(cm.Y[kLevels - 1] > cm.Y[0])) {
+        problem(0, std::string(kDisplays[d]) + " " + kChannels[c] +
+                       ": the luminance does not rise (Y at level 255 <= Y at level 0; all zero: no light measured)");
         continue;
       }
       const Accumulator& top = acc[d][c][kLevels - 1];

@@ -14,6 +14,7 @@
 // reported with its line (non-numeric or out-of-range field, negative Y, wrong column
 // count, duplicate reading), and so is every level without a reading; nothing is dropped
 // silently, and any problem means no measurements.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct MeasurementImport {
   bool ok() const { return problems.empty(); }
 };
 
+// The largest readings file read (256 levels x 3 channels x 2 displays x 1000 repeats is ~40 MB).
+inline constexpr std::size_t kMaxMeasurementCsvBytes = std::size_t{64} << 20;
+
+// `text` may start with a UTF-8 byte order mark. One-letter column names are case-sensitive
+// (x, y chromaticity; Y luminance; an X or Z tristimulus column is an extra column). A channel
+// whose luminance does not rise (Y[255] <= Y[0], e.g. all zero) is a problem. At most 1000 problems are collected.
 MeasurementImport importSpectroradiometerCsv(const std::string& text);
 // "FILE:LINE: message" lines (at most `limit`, then "... and N more").
 std::string formatProblems(const MeasurementImport& m, const std::string& file, std::size_t limit = 20);

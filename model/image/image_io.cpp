@@ -1,7 +1,14 @@
 #include "model/image/image_io.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 
 #include <OpenImageIO/imageio.h>
@@ -10,16 +17,71 @@
 
 namespace fovea::image {
 
+namespace {
+
+// The file itself: regular, bounded, and (a JPEG) complete.
+void checkFile(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) throw ImageIoError(path + ": " + (errno == ENOENT ? std::string("no such file") : std::strerror(errno)));
+  struct stat st {};
+  const bool stat_ok = ::fstat(fd, &st) == 0;
+  std::string problem;
+  if (!stat_ok)
+    problem = std::strerror(errno);
+  else if (S_ISDIR(st.st_mode))
+    problem = "is a directory, not a file";
+  else if (!S_ISREG(st.st_mode))
+    problem = S_ISFIFO(st.st_mode) ? "is a FIFO, not a regular file" : "is a device or a socket, not a regular file";
+  else if (static_cast<std::uint64_t>(st.st_size) > kMaxImageFileBytes)
+    problem = "too large: " + std::to_string(st.st_size) + " bytes (limit " + std::to_string(kMaxImageFileBytes) + ")";
+  if (problem.empty()) {
+    // JPEG (starts FF D8): the last marker must be EOI (FF D9), trailing zero padding allowed.
+    unsigned char head[2] = {0, 0};
+    if (::pread(fd, head, 2, 0) == 2 && head[0] == 0xFF && head[1] == 0xD8) {
+      unsigned char tail[4096];
+      const off_t n = std::min<off_t>(st.st_size, static_cast<off_t>(sizeof tail));
+      const ssize_t got = ::pread(fd, tail, static_cast<std::size_t>(n), st.st_size - n);
+      ssize_t end = got;
+      while (end > 0 && tail[end - 1] == 0) --end;
+      if (got <= 0 || end < 2 || tail[end - 2] != 0xFF || tail[end - 1] != 0xD9)
+        problem = "truncated JPEG (no end-of-image marker)";
+    }
+  }
+  ::close(fd);
+  if (!problem.empty()) throw ImageIoError(path + ": " + problem);
+}
+
+// The header's pixel count, before any pixel is decoded.
+void checkSpec(const std::string& path, const OIIO::ImageSpec& spec) {
+  const double pixels = static_cast<double>(spec.width) * spec.height * std::max(1, spec.depth);
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw ImageIoError(path + ": image has no pixels");
+  if (pixels > kMaxImagePixels)
+    throw ImageIoError(path + ": the header declares " + std::to_string(spec.width) + " x " +
+                       std::to_string(spec.height) + " pixels, more than the limit of 50 Mpixel");
+}
+
+}  // namespace
+
+void checkImageFile(const std::string& path) {
+  checkFile(path);
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw ImageIoError(path + ": unsupported or unreadable image: " + OIIO::geterror());
+  checkSpec(path, in->spec());
+  in->close();
+}
+
 cv::Mat readLinearRgb(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw ImageIoError(path + ": no such file");
+  checkFile(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw ImageIoError(path + ": unsupported or unreadable image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, nc = spec.nchannels;
-  if (w <= 0 || h <= 0 || nc <= 0) throw ImageIoError(path + ": image has no pixels");
+  checkSpec(path, spec);
+  const int w = spec.width, h = spec.height;
+  const int nc = std::min(spec.nchannels, 3);  // RGB or grey: alpha and extra channels are not read
   std::vector<float> pixels(static_cast<std::size_t>(w) * h * nc);
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, pixels.data()))
     throw ImageIoError(path + ": cannot decode the image: " + in->geterror());
+  if (in->has_error()) throw ImageIoError(path + ": cannot decode the image: " + in->geterror());
   const bool isFloat = spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
                        spec.format.basetype == OIIO::TypeDesc::DOUBLE;
   in->close();

@@ -3,6 +3,7 @@
 // EXR, ...), converted to linear-light float RGB (the displays add light, so blending
 // happens in linear light), and written back sRGB-encoded.
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,17 @@ class ImageIoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Input limits: a regular file (a FIFO or a device such as /dev/zero is refused) of at most
+// kMaxImageFileBytes, whose header declares at most kMaxImagePixels pixels (checked before any
+// pixel is decoded: a small PNG may declare 20000 x 20000), and a JPEG must be complete (end with
+// its EOI marker: a truncated one decodes to grey without an error).
+inline constexpr std::size_t kMaxImageFileBytes = std::size_t{512} << 20;
+inline constexpr double kMaxImagePixels = 50e6;
+
+// The checks above on the file and its header, without decoding: throws ImageIoError
+// "PATH: problem". For readers other than readLinearRgb (cv::imread of capture folders).
+void checkImageFile(const std::string& path);
 
 // CV_32FC3 (R, G, B order), linear light in [0, 1]. 8/16-bit and other integer files are
 // taken as sRGB-encoded; float files (EXR, HDR) as linear. Throws ImageIoError naming the

@@ -2,7 +2,13 @@
 
 #include <stdexcept>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -285,28 +291,51 @@ std::variant<nlohmann::ordered_json, JsonInputError> parseOrderedJsonText(std::s
 }
 
 std::variant<std::string, std::string> readInputFile(const std::filesystem::path& path, std::size_t max_bytes) {
-  namespace fs = std::filesystem;
   using Result = std::variant<std::string, std::string>;
   const auto failure = [](std::string reason) { return Result(std::in_place_index<1>, std::move(reason)); };
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (!fs::exists(st)) return failure("no such file");
-  if (fs::is_directory(st)) return failure("is a directory, not a file");
-  if (fs::is_regular_file(st)) {
-    const auto size = fs::file_size(path, ec);
-    if (!ec && size > max_bytes)
-      return failure("too large: " + std::to_string(size) + " bytes (limit " + std::to_string(max_bytes) + ")");
+  if (path.empty()) return failure("an empty path names no file");
+  // O_NONBLOCK: opening a FIFO with no writer returns at once instead of blocking; the type is
+  // then checked on the open descriptor (no race with a rename between a stat and the open).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    const int e = errno;
+    if (e == ENOENT) return failure("no such file");
+    if (e == EISDIR) return failure("is a directory, not a file");
+    return failure(std::strerror(e));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return failure(std::strerror(errno));
-  // Read at most max_bytes + 1 bytes: a FIFO or a device (/dev/zero) is bounded too.
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return failure(std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) return failure("is a directory, not a file");
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISFIFO(st.st_mode)   ? "a FIFO"
+                       : S_ISCHR(st.st_mode)  ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                                              : "not a regular file";
+    return failure(std::string("is ") + kind + ", not a regular file");
+  }
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  if (size > max_bytes)
+    return failure("too large: " + std::to_string(size) + " bytes (limit " + std::to_string(max_bytes) + ")");
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  // Read at most max_bytes + 1 bytes: a file growing while it is read is bounded too.
   std::string text;
+  text.reserve(static_cast<std::size_t>(size));
   char buffer[65536];
-  while (in && text.size() <= max_bytes) {
-    in.read(buffer, std::streamsize(std::min<std::size_t>(sizeof buffer, max_bytes + 1 - text.size())));
-    text.append(buffer, std::size_t(in.gcount()));
+  while (text.size() <= max_bytes) {
+    const ssize_t n = ::read(fd, buffer, std::min<std::size_t>(sizeof buffer, max_bytes + 1 - text.size()));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return failure(std::string("read error: ") + std::strerror(errno));
+    }
+    if (n == 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
   }
-  if (in.bad()) return failure("read error");
   if (text.size() > max_bytes) return failure("too large: more than " + std::to_string(max_bytes) + " bytes");
   return Result(std::in_place_index<0>, std::move(text));
 }

@@ -47,9 +47,11 @@ std::variant<nlohmann::json, JsonInputError> parseJsonText(std::string_view text
 std::variant<nlohmann::ordered_json, JsonInputError> parseOrderedJsonText(std::string_view text,
                                                                           const JsonLimits& limits = {});
 
-// Reads a whole file as bytes, refusing a directory, a missing or unreadable file and one larger
-// than max_bytes before reading it. On failure the reason alone ("is a directory, not a file",
-// "no such file", "too large: … bytes (limit …)", strerror); the caller names the path.
+// Reads a whole file as bytes, refusing a directory, a FIFO, a device or a socket ("is a FIFO,
+// not a regular file": a FIFO with no writer never blocks, /dev/zero is never read), a missing or
+// unreadable file and one larger than max_bytes before reading it. On failure the reason alone
+// ("is a directory, not a file", "no such file", "too large: … bytes (limit …)", strerror); the
+// caller names the path. Every input file of the program is read through here.
 std::variant<std::string, std::string> readInputFile(const std::filesystem::path& path,
                                                      std::size_t max_bytes = JsonLimits{}.max_bytes);
 

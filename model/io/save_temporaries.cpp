@@ -1,5 +1,7 @@
 #include "model/io/save_temporaries.h"
 
+#include "model/io/output_file.h"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -55,9 +57,9 @@ std::vector<fs::path> removeStaleSaveTemporaries(const fs::path& target_path) {
 }
 
 std::optional<std::string> cannotWriteFile(const fs::path& path) {
+  if (auto p = outputPathProblem(path)) return p;  // empty, a directory, a device, a FIFO...
   const fs::path target = saveTarget(path);
   std::error_code ec;
-  if (fs::is_directory(target, ec)) return "is a directory, not a file";
   std::string tmpl = saveTemporaryTemplate(target);
   const int fd = ::mkstemp(tmpl.data());
   if (fd < 0)

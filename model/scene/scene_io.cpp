@@ -1,12 +1,8 @@
 #include "model/scene/scene_io.h"
 
 #include "model/io/json_input.h"
+#include "model/io/output_file.h"
 #include "model/io/save_temporaries.h"
-
-#include <fcntl.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -514,54 +510,10 @@ std::string serializeScene(const Scene& s) {
 
 void writeFileAtomic(const std::filesystem::path& path, std::string_view text,
                      const std::function<void()>& beforeRename) {
-  namespace fs = std::filesystem;
-  const fs::path target = saveTarget(path);  // through symlinks: replace the link's target, not the link
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::error_code dir_ec;
-  if (fs::is_directory(target, dir_ec)) throw SceneIoError(path.string() + ": is a directory, not a file");
-  std::string tmpl = saveTemporaryTemplate(target);
-  std::vector<char> name(tmpl.begin(), tmpl.end());
-  name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
-  if (fd < 0)
-    throw SceneIoError(path.string() + ": cannot create a temporary file in " + dir.string() + ": " +
-                       std::strerror(errno));
-  ::flock(fd, LOCK_EX);  // marks the temporary file as in use (removeStaleSaveTemporaries)
-  const std::string tmp(name.data());
-  auto fail = [&](const std::string& why) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw SceneIoError(path.string() + ": save failed (" + why + "); the existing file is unchanged");
-  };
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail(std::string("write: ") + std::strerror(errno));
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) fail(std::string("fsync: ") + std::strerror(errno));
-  // Keep the target's permissions when replacing it (mkstemp creates 0600).
-  std::error_code ec;
-  const auto st = fs::status(target, ec);
-  ::fchmod(fd, ec || !fs::exists(st) ? 0644 : static_cast<mode_t>(st.permissions()) & 0777);
-  if (::close(fd) != 0) {
-    ::unlink(tmp.c_str());
-    throw SceneIoError(path.string() + ": save failed (close: " + std::strerror(errno) +
-                       "); the existing file is unchanged");
-  }
   try {
-    if (beforeRename) beforeRename();
-  } catch (...) {
-    ::unlink(tmp.c_str());
-    throw;
-  }
-  if (::rename(tmp.c_str(), target.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    throw SceneIoError(path.string() + ": save failed (rename: " + why + "); the existing file is unchanged");
+    writeOutputFile(path, text, beforeRename);  // the one output writer (model/io/output_file.h)
+  } catch (const OutputError& e) {
+    throw SceneIoError(e.what());
   }
 }
 

@@ -3,6 +3,7 @@
 #include <QtTest>
 #include "tests/test_paths.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -103,6 +104,7 @@ class TestCliStage : public QObject {
 
   void softLimitExit2SendsNoMove() {
     const QString trace = tmp("limit.trace");
+    std::filesystem::remove(trace.toStdString());  // a refused command leaves it as it was: none
     Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "move-abs", "22"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("soft limits"), r.err.constData());
@@ -120,6 +122,7 @@ class TestCliStage : public QObject {
 
   void refusedBeforeAnyByte() {
     const QString trace = tmp("refused.trace");
+    std::filesystem::remove(trace.toStdString());  // a refused command leaves it as it was: none
     // Reversed limits are refused, not swapped.
     Run r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", trace, "--soft-limits", "8,-8", "position"});
     QCOMPARE(r.code, 2);
@@ -184,6 +187,59 @@ class TestCliStage : public QObject {
     QVERIFY(ls[0].rfind("#", 0) == 0);
     QVERIFY2(ls[1].rfind("0.000000 TX 05 00 00 00 50 01", 0) == 0, ls[1].c_str());
     QVERIFY(ls[2].find(" RX 06 00 54 00 81 50") != std::string::npos);
+  }
+
+  // The logs are written by the one output writer once the device was talked to: a refused move
+  // leaves an existing transcript as it was, one file cannot be both logs, a device node is
+  // refused (issue 28).
+  void logsAreOutputsOfTheirOwn() {
+    const QString transcript = tmp("kept.apt");
+    { std::ofstream(transcript.toStdString()) << "# an earlier session\n0.000000 TX 05 00 00 00 50 01\n"; }
+    Run r = cli({"stage", "--virtual", "MTS25-Z8", "--transcript", transcript, "move-abs", "22"});
+    QCOMPARE(r.code, 2);
+    QCOMPARE(lines(transcript).size(), std::size_t(2));
+    QCOMPARE(lines(transcript)[0], std::string("# an earlier session"));
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", transcript, "--transcript", transcript, "position"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--trace and --transcript name the same file"), r.err.constData());
+    QCOMPARE(lines(transcript).size(), std::size_t(2));
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--transcript", "/dev/full", "position"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--transcript: /dev/full: is a character device, not a regular file"), r.err.constData());
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--trace", "", "position"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--trace: an empty path names no file"), r.err.constData());
+  }
+
+  // stage --replay TRANSCRIPT: a recorded session played as the device gives the same answer;
+  // a host that sends something else is stopped at the transcript's line (exit 1).
+  void replayARecordedSession() {
+    const QString transcript = tmp("replay.apt");
+    Run rec = cli({"stage", "--virtual", "MTS25-Z8", "--json", "--transcript", transcript, "move-abs", "15"});
+    QVERIFY2(rec.code == 0, rec.err.constData());
+    const auto live = nlohmann::json::parse(rec.out.toStdString());
+    Run r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "--replay", transcript, "move-abs", "15"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto replayed = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(replayed["position_mm"].get<double>(), live["position_mm"].get<double>());
+    QCOMPARE(replayed["position_mm"].get<double>(), 15.0);
+    QCOMPARE(replayed["replay"]["file"].get<std::string>(), transcript.toStdString());
+    QCOMPARE(replayed["replay"]["entries_not_played"].get<int>(), 0);
+    // Another target: the host's MOVE_ABSOLUTE differs from the recorded one.
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--json", "--replay", transcript, "move-abs", "16"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains(transcript.toUtf8() + ":") && r.err.contains("the transcript expects TX"),
+             r.err.constData());
+    // A transcript that is no file, or malformed, is named.
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--replay", "/dev/zero", "position"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("--replay: cannot read the transcript '/dev/zero': is a character device"),
+             r.err.constData());
+    const QString bad = tmp("bad.apt");
+    { std::ofstream(bad.toStdString()) << "0 TX 05 00\n0 XX 01\n"; }
+    r = cli({"stage", "--virtual", "MTS25-Z8", "--replay", bad, "position"});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains(bad.toUtf8() + ":2: expected TX, RX or UNPLUG"), r.err.constData());
   }
 
   void silentOrMissingDeviceExit3() {

@@ -6,6 +6,8 @@
 #include <QFile>
 #include <QTemporaryDir>
 
+#include <functional>
+
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_process.h"
@@ -51,6 +53,36 @@ class TestCliSweepShards : public QObject {
     const auto merged = runFoveaCli(QStringList{"merge"} + parts + QStringList{"--json"}, call);
     QCOMPARE(merged.code, 0);
     QCOMPARE(merged.out, whole.out);
+
+    // Parts whose header contradicts their samples (issue 28): a gaze_count the values do not
+    // give, a sample's gaze forged; both named with the file and the key.
+    auto forged = [&](const QString& name, const std::function<void(nlohmann::json&, int)>& change) {
+      QStringList out;
+      for (const QString& path : parts) {
+        QFile f(path);
+        if (!f.open(QIODevice::ReadOnly)) return QStringList{};
+        nlohmann::json j = nlohmann::json::parse(f.readAll().toStdString());
+        change(j, j["shard"][0].get<int>());
+        out << writeTestFile(dir, name + QString("-%1.json").arg(j["shard"][0].get<int>()),
+                             QByteArray::fromStdString(j.dump()));
+      }
+      return out;
+    };
+    const auto count =
+        runFoveaCli(QStringList{"merge"} + forged("count", [](nlohmann::json& j, int) { j["gaze_count"] = 4; }) +
+                        QStringList{"--json"},
+                    call);
+    QCOMPARE(count.code, 1);
+    QVERIFY2(count.err.contains("count-") && count.err.contains(": gaze_count: must be 5"), count.err.constData());
+    const auto gaze = runFoveaCli(QStringList{"merge"} +
+                                      forged("gaze",
+                                             [](nlohmann::json& j, int k) {
+                                               if (k == 2) j["samples"][1]["gaze_deg"] = 7.5;
+                                             }) +
+                                      QStringList{"--json"},
+                                  call);
+    QCOMPARE(gaze.code, 1);
+    QVERIFY2(gaze.err.contains("gaze-2.json: samples[1].gaze_deg: must be 10"), gaze.err.constData());
 
     // A shard missing.
     const auto missing = runFoveaCli({"merge", parts[0], parts[2], "--json"}, call);

@@ -82,13 +82,15 @@ class TestFit : public QObject {
     QVERIFY2(unknown.contains("unknown observable \"fov\"") && unknown.contains("fov_deg, ") &&
                  unknown.contains("x_p_mm") && unknown.contains("cpd"),
              qPrintable(unknown));
-    QVERIFY(refused("sigma", 0).contains("\"sigma\" must be > 0"));
+    QVERIFY(refused("sigma", 0).contains("targets[0].sigma: must be in [1e-09, 1e+09], got 0"));
+    QVERIFY(refused("sigma", 5e-324).contains("targets[0].sigma: must be in [1e-09, 1e+09], got 5e-324"));
+    QVERIFY(refused("value", 1e308).contains("targets[0].value: must be in [-1e+09, 1e+09], got 1e+308"));
     QVERIFY(refused("sigma", nullptr).contains("missing \"sigma\""));
     QVERIFY(refused("unit", "mm").contains("\"unit\" of fov_deg is \"deg\""));
     QVERIFY(refused("direction", "sideways").contains("direction: must be one of horizontal, vertical, diagonal"));
     QVERIFY(refused("gaze", 3).contains("gaze: not a parameter of fov_deg"));
     QVERIFY(refused("gaze_deg", 95).contains("gaze_deg: must lie in [-80, 80] deg"));
-    QVERIFY(refused("value", "90").contains("\"value\" must be a finite number"));
+    QVERIFY(refused("value", "90").contains("targets[0].value: must be a finite number"));
     nlohmann::json twice = file;
     twice["targets"][1]["id"] = "fov";
     QVERIFY(refusal([&] { parseFitTargets(twice); }).contains("duplicate id \"fov\""));

@@ -2,6 +2,8 @@
 // limits with their positions, nlohmann's syntax errors, bounded messages, file reading.
 #include <QtTest>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -131,8 +133,14 @@ class TestJsonInput : public QObject {
     { std::ofstream(dir / "ten.json") << "[1,2,3,45]"; }
     QCOMPARE(std::get<1>(readInputFile(dir / "ten.json", 9)), std::string("too large: 10 bytes (limit 9)"));
     QCOMPARE(std::get<0>(readInputFile(dir / "ten.json", 10)), std::string("[1,2,3,45]"));
-    // A device without a size is read up to the limit only.
-    QCOMPARE(std::get<1>(readInputFile("/dev/zero", 1000)), std::string("too large: more than 1000 bytes"));
+    // Devices and FIFOs are refused before a byte is read (/dev/zero never ends; a FIFO with no
+    // writer would block the open).
+    QCOMPARE(std::get<1>(readInputFile("/dev/zero", 1000)), std::string("is a character device, not a regular file"));
+    const auto fifo = dir / "pipe.json";
+    std::filesystem::remove(fifo);
+    QCOMPARE(::mkfifo(fifo.c_str(), 0600), 0);
+    QCOMPARE(std::get<1>(readInputFile(fifo)), std::string("is a FIFO, not a regular file"));
+    QCOMPARE(std::get<1>(readInputFile("")), std::string("an empty path names no file"));
   }
 };
 
