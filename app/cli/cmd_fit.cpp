@@ -1,4 +1,5 @@
-// fovea-cli fit SCENE --targets TARGETS.json --free PATHS... [--starts N] [--seed S] [--max-evals N]
+// fovea-cli fit SCENE --targets TARGETS.json --free PATHS... [--targets-select SEL] [--starts N] [--seed S]
+// [--max-evals N]
 //   [--write-scene OUT.json] --json: fits scene numbers to target observables (docs/fitting.md).
 // The options are those of the registry's "fit" analysis (model/analysis/fit_analysis.cpp),
 // written by hand because --free takes several values (each may also hold several specs
@@ -18,7 +19,7 @@ namespace cmd_fit {  // one per command file: fovea-cli compiles in unity batche
 namespace {
 
 struct Args {
-  std::string scene, targets, write_scene;
+  std::string scene, targets, write_scene, targets_select;
   std::vector<std::string> free;
   int starts = 3, seed = 1, max_evals = 0;
   bool json = false;
@@ -34,11 +35,17 @@ std::string shown(const nlohmann::json& v) {
 
 void printTable(const nlohmann::json& r) {
   std::cout << "chi2 " << shown(r["chi2_initial"]) << " -> " << shown(r["chi2"]) << " (" << r["dof"] << " dof, "
-            << r["evaluations"] << " evaluations)\n";
+            << r["evaluations"] << " evaluations), reduced chi2 " << shown(r["reduced_chi2"]) << "\n";
+  if (r.contains("targets_select") && !r["targets_select"].get<std::string>().empty())
+    std::cout << "targets: " << r["targets"].size() << " of " << r["targets_available"] << " ("
+              << r["targets_select"].get<std::string>() << ")\n";
+  // chi2/dof > 1: the scaled uncertainties are the ones to quote (the JSON keeps both).
+  const bool scaled = r.value("uncertainties_shown", std::string()) == "scaled";
   for (const auto& p : r["parameters"])
     std::cout << "  " << p["path"].get<std::string>() << " = " << shown(p["fitted"]) << " +- "
-              << shown(p["uncertainty"]) << " " << p["unit"].get<std::string>() << " (was " << shown(p["initial"])
-              << ")\n";
+              << shown(p[scaled ? "uncertainty_scaled" : "uncertainty"]) << " " << p["unit"].get<std::string>()
+              << (scaled ? " (scaled by sqrt(chi2/dof); unscaled +- " + shown(p["uncertainty"]) + ")" : std::string())
+              << " (was " << shown(p["initial"]) << ")\n";
   for (const auto& t : r["targets"])
     std::cout << "  " << t["id"].get<std::string>() << ": model " << shown(t["model"]) << ", value "
               << shown(t["value"]) << " +- " << shown(t["sigma"]) << " " << t["unit"].get<std::string>() << " ("
@@ -58,6 +65,7 @@ void install(CLI::App& app) {
   cmd->add_option("--free", a->free, "scene paths to fit: PATH, PATH=LO:HI or PATH=+-D (one or more)")
       ->required()
       ->expected(1, -1);
+  cmd->add_option("--targets-select", a->targets_select, def.parameter("targets-select")->help);
   cmd->add_option("--starts", a->starts, def.parameter("starts")->help);
   cmd->add_option("--seed", a->seed, def.parameter("seed")->help);
   cmd->add_option("--max-evals", a->max_evals, def.parameter("max-evals")->help);
@@ -66,8 +74,8 @@ void install(CLI::App& app) {
   cmd->callback([a, &def, write_scene] {
     std::string free;
     for (const auto& f : a->free) free += (free.empty() ? "" : " ") + f;
-    nlohmann::json values{
-        {"targets", a->targets}, {"free", free}, {"starts", a->starts}, {"seed", a->seed}, {"max-evals", a->max_evals}};
+    nlohmann::json values{{"targets", a->targets}, {"free", free},    {"targets-select", a->targets_select},
+                          {"starts", a->starts},   {"seed", a->seed}, {"max-evals", a->max_evals}};
     for (const auto& p : analysis::validateValues(def, values)) usageError(p.text("--"));
     const Scene scene = loadSceneOrExit(a->scene);
     checkOutputOption(write_scene, a->write_scene);

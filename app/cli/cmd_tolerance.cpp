@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -108,6 +109,17 @@ void printSummary(const nlohmann::json& r) {
   const auto& y = r["yield"];
   std::cout << "yield " << y["value"].get<double>() * 100 << " % (" << y["passed"] << "/" << y["trials"]
             << ", standard error " << y["standard_error"].get<double>() * 100 << " %)\n";
+  // The interval and what it rests on (fewer independent samples than trials with the Saltelli design).
+  if (y.contains("confidence_95") && y["confidence_95"].size() == 2) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "95 %% interval %.1f - %.1f %%", y["confidence_95"][0].get<double>() * 100,
+                  y["confidence_95"][1].get<double>() * 100);
+    const std::string basis =
+        y.contains("interval_basis") && y["interval_basis"].is_string()
+            ? y["interval_basis"].get<std::string>()
+            : std::to_string(static_cast<long long>(y.value("independent_samples", 0.0))) + " independent samples";
+    std::cout << buf << " over " << basis << "\n";
+  }
   for (const auto& [name, d] : r["figures"].items())
     if (d.contains("mean"))
       std::cout << name << ": mean " << d["mean"] << ", p05 " << d["p05"] << ", p95 " << d["p95"] << "\n";

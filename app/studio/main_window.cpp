@@ -138,6 +138,14 @@ void MainWindow::createDocks() {
     benchStatus_->show();
   });
   connect(devices_, &widgets::DevicesPanel::benchDisconnected, this, [this] { benchStatus_->hide(); });
+  // The bench's refusals, stops and errors also go to the Messages dock (the routine "done"
+  // of each jog stays in the Bench dock's status line).
+  connect(devices_, &widgets::DevicesPanel::message, this, [this](const QString& text, bool error) {
+    if (error)
+      log_->error(tr("Bench: %1").arg(text));
+    else if (!text.endsWith(tr(" done")))
+      log_->info(tr("Bench: %1").arg(text));
+  });
   // Esc in the 3-D view is the e-stop too (the panel has its own; dialogs keep theirs).
   auto* esc = new QShortcut(QKeySequence(Qt::Key_Escape), view_);
   esc->setContext(Qt::WidgetWithChildrenShortcut);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "model/json_numbers.h"
+#include "widgets/analyses/analysis_summary.h"
 #include "widgets/number_text.h"
 #include "widgets/plots/plot_builders.h"
 
@@ -37,6 +38,16 @@ QString distributionText(const nlohmann::json& p) {
   return t;
 }
 
+// The inverse row of a tolerance that does not reach the target alone: how far the scan got.
+QString unreachedText(const nlohmann::json& e) {
+  const std::string why = e.value("stopped_by", std::string());
+  if (why == "effective_samples_at_spec") return "not resolved: too few independent trials to reweight";
+  if (!e.contains("best_yield")) return "not reached alone";
+  const QString best = QString("not reached alone: at most %1 down to × %2 of the spec")
+                           .arg(pct(jsonNumber(e, {"best_yield"})), g(jsonNumber(e, {"smallest_scale"}), 2));
+  return why == "effective_samples" ? best + " (then fewer than 20 effective trials)" : best;
+}
+
 }  // namespace
 
 QString toleranceSpecTableHtml(const nlohmann::json& r) {
@@ -44,6 +55,7 @@ QString toleranceSpecTableHtml(const nlohmann::json& r) {
   std::map<std::string, nlohmann::json> inverse;
   if (r.contains("inverse") && r["inverse"].contains("parameters"))
     for (const auto& e : r["inverse"]["parameters"]) inverse[e.value("parameter", std::string())] = e;
+  int reached = 0, inverted = 0;
   QString h =
       "<table border='1' cellspacing='0' cellpadding='4' width='100%'><tr><th align='left'>tolerance</th>"
       "<th align='left'>what it varies</th><th align='left'>distribution</th>"
@@ -59,12 +71,21 @@ QString toleranceSpecTableHtml(const nlohmann::json& r) {
                 ? QString("%1 (× %2 of the spec; yield %3 over %4 effective trials)")
                       .arg(g(jsonNumber(e, {"width"}), 3), g(jsonNumber(e, {"scale"}), 3),
                            pct(jsonNumber(e, {"yield"})), g(jsonNumber(e, {"effective_samples"}), 4))
-                : QString("not reached by this tolerance alone");
+                : unreachedText(e);
+      reached += e.value("achievable", false) ? 1 : 0;
+      ++inverted;
     }
     h += QString("<tr><td>%1</td><td>%2</td><td>%3</td><td>%4</td></tr>")
              .arg(QString::fromStdString(name).toHtmlEscaped(), what, distributionText(p), inv);
   }
   h += "</table>";
+  // Said once under the table rather than in every row: no single tolerance reaches the target.
+  if (inverted > 0 && reached == 0)
+    h += QString(
+             "<p>No single tolerance reaches the target yield %1 when it alone is tightened (the others at spec): "
+             "the failures come from several tolerances together, or the trials are too few to tell (the scan stops "
+             "where fewer than 20 effective trials remain). Tighten several at once, or run more trials.</p>")
+             .arg(pct(jsonNumber(r, {"spec", "target_yield"})));
   const nlohmann::json gaze = spec.value("gaze", nlohmann::json::object());
   QStringList pass;
   const nlohmann::json bounds = spec.value("pass", nlohmann::json::object());
@@ -95,14 +116,14 @@ ReportSection toleranceReportSection(const nlohmann::json& r, const widgets::Dis
   s.introHtml =
       QString(
           "Monte Carlo tolerancing of the design (docs/tolerancing.md): yield <b>%1</b> (95 % Wilson "
-          "interval %2 – %3, %4 of %5 units pass; target %6).%7</p>%8<p>")
+          "interval %2 – %3 over %9; %4 of %5 units pass; target %6).%7</p>%8<p>")
           .arg(pct(jsonNumber(y, {"value"})), pct(jsonNumberAt(y, "confidence_95", 0)),
                pct(jsonNumberAt(y, "confidence_95", 1)), g(jsonNumber(y, {"passed"}), 10),
                g(jsonNumber(y, {"trials"}), 10), pct(jsonNumber(r, {"spec", "target_yield"})),
                jsonNumber(y, {"invalid_units"}) > 0 ? QString(" %1 units broke the scene rules and count as failed.")
                                                           .arg(g(jsonNumber(y, {"invalid_units"}), 10))
                                                     : QString(),
-               toleranceSpecTableHtml(r));
+               toleranceSpecTableHtml(r), widgets::toleranceIntervalBasis(y));
   for (const widgets::PlotData& p : widgets::plotsFromResult("tolerance", r, u)) addPlotFigure(s.figures, p);
   return s;
 }

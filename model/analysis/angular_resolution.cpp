@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/physics/display_camera_map.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 
@@ -99,7 +100,8 @@ ResolutionResult analyzeResolution(const Scene& scene, const ResolutionOptions& 
   const double M = fd.combiner.magnification;
   const double image_width = M * fd.size_mm[0];
   const double k_f = fd.pixels[0] / image_width;  // S2, pixels per mm of image plane
-  const double x_c = (d_f + r_eye) * std::tan(a * kDeg);
+  // The image centre on the line of sight: M x_f, the one foveal mapping (display_camera_map.h).
+  const double x_c = M * fovealShiftForGaze(scene, {a, 0.0})[0];
   r.foveal_image_shift_mm = x_c;
   const double lever = d_f + r_eye - r_eye * std::cos(a * kDeg);
   const double x_pupil = r_eye * std::sin(a * kDeg);

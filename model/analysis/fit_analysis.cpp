@@ -42,7 +42,12 @@ AnalysisDefinition fitAnalysis() {
                             "", "scene paths to fit, separated by spaces: PATH, PATH=LO:HI or PATH=+-D");
   free.default_value = nullptr;
   free.unset_meaning = "choose the parameters to fit";
-  d.parameters = {targets, free,
+  ParameterSpec select = text("targets-select", "Targets used", {"sim-", "meas-", "all"}, "",
+                              "which targets to fit: ids or groups ending in '-' (sim-, meas-), separated by commas; "
+                              "'!' removes; empty: all");
+  d.parameters = {targets,
+                  free,
+                  select,
                   integer("starts", "Starts", 3, 1, 50, "optimiser starts: the scene's values, then random ones"),
                   integer("seed", "Seed", 1, 0, INT_MAX, "seed of the random starts"),
                   integer("max-evals", "Max evaluations", 0, 0, 1000000, "per start; 0: 40 (n + 2)")};
@@ -60,6 +65,8 @@ AnalysisDefinition fitAnalysis() {
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(path + ": " + e.what());
     }
+    const std::string selection = textOf(v, "targets-select");
+    t = selectFitTargets(t, selection);  // its errors name the item and the file's groups
     std::vector<FreeParameter> free_parameters;
     try {
       free_parameters = parseFreeParameters(scene, splitFreeSpecs(textOf(v, "free")));
@@ -74,6 +81,8 @@ AnalysisDefinition fitAnalysis() {
     if (!r.ok()) return std::nullopt;
     nlohmann::json out = fitResultJson(*r.value, o);
     out["targets_file"] = path;
+    out["targets_select"] = selection;
+    out["targets_available"] = file.is_object() ? file["targets"].size() : file.size();
     return out;
   };
   return d;

@@ -49,6 +49,10 @@ nlohmann::json fitResultJson(const FitResult& r, const FitOptions& o) {
     starts.push_back(
         {{"from", s.from}, {"to", s.to}, {"chi2", s.chi2}, {"evaluations", s.evaluations}, {"status", s.status}});
   for (const auto& w : r.warnings) warnings.push_back({{"parameter", w.parameter}, {"message", w.message}});
+  nlohmann::json worst = nlohmann::json::array();
+  for (const std::size_t i : r.worst_targets)
+    if (i < r.targets.size())
+      worst.push_back({{"id", r.targets[i].target.id}, {"normalised", numberOrNull(r.targets[i].normalised())}});
   return {{"algorithm", r.algorithm},
           {"starts", o.starts},
           {"seed", o.seed},
@@ -60,6 +64,9 @@ nlohmann::json fitResultJson(const FitResult& r, const FitOptions& o) {
           {"dof", r.dof},
           {"reduced_chi2", r.dof > 0 ? numberOrNull(r.chi2 / r.dof) : nlohmann::json(nullptr)},
           {"covariance_scaled_by_reduced_chi2", false},
+          // Which of uncertainty / uncertainty_scaled the front ends show (scaled when chi2/dof > 1).
+          {"uncertainties_shown", r.scaled_uncertainties_recommended ? "scaled" : "unscaled"},
+          {"worst_targets", worst},
           {"parameter_order", paths},
           {"covariance", matrixJson(r.covariance)},
           {"correlation", matrixJson(r.correlation)},

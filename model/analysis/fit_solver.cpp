@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <stdexcept>
 
@@ -230,6 +231,28 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
     out.targets.push_back(t);
     const double r0 = (m0[i] - targets[i].value) / targets[i].sigma;
     out.chi2_initial += r0 * r0;
+  }
+  // Misfit beyond the sigmas: say so and name the targets that pull hardest.
+  if (out.dof > 0 && out.chi2 / out.dof > 1.0) {
+    out.scaled_uncertainties_recommended = true;
+    std::vector<std::size_t> order(targets.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return std::abs((*rp)[a]) > std::abs((*rp)[b]); });
+    order.resize(std::min<std::size_t>(3, order.size()));
+    out.worst_targets = order;
+    char head[160];
+    std::snprintf(head, sizeof head,
+                  "reduced chi2 %.3g > 1 (chi2 %.4g for %d dof): the targets disagree with the model beyond their "
+                  "sigmas; uncertainties scaled by sqrt(chi2/dof) = %.3g are the ones to quote; worst targets:",
+                  out.chi2 / out.dof, out.chi2, out.dof, scale);
+    std::string msg = head;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      char one[48];
+      std::snprintf(one, sizeof one, " (%+.3g sigma)", (*rp)[order[k]]);
+      msg += (k ? ", " : " ") + targets[order[k]].id + one;
+    }
+    out.warnings.push_back({"", msg});
   }
   out.fitted_scene = sceneWithValues(scene, free, p);
   StudyOutcome<FitResult> done;

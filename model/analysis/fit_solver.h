@@ -19,6 +19,7 @@
 // it is reported undetermined (no uncertainty).
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,6 +81,12 @@ struct FitResult {
   std::vector<FitStart> starts;
   int evaluations = 0;
   Scene fitted_scene;
+  // chi^2 / dof > 1: the targets scatter more than their sigmas say, so the uncertainties to
+  // show are the scaled ones (sigma * sqrt(chi^2 / dof)); the worst targets (largest
+  // |residual| / sigma, at most 3) are named in a warning.
+  bool scaled_uncertainties_recommended = false;
+  std::vector<std::size_t> worst_targets;  // indices into `targets`, worst first
+  double reducedChi2() const { return dof > 0 ? chi2 / dof : std::numeric_limits<double>::quiet_NaN(); }
 };
 
 // The penalty chi^2 of a point where the scene rules refuse the values or a target has no value.

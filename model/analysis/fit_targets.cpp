@@ -1,5 +1,7 @@
 #include "model/analysis/fit_targets.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -104,6 +106,62 @@ nlohmann::json fitTargetsJson(const std::vector<FitTarget>& targets, const std::
   if (!notes.empty()) j["notes"] = notes;
   j["targets"] = list;
   return j;
+}
+
+std::vector<std::string> fitTargetGroups(const std::vector<FitTarget>& targets) {
+  std::vector<std::string> out;
+  for (const auto& t : targets) {
+    const std::size_t dash = t.id.find('-');
+    if (dash == std::string::npos || dash == 0) continue;
+    const std::string g = t.id.substr(0, dash + 1);
+    if (std::find(out.begin(), out.end(), g) == out.end()) out.push_back(g);
+  }
+  return out;
+}
+
+std::vector<FitTarget> selectFitTargets(const std::vector<FitTarget>& targets, const std::string& selection) {
+  std::vector<std::string> items;
+  std::string cur;
+  for (const char c : selection + ",") {
+    if (c == ',' || std::isspace(static_cast<unsigned char>(c))) {
+      if (!cur.empty()) items.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (items.empty()) return targets;
+  auto groupsText = [&] {
+    std::string g;
+    for (const auto& x : fitTargetGroups(targets)) g += (g.empty() ? "" : ", ") + x;
+    return g.empty() ? std::string("none") : g;
+  };
+  // Starts from nothing when the first item adds, from everything when it removes.
+  std::vector<bool> keep(targets.size(), items.front().front() == '!');
+  for (const auto& raw : items) {
+    const bool remove = raw.front() == '!';
+    std::string item = remove ? raw.substr(1) : raw;
+    if (item.empty()) throw std::invalid_argument("targets-select: \"" + raw + "\" names nothing");
+    bool prefix = item.back() == '*' || item.back() == '-';
+    if (item.back() == '*') item.pop_back();
+    if (item == "all") prefix = true, item.clear();
+    bool matched = false;
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      const std::string& id = targets[i].id;
+      if (prefix ? id.rfind(item, 0) == 0 : id == item) {
+        keep[i] = !remove;
+        matched = true;
+      }
+    }
+    if (!matched)
+      throw std::invalid_argument("targets-select: \"" + raw + "\" matches no target id (groups: " + groupsText() +
+                                  "; a group ends in '-' or '*')");
+  }
+  std::vector<FitTarget> out;
+  for (std::size_t i = 0; i < targets.size(); ++i)
+    if (keep[i]) out.push_back(targets[i]);
+  if (out.empty()) throw std::invalid_argument("targets-select: \"" + selection + "\" leaves no target");
+  return out;
 }
 
 std::vector<double> evaluateTargets(const Scene& scene, const std::vector<FitTarget>& targets,

@@ -38,6 +38,15 @@ nlohmann::json fitTargetsJson(const std::vector<FitTarget>& targets, const std::
 // One target as an object of the file (its parameters inline).
 nlohmann::json fitTargetJson(const FitTarget& t);
 
+// A subset of the targets by a selection text: items separated by commas or spaces, each an id
+// ("sim-xp-0"), a group prefix ending in '-' or '*' ("sim-", "meas-*": every id starting with
+// it), or "all"; an item starting with '!' removes what it names. Empty or "all": every target.
+// Order kept. Throws std::invalid_argument naming an item that matches nothing (with the
+// groups the file has) and for an empty result.
+std::vector<FitTarget> selectFitTargets(const std::vector<FitTarget>& targets, const std::string& selection);
+// The groups of the ids ("sim-", "meas-": the text up to and including the first '-'), in order.
+std::vector<std::string> fitTargetGroups(const std::vector<FitTarget>& targets);
+
 // The model's value of every target for a scene, in order (one ObservableContext: shared
 // x_p searches and sweeps are computed once). Throws std::runtime_error naming the target when
 // the scene gives no value for it.

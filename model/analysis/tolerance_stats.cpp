@@ -174,6 +174,13 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
   const std::size_t blocks = spec.sobol ? n / (k + 2) : 0;
   const double independent = spec.sobol ? static_cast<double>(std::max<std::size_t>(1, 2 * blocks)) : double(n);
   const double p = n ? static_cast<double>(passed) / static_cast<double>(n) : 0.0;
+  // What the interval rests on, for the front ends to print beside the number: with the
+  // Saltelli design only the A and B rows of each block are independent draws.
+  const std::string basis = spec.sobol ? std::to_string(static_cast<long long>(independent)) +
+                                             " independent samples: the A and B rows of the Saltelli design's " +
+                                             std::to_string(blocks) + (blocks == 1 ? " block" : " blocks") +
+                                             " (its A_B rows repeat their values)"
+                                       : std::to_string(n) + " independent samples (plain Monte Carlo)";
   out["yield"] = {{"value", p},
                   {"passed", passed},
                   {"trials", n},
@@ -182,6 +189,7 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
                   {"independent_samples", independent},
                   {"confidence_95", wilsonInterval(p, independent)},
                   {"confidence_method", "Wilson score interval over the independent samples"},
+                  {"interval_basis", basis},
                   {"method", spec.sobol ? "pass fraction over all trials; binomial standard error over the A and B "
                                           "rows of the Saltelli design (the A_B rows are correlated with them)"
                                         : "pass fraction; binomial standard error"}};
@@ -282,11 +290,19 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
     constexpr int kGrid = 40;
     constexpr double kMinEffective = 20;
     double found = -1;
+    // What the scan reached when it found nothing: the best yield, at which scale, and why it stopped.
+    double best_yield = -1, best_scale = c_max, last_scale = c_max;
+    bool ran_out = false;
     for (int g = 0; g <= kGrid; ++g) {
       const double c = c_max - (c_max - c_min) * g / kGrid;
       double ess = 0;
       const double y = yieldAt(c, &ess);
-      if (ess < kMinEffective) break;  // too few trials left near the mean to say more
+      if (ess < kMinEffective) {  // too few trials left near the mean to say more
+        ran_out = true;
+        break;
+      }
+      last_scale = c;
+      if (y > best_yield) best_yield = y, best_scale = c;
       if (y >= spec.target_yield) {
         double good = c, bad = g == 0 ? c : c_max - (c_max - c_min) * (g - 1) / kGrid;
         for (int it = 0; it < 30 && bad > good; ++it) {
@@ -311,6 +327,12 @@ nlohmann::json toleranceStatistics(const ToleranceSpec& spec, std::uint64_t seed
       // Tightening this one alone does not reach the target (down to 5 % of its width, or
       // until fewer than 20 effective trials remain).
       row["achievable"] = false;
+      if (best_yield >= 0) {
+        row["best_yield"] = best_yield;
+        row["best_scale"] = best_scale;
+        row["smallest_scale"] = last_scale;
+      }
+      row["stopped_by"] = ran_out ? (best_yield < 0 ? "effective_samples_at_spec" : "effective_samples") : "scan_limit";
     }
     per.push_back(row);
   }

@@ -535,11 +535,27 @@ std::optional<Eigen::Vector2d> projectorPixelOnLineOfSight(const Scene& scene, s
   return Eigen::Vector2d(0.5 * (pr.pixels[0] * (1 - tx / th) - 1), 0.5 * (pr.pixels[1] * (1 - ty / tv) - 1));
 }
 
+// Seed eq. S1, x_f = (b + D_e/2) tan(alpha) / M, derived rather than copied (the seed's symbols
+// are not consistent between S1 and S3): the eye turns about its centre, r = D_e/2 behind the
+// zero-gaze pupil; the combiner's virtual image plane lies d_f in front of that pupil, so
+// d_f + r from the centre. The line of sight of gaze alpha starts at the pupil, r sin(alpha)
+// off axis and r (1 - cos(alpha)) nearer the plane, and meets it at
+//   x = r sin(alpha) + (d_f + r - r cos(alpha)) tan(alpha) = (d_f + r) tan(alpha)   (exact),
+// the line through the eye's centre. The image moves M times the display, so x_f = x / M.
+// One mapping for the follow table, the capture plans and the angular resolution
+// (angular_resolution.cpp: x_c = M x_f).
 std::array<double, 2> fovealShiftForGaze(const Scene& scene, std::array<double, 2> gaze_deg) {
   const auto& ic = scene.foveal_display.combiner;
   const double r = scene.eye.eyeball_diameter_mm / 2.0;
   return {(ic.image_distance_mm + r) * std::tan(gaze_deg[0] * kDeg) / ic.magnification,
           (ic.image_distance_mm + r) * std::tan(gaze_deg[1] * kDeg) / ic.magnification};
+}
+
+std::array<double, 2> fovealGazeCoverageDeg(const Scene& scene, std::array<double, 2> limits_mm) {
+  const auto& ic = scene.foveal_display.combiner;
+  const double lever = ic.image_distance_mm + scene.eye.eyeball_diameter_mm / 2.0;
+  return {std::atan(limits_mm[0] * ic.magnification / lever) / kDeg,
+          std::atan(limits_mm[1] * ic.magnification / lever) / kDeg};
 }
 
 std::array<double, 2> geometricHoeShiftForGaze(const Scene& scene, std::array<double, 2> gaze_deg) {

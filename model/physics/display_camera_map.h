@@ -141,6 +141,9 @@ std::optional<Eigen::Vector2d> projectorPixelOnLineOfSight(const Scene& scene, s
 // (angular_resolution.h), and the HOE shift that follows the pupil, r sin(alpha) per axis
 // (the geometric x_p(alpha); the analyses' optimiseShift refines it).
 std::array<double, 2> fovealShiftForGaze(const Scene& scene, std::array<double, 2> gaze_deg);
+// The gaze range (deg, {lo, hi}) whose x_f stays within a micro-OLED stage's element limits
+// {lo_mm, hi_mm}: the inverse of fovealShiftForGaze on one axis, atan(x_f M / (d_f + r)).
+std::array<double, 2> fovealGazeCoverageDeg(const Scene& scene, std::array<double, 2> limits_mm);
 std::array<double, 2> geometricHoeShiftForGaze(const Scene& scene, std::array<double, 2> gaze_deg);
 
 }  // namespace fovea

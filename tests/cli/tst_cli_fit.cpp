@@ -8,6 +8,8 @@
 #include <QFile>
 #include <QTemporaryDir>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "cli_process.h"
@@ -130,6 +132,64 @@ class TestCliFit : public QObject {
                      dir.filePath("no/such/dir/x.json")});
     QCOMPARE(r.code, 2);
     QVERIFY(r.err.contains("--write-scene"));
+  }
+
+  // --targets-select picks ids and groups; a misfit (fov-v 40 sigma off, the free pixel-beam waist
+  // cannot move it) gives reduced
+  // chi2 > 1, the scaled uncertainties marked as the ones shown and a warning naming it.
+  void targetsSelectAndReducedChi2() {
+    using namespace fovea;
+    const Scene nominal = *loadSceneFile(kScene.toStdString()).scene;
+    std::vector<FitTarget> targets = parseFitTargets(targetList());
+    const std::vector<double> measured = evaluateTargets(nominal, targets);
+    for (std::size_t i = 0; i < targets.size(); ++i) targets[i].value = measured[i];
+    targets[0].value += 2.0;  // fov-v: 40 sigma above what the prototype gives
+    QTemporaryDir dir;
+    const QString file = writeFile(dir, "targets.json", fitTargetsJson(targets, "synthetic").dump(2));
+    auto r = runFoveaCli({"fit", kScene, "--targets", file, "--free", "projector.pixel_beam.waist_fwhm_um",
+                          "--targets-select", "fov-,spot", "--starts", "1", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    auto j = nlohmann::json::parse(r.out.toStdString());
+    for (const char* k :
+         {"reduced_chi2", "targets_select", "targets_available", "uncertainties_shown", "worst_targets"})
+      QVERIFY2(j.contains(k), k);
+    QCOMPARE(j["targets"].size(), std::size_t(3));  // fov-v, fov-h, spot; not eff
+    QCOMPARE(j["targets"][0]["id"].get<std::string>(), std::string("fov-v"));
+    QCOMPARE(j["targets"][2]["id"].get<std::string>(), std::string("spot"));
+    QCOMPARE(j["targets_available"].get<int>(), 4);
+    QCOMPARE(j["targets_select"].get<std::string>(), std::string("fov-,spot"));
+    QCOMPARE(j["dof"].get<int>(), 2);
+    const double reduced = j["reduced_chi2"].get<double>();
+    QVERIFY(std::abs(reduced - j["chi2"].get<double>() / 2) < 1e-9 * reduced);
+    QVERIFY2(reduced > 1, qPrintable(QString::number(reduced)));
+    QCOMPARE(j["uncertainties_shown"].get<std::string>(), std::string("scaled"));
+    const auto& p = j["parameters"][0];
+    QVERIFY(std::abs(p["uncertainty_scaled"].get<double>() - p["uncertainty"].get<double>() * std::sqrt(reduced)) <
+            1e-9 * p["uncertainty_scaled"].get<double>());
+    QCOMPARE(j["worst_targets"][0]["id"].get<std::string>(), std::string("fov-v"));
+    bool warned = false;
+    for (const auto& w : j["warnings"])
+      warned = warned || (w["message"].get<std::string>().find("reduced chi2") != std::string::npos &&
+                          w["message"].get<std::string>().find("fov-v") != std::string::npos);
+    QVERIFY2(warned, j["warnings"].dump().c_str());
+    // The table for people: the reduced chi2 and the scaled uncertainty.
+    r = runFoveaCli({"fit", kScene, "--targets", file, "--free", "projector.pixel_beam.waist_fwhm_um",
+                     "--targets-select", "fov-,spot", "--starts", "1"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY2(r.out.contains("reduced chi2") && r.out.contains("scaled by sqrt(chi2/dof)"), r.out.constData());
+    QVERIFY2(r.err.contains("worst targets: fov-v"), r.err.constData());
+    // "!" removes; a name that matches nothing is refused with the file's groups.
+    r = runFoveaCli({"fit", kScene, "--targets", file, "--free", "projector.pixel_beam.waist_fwhm_um",
+                     "--targets-select", "all,!fov-v,!eff", "--starts", "1", "--max-evals", "5", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    j = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(j["targets"].size(), std::size_t(2));
+    QCOMPARE(j["targets"][0]["id"].get<std::string>(), std::string("fov-h"));
+    r = runFoveaCli({"fit", kScene, "--targets", file, "--free", "hoe.size_mm[1]", "--targets-select", "meas-"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--targets-select") && r.err.contains("\"meas-\" matches no target") &&
+                 r.err.contains("groups: fov-"),
+             r.err.constData());
   }
 
   void targetsFromACaptureManifest() {

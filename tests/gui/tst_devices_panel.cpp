@@ -2,7 +2,9 @@
 // step read back from the emulated controller, Esc stopping every axis mid-move, a go-to
 // outside the soft limits refused in the status line with nothing sent, the capture wizard
 // paused and resumed into a session folder whose manifest lists every capture, follow gaze
-// taking the HOE to the analyses' x_p(alpha), and the main window's Bench dock marked VIRTUAL.
+// taking the HOE to the analyses' x_p(alpha), a follow move beyond the micro-OLED's limits refused
+// in the row and in the Messages dock, Esc leaving "stopped at X" in the rows, and the main
+// window's Bench dock marked VIRTUAL.
 #include <QtTest>
 #include "tests/test_paths.h"
 
@@ -32,6 +34,7 @@
 #include "model/scene/scene_io.h"
 #include "widgets/bench/capture_wizard.h"
 #include "widgets/bench/devices_panel.h"
+#include "widgets/message_log.h"
 #include "widgets/scene_document.h"
 
 using namespace fovea;
@@ -152,6 +155,58 @@ class TestDevicesPanel : public QObject {
     const auto m = at.match(status);
     QVERIFY2(m.hasMatch(), qPrintable(status));
     QVERIFY2(std::abs(m.captured(1).toDouble() - (stage - 12.5)) < 2e-3, qPrintable(status));
+    // Each stopped row's state says so, with the position in the row's frame (not "ready").
+    for (const auto& [key, at] : {std::pair{QString("hoe.x"), x - 12.5}, std::pair{QString("hoe.y"), y - 12.5}}) {
+      const QString state = rig.panel->axisStateText(key);
+      const auto sm = QRegularExpression("^stopped at (-?[0-9.]+) mm$").match(state);
+      QVERIFY2(sm.hasMatch(), qPrintable(key + ": " + state));
+      QVERIFY2(std::abs(sm.captured(1).toDouble() - at) < 2e-3, qPrintable(key + ": " + state));
+    }
+    QTest::qWait(300);  // the 100 ms refresh keeps it until the next command of the row
+    QVERIFY(rig.panel->axisStateText("hoe.x").startsWith("stopped at"));
+    rig.panel->goTo("hoe.x", 0.0);
+    QTRY_VERIFY_WITH_TIMEOUT(!rig.panel->axisStateText("hoe.x").startsWith("stopped at"), 3000);
+  }
+
+  // Follow gaze beyond what the micro-OLED stage can reach (x_f(15 deg) = 9.93 mm > 8 mm): the
+  // refusal is in the axis row and in the Messages dock at once, in the row's frame (element
+  // coordinates, -8 ... 8 mm) with the gaze range the stage covers; nothing is sent to it,
+  // while the HOE and the camera follow. The gaze is the Gaze dock's (the scene's).
+  void refusedFollowMoveShowsInTheRowAndInMessages() {
+    studio::MainWindow window;
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    DevicesPanel* panel = window.devicesPanel();
+    auto known = [panel] {
+      if (!panel->isConnected()) return false;
+      for (const char* k : {"hoe.x", "foveal_display.x", "camera.yaw"})
+        if (!panel->axisPosition(k)) return false;
+      return true;
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(known(), 10000);
+    const double oled_before = *panel->axisPosition("foveal_display.x");
+    panel->setFollowGaze(true);
+    window.document()->applyEdit("gaze", [](Scene& s) { s.eye.gaze_deg = {15.0, 0.0}; });
+    const QString state = panel->axisStateText("foveal_display.x");
+    QVERIFY2(state == QString("refused: 9.929 mm > 8.000 mm"), qPrintable(state));
+    QString logged;
+    for (const QString& e : window.messageLog()->entries())
+      if (e.contains("foveal_display.x: follow to x_f")) logged = e;
+    QVERIFY2(logged.startsWith("error: Bench: foveal_display.x: follow to x_f(α = 15.00°) = 9.929 mm refused — "
+                               "outside the soft limits -8.000 mm … 8.000 mm (foveal_display coordinates; they "
+                               "cover gaze -12.18° … 12.18°); nothing was sent"),
+             qPrintable(window.messageLog()->entries().join("\n")));
+    QVERIFY2(panel->statusText().contains("foveal_display.x: follow to x_f"), qPrintable(panel->statusText()));
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(*panel->axisPosition("camera.yaw") - 15.0) < 1e-3, 10000);  // camera follows
+    QCOMPARE(*panel->axisPosition("foveal_display.x"), oled_before);  // nothing sent to the micro-OLED
+    QVERIFY(panel->axisStateText("foveal_display.x").startsWith("refused"));
+    QVERIFY(panel->followInfoText().contains("x_f = (d_f + r) tan α / M = 9.929 mm"));
+    // Back within reach: the note goes, the axis follows to x_f(10 deg) = 6.534 mm.
+    window.document()->applyEdit("gaze", [](Scene& s) { s.eye.gaze_deg = {10.0, 0.0}; });
+    QVERIFY(!panel->axisStateText("foveal_display.x").startsWith("refused"));
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(*panel->axisPosition("foveal_display.x") - 6.534) < 1e-3, 15000);
+    window.close();
   }
 
   void goToOutsideTheSoftLimitsIsRefusedAndSendsNothing() {

@@ -8,6 +8,7 @@
 #include <QDockWidget>
 #include <QFile>
 #include <QPushButton>
+#include <QTextBrowser>
 #include <QUndoStack>
 
 #include "app/studio/analysis_features.h"
@@ -103,6 +104,52 @@ class TestFitPanel : public QObject {
     window.findChild<QDockWidget*>("PlotsDock")->raise();
     QTest::qWait(400);
     QVERIFY(window.captureWindow().save(tmpDir() + "/fit-1920x1080-plots.png"));
+  }
+
+  // The seed's targets disagree with the prototype (and with each other: simulated vs
+  // measured): the form shows the reduced chi2, the scaled uncertainty and a warning naming the
+  // worst targets; the residual plot is labelled by target id. A short fit (4 evaluations)
+  // suffices: the misfit is the targets', not the optimiser's.
+  void seedTargetsWarnOfMisfit() {
+    studio::MainWindow window;
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.findChild<QDockWidget*>("AnalysesDock")->raise();
+    AnalysesPanel* panel = window.analysisFeatures()->analysesPanel();
+    panel->selectAnalysis("fit");
+    QVERIFY(panel->setParameter("targets", QString(FOVEA_SOURCE_DIR "/resources/seed/seed-targets.json")));
+    QVERIFY(panel->setParameter("free", "eye.relief_mm"));
+    QVERIFY(panel->setParameter("targets-select", "sim-"));
+    QVERIFY(panel->setParameter("starts", 1));
+    QVERIFY(panel->setParameter("max-evals", 4));
+    QSignalSpy ready(panel, &AnalysesPanel::resultReady);
+    QVERIFY(panel->run());
+    QTRY_COMPARE_WITH_TIMEOUT(ready.count(), 1, 300000);
+    const auto r = panel->lastResult("fit");
+    QVERIFY(r && r->json);
+    const nlohmann::json& j = *r->json;
+    QCOMPARE(j["targets"].size(), std::size_t(14));  // the 14 sim- targets of the 19
+    QCOMPARE(j["dof"].get<int>(), 13);
+    QVERIFY2(j["reduced_chi2"].get<double>() > 1, j["reduced_chi2"].dump().c_str());
+    QCOMPARE(j["uncertainties_shown"].get<std::string>(), std::string("scaled"));
+    const std::string worst = j["worst_targets"][0]["id"].get<std::string>();
+    QVERIFY(worst.rfind("sim-", 0) == 0);
+    const QString html = window.findChild<QTextBrowser*>("summary")->toHtml();
+    QVERIFY2(html.contains("Reduced χ²") && html.contains("reduced chi2") &&
+                 html.contains(QString::fromStdString(worst)) && html.contains("scaled by √(χ²/dof)"),
+             qPrintable(html));
+    const PlotData residuals = window.analysisFeatures()->plotsPanel()->plot("fit-residuals");
+    QCOMPARE(residuals.x.categories.size(), 14);
+    QCOMPARE(residuals.x.categories.first(), QString("sim-fov-h-0"));
+    QTest::qWait(300);
+    QVERIFY(window.captureWindow().save(tmpDir() + "/fit-seed-1366x768.png"));
+  }
+
+  void progressSaysTheTimeLeft() {
+    QCOMPARE(AnalysesPanel::progressFormat(0.25, 10.0), QString("%p% — about 30 s left"));
+    QCOMPARE(AnalysesPanel::progressFormat(0.1, 20.0), QString("%p% — about 3 min 00 s left"));
+    QCOMPARE(AnalysesPanel::progressFormat(0.5, 1.0), QString("%p% — running"));  // no rate yet
   }
 };
 

@@ -140,6 +140,24 @@ class TestDisplayCameraMap : public QObject {
     }
   }
 
+  // x_f = (d_f + r) tan(alpha) / M (seed S1, derived in display_camera_map.cpp): on the
+  // prototype 811.5 mm x tan(alpha) / 21.9; its +-8 mm micro-OLED stages cover +-12.18 deg of gaze.
+  void fovealShiftAndTheGazeItsStagesCover() {
+    const Scene s = prototype();
+    QVERIFY(std::abs(fovealShiftForGaze(s, {10, 0})[0] - 6.534) < 5e-4);
+    QVERIFY(std::abs(fovealShiftForGaze(s, {15, 0})[0] - 9.929) < 5e-4);
+    QVERIFY(std::abs(fovealShiftForGaze(s, {20, 0})[0] - 13.49) < 5e-3);
+    QVERIFY(std::abs(fovealShiftForGaze(s, {0, -10})[1] + 6.534) < 5e-4);
+    std::array<double, 2> limits{};
+    for (const auto& b : s.stages)
+      if (b.element == "foveal_display" && b.axis == "x") limits = b.soft_limits;
+    QCOMPARE(limits[1], 8.0);
+    const auto c = fovealGazeCoverageDeg(s, limits);
+    QVERIFY(std::abs(c[1] - 12.18) < 5e-3 && std::abs(c[0] + 12.18) < 5e-3);
+    // The inverse: x_f at the covered gaze is the limit.
+    QVERIFY(std::abs(fovealShiftForGaze(s, {c[1], 0})[0] - 8.0) < 1e-9);
+  }
+
   void renderedBoardsAreFoundWhereTheMapSays() {
     const Scene s = prototype();
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {

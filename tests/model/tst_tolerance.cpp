@@ -63,6 +63,37 @@ class TestTolerance : public QObject {
     QVERIFY(std::abs(c[0] - (1 - 0.277540)) < 1e-5 && c[1] == 1.0);
     const auto d = wilsonInterval(0.3, 0);
     QVERIFY(d[0] == 0.0 && d[1] == 1.0);
+    // docs/tolerancing.md: 82 of 100 passing over 12 independent samples (k = 14, 100 trials:
+    // 6 Saltelli blocks) is 53.8 - 94.7 %; over 100 independent units it would be 73.3 - 88.3 %.
+    const auto e = wilsonInterval(0.82, 12);
+    QVERIFY(std::abs(e[0] - 0.538) < 5e-4 && std::abs(e[1] - 0.947) < 5e-4);
+    const auto f = wilsonInterval(0.82, 100);
+    QVERIFY(std::abs(f[0] - 0.733) < 5e-4 && std::abs(f[1] - 0.883) < 5e-4);
+  }
+
+  // What the interval rests on, in words, beside the number (yield.interval_basis); the inverse
+  // rows that do not reach the target say how far the scan got.
+  void intervalBasisAndUnreachedRows() {
+    const ToleranceSpec s = parseToleranceSpec(specJson());
+    QVERIFY(s.sobol);
+    const std::size_t k = s.parameters.size();
+    const auto records = syntheticRecords(s, 2, 6 * (k + 2) + 1);  // 6 whole blocks and one trial more
+    const nlohmann::json st = toleranceStatistics(s, 2, records);
+    QCOMPARE(st["yield"]["independent_samples"].get<double>(), 12.0);
+    QCOMPARE(st["yield"]["interval_basis"].get<std::string>(),
+             std::string("12 independent samples: the A and B rows of the Saltelli design's 6 blocks (its A_B rows "
+                         "repeat their values)"));
+    nlohmann::json j = specJson();
+    j["sensitivity"] = "none";
+    const ToleranceSpec plain = parseToleranceSpec(j);
+    const nlohmann::json sp = toleranceStatistics(plain, 2, syntheticRecords(plain, 2, 500));
+    QCOMPARE(sp["yield"]["interval_basis"].get<std::string>(),
+             std::string("500 independent samples (plain Monte Carlo)"));
+    const auto& b = sp["inverse"]["parameters"][1];  // does not decide the pass
+    QVERIFY(!b["achievable"].get<bool>());
+    QVERIFY2(b.contains("stopped_by") && b.contains("best_yield") && b.contains("smallest_scale"), b.dump().c_str());
+    QVERIFY(b["best_yield"].get<double>() < plain.target_yield);
+    QVERIFY(b["smallest_scale"].get<double>() <= b["best_scale"].get<double>() + 1e-12);
   }
 
   void quantilesAndDraws() {

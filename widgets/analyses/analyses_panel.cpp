@@ -103,8 +103,10 @@ AnalysesPanel::AnalysesPanel(SceneDocument* document, QWidget* parent)
     if (!cmd.isEmpty()) QApplication::clipboard()->setText(cmd);
     setStatus(currentAnalysis(), !cmd.isEmpty() ? tr("Copied: %1").arg(cmd) : cliUnavailableReason());
   });
-  connect(runner_, &AnalysisRunner::progress, this,
-          [this](const QString&, double f) { progress_->setValue(static_cast<int>(std::lround(1000.0 * f))); });
+  connect(runner_, &AnalysisRunner::progress, this, [this](const QString&, double f) {
+    progress_->setValue(static_cast<int>(std::lround(1000.0 * f)));
+    progress_->setFormat(progressFormat(f, runClock_.isValid() ? runClock_.elapsed() / 1000.0 : 0.0));
+  });
   connect(runner_, &AnalysisRunner::finished, this, [this](const AnalysisResult& r) {
     results_[r.id] = r;
     progress_->setValue(1000);
@@ -301,6 +303,7 @@ bool AnalysesPanel::run() {
     return false;
   }
   progress_->setValue(0);
+  runClock_.start();
   setStatus(spec->id, tr("Running %1 on %2…").arg(spec->title, document_->displayName()));
   setBusy(true);
   runner_->start(spec->id, document_->scene(), p);
@@ -323,6 +326,10 @@ QString AnalysesPanel::statusText() const {
   return status_->text();
 }
 
+QString AnalysesPanel::progressText() const {
+  return progress_->text();
+}
+
 QString AnalysesPanel::cliCommand() const {
   const AnalysisSpec* spec = findAnalysis(currentAnalysis());
   // fovea-cli reads the scene from its file: unsaved changes would not be in it.
@@ -339,6 +346,15 @@ QString AnalysesPanel::cliUnavailableReason() const {
     return tr("Save the scene first: fovea-cli reads the scene from a file, and this one has none yet.");
   if (document_->isModified()) return tr("Save the scene first: fovea-cli would not see the unsaved changes.");
   return {};
+}
+
+QString AnalysesPanel::progressFormat(double fraction, double elapsed_s) {
+  // Time left from the rate so far, once there is a rate to speak of (2 s and 1 % done).
+  if (!(fraction > 0.01 && fraction < 1.0) || elapsed_s < 2.0) return tr("%p% — running");
+  const double left = elapsed_s * (1.0 - fraction) / fraction;
+  const int s = static_cast<int>(std::lround(left));
+  const QString t = s >= 60 ? tr("%1 min %2 s").arg(s / 60).arg(s % 60, 2, 10, QChar('0')) : tr("%1 s").arg(s);
+  return tr("%p% — about %1 left").arg(t);
 }
 
 void AnalysesPanel::setBusy(bool busy) {

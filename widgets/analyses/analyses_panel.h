@@ -4,6 +4,7 @@
 // with a progress bar, Cancel it, read its key numbers; results go to the plots through
 // resultReady(). "Copy CLI" puts the equivalent fovea-cli command on the clipboard.
 
+#include <QElapsedTimer>
 #include <QMap>
 #include <QWidget>
 
@@ -43,6 +44,9 @@ class AnalysesPanel : public QWidget {
   AnalysisRunner* runner() const { return runner_; }
   std::optional<AnalysisResult> lastResult(const QString& id) const;
   QString statusText() const;
+  // The progress bar's text while running: "%p% — about 2 min 05 s left" once the rate is known.
+  static QString progressFormat(double fraction, double elapsed_s);
+  QString progressText() const;
   // The equivalent fovea-cli command of the form; empty when there is none: then
   // cliUnavailableReason() says why (no twin, or the scene must be saved first).
   QString cliCommand() const;
@@ -74,6 +78,7 @@ class AnalysesPanel : public QWidget {
   QPushButton* defaultsButton_ = nullptr;
   QPushButton* cliButton_ = nullptr;
   QProgressBar* progress_ = nullptr;
+  QElapsedTimer runClock_;  // since the running analysis started (the time-left estimate)
   QLabel* status_ = nullptr;
   QTextBrowser* summary_ = nullptr;
   QMap<QString, AnalysisParams> edited_;  // per analysis, the values last in the form

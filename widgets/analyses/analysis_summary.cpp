@@ -38,6 +38,12 @@ QString range(const nlohmann::json& j, const char* key, bool length, const Displ
 
 }  // namespace
 
+QString toleranceIntervalBasis(const nlohmann::json& y) {
+  if (y.is_object() && y.contains("interval_basis") && y["interval_basis"].is_string())
+    return QString::fromStdString(y["interval_basis"].get<std::string>()).toHtmlEscaped();
+  return QString("%1 independent samples").arg(g(jsonNumber(y, {"independent_samples"}), 8));
+}
+
 QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const DisplayUnits& u) {
   if (!r.is_object()) return {};
   Table t;
@@ -138,10 +144,12 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
     }
   } else if (id == "tolerance") {
     const auto& y = r.value("yield", nlohmann::json::object());
-    t.add("Yield", QString("%1 (95 % interval %2 – %3; %4 of %5 units pass)")
+    // The interval's basis beside the number: with the Saltelli design it rests on far fewer
+    // independent samples than units (model/analysis/tolerance_stats.cpp).
+    t.add("Yield", QString("%1 (95 % interval %2 – %3 over %4; %5 of %6 units pass)")
                        .arg(pct(jsonNumber(y, {"value"})), pct(jsonNumberAt(y, "confidence_95", 0)),
-                            pct(jsonNumberAt(y, "confidence_95", 1)), g(jsonNumber(y, {"passed"}), 8),
-                            g(jsonNumber(y, {"trials"}), 8)));
+                            pct(jsonNumberAt(y, "confidence_95", 1)), toleranceIntervalBasis(y),
+                            g(jsonNumber(y, {"passed"}), 8), g(jsonNumber(y, {"trials"}), 8)));
     t.add("Target yield", pct(jsonNumber(r, {"spec", "target_yield"})));
     const auto& f = r.value("figures", nlohmann::json::object());
     t.add("Smallest FOV over the gazes",
@@ -164,21 +172,35 @@ QString analysisSummaryHtml(const QString& id, const nlohmann::json& r, const Di
   } else if (id == "fit") {
     t.add("χ² before → after", g(jsonNumber(r, {"chi2_initial"})) + " → " + g(jsonNumber(r, {"chi2"})) +
                                    QString(" (%1 dof)").arg(g(jsonNumber(r, {"dof"}))));
+    const double reduced = jsonNumber(r, {"reduced_chi2"});
+    // chi2/dof > 1: the scaled uncertainties (sigma * sqrt(chi2/dof)) are shown, and said so.
+    const bool scaled = r.value("uncertainties_shown", std::string()) == "scaled";
+    t.add("Reduced χ² (χ²/dof)", std::isfinite(reduced) ? g(reduced, 3) + (reduced > 1 ? " > 1" : "")
+                                                        : QStringLiteral("— (no degree of freedom)"));
+    if (const auto sel = r.value("targets_select", std::string()); !sel.empty())
+      t.add("Targets used",
+            QString("%1 of %2 (%3)")
+                .arg(r.value("targets", nlohmann::json::array()).size())
+                .arg(g(jsonNumber(r, {"targets_available"}), 6), QString::fromStdString(sel).toHtmlEscaped()));
     for (const auto& p : r.value("parameters", nlohmann::json::array())) {
-      const double sigma = jsonNumber(p, {"uncertainty"});
+      const double sigma = jsonNumber(p, {scaled ? "uncertainty_scaled" : "uncertainty"});
+      const double raw = jsonNumber(p, {"uncertainty"});
       t.add(QString::fromStdString(p.value("path", std::string())),
-            QString("%1 ± %2 %3 (was %4)")
+            QString("%1 ± %2 %3 (was %4)%5")
                 .arg(g(jsonNumber(p, {"fitted"}), 6), std::isfinite(sigma) ? g(sigma, 3) : QStringLiteral("?"),
-                     QString::fromStdString(p.value("unit", std::string())), g(jsonNumber(p, {"initial"}), 6)));
+                     QString::fromStdString(p.value("unit", std::string())), g(jsonNumber(p, {"initial"}), 6),
+                     scaled && std::isfinite(raw)
+                         ? QString("; scaled by √(χ²/dof), from the targets' σ alone ± %1").arg(g(raw, 3))
+                         : QString()));
     }
-    for (const auto& w : r.value("warnings", nlohmann::json::array()))
-      extra += "<p><i>" +
-               QString::fromStdString((w.value("parameter", std::string()).empty()
-                                           ? std::string()
-                                           : w.value("parameter", std::string()) + ": ") +
+    for (const auto& w : r.value("warnings", nlohmann::json::array())) {
+      const bool whole = w.value("parameter", std::string()).empty();
+      extra += QString(whole ? "<p style='color:#b71c1c'><b>" : "<p><i>") +
+               QString::fromStdString((whole ? std::string() : w.value("parameter", std::string()) + ": ") +
                                       w.value("message", std::string()))
                    .toHtmlEscaped() +
-               "</i></p>";
+               (whole ? "</b></p>" : "</i></p>");
+    }
   } else {
     return {};
   }

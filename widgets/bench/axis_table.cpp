@@ -27,6 +27,17 @@ QString fixed(double v, const QString& unit) {
 }
 }  // namespace
 
+// A Stage's refusal quotes the stage's own coordinates: say what they are in the row's frame.
+QString AxisTable::stageFrameHint(const Row& r, const QString& error) const {
+  const StageBinding b = r.worker->binding();
+  if (!error.contains("limits") && !error.contains("travel")) return {};
+  return tr(" (the controller's numbers are stage coordinates: %1 = stage %2 %3; in %1 coordinates the soft "
+            "limits are %4 … %5)")
+      .arg(QString::fromStdString(b.element), b.home_offset >= 0 ? "+" : "−",
+           formatAxisValue(std::abs(b.home_offset), r.unit), formatAxisValue(b.soft_limits[0], r.unit),
+           formatAxisValue(b.soft_limits[1], r.unit));
+}
+
 QString formatAxisValue(double value, const QString& unit) {
   const DisplayUnits u = Preferences::instance().units();
   if (unit == "deg") return u.angleUnit == AngleUnit::Degree ? fixed(value, unit) : u.angle(value, 5);
@@ -172,9 +183,48 @@ const AxisTable::Row* AxisTable::row(const QString& key) const {
   return nullptr;
 }
 
+void AxisTable::setRowNote(const QString& key, const QString& note, const QString& message, bool error) {
+  if (Row* r = row(key)) {
+    setNote(*r, note, message, error);
+    refresh();
+  }
+}
+
+void AxisTable::setNote(Row& r, const QString& note, const QString& message, bool error) {
+  r.note = note;
+  r.note_tip = message;
+  r.note_error = error;
+}
+
+QString AxisTable::stateText(const QString& key) const {
+  const Row* r = row(key);
+  return r ? r->state->text() : QString();
+}
+
 void AxisTable::refresh() {
   for (auto& r : rows_) {
     const devices::AxisSnapshot s = r.worker->snapshot();
+    // After Esc: once the axis stands, its state says where (the row's frame), and so does the report.
+    if (r.stop_pending && s.state.known && !s.state.moving && !s.busy && *r.pending == 0) {
+      r.stop_pending = false;
+      const QString at = formatAxisValue(s.element_position, r.unit);
+      r.note = tr("stopped at %1").arg(at);
+      r.note_tip = tr("%1: stopped at %2 by the emergency stop (Esc)").arg(r.key, at);
+      r.note_error = true;
+      emit report(r.note_tip, true);
+    }
+    // An error no command of this table reported (a follow-gaze move): report it once.
+    if (!s.last_error.empty() && s.last_error != r.seen_error) {
+      r.seen_error = s.last_error;
+      if (*r.pending == 0 && r.note.isEmpty()) {
+        emit report(tr("%1: %2").arg(r.key, QString::fromStdString(s.last_error)) +
+                        stageFrameHint(r, QString::fromStdString(s.last_error)),
+                    true);
+        r.note = tr("error");
+        r.note_tip = QString::fromStdString(s.last_error);
+        r.note_error = true;
+      }
+    }
     r.position->setText(s.state.known ? fixed(s.element_position, r.unit) : QStringLiteral("—"));
     QString st;
     if (!s.connected)
@@ -190,9 +240,15 @@ void AxisTable::refresh() {
     else
       st = tr("ready");
     if (s.state.forward_limit || s.state.reverse_limit) st += tr(" · limit");
-    r.state->setText(st);
-    r.state->setToolTip(QString::fromStdString(s.last_error));
-    r.state->setStyleSheet(s.last_error.empty() ? "" : "color: #c62828;");
+    if (!r.note.isEmpty()) {
+      r.state->setText(r.note);
+      r.state->setToolTip(r.note_tip);
+      r.state->setStyleSheet(r.note_error ? "color: #c62828; font-weight: bold;" : "");
+    } else {
+      r.state->setText(st);
+      r.state->setToolTip(QString::fromStdString(s.last_error));
+      r.state->setStyleSheet("");
+    }
     // The controller set-up read on connect (and what the scene had written).
     const QString device = QString::fromStdString(s.controller + " " + s.serial + ", " + s.stage_model);
     r.name->setToolTip(s.controller_setup.empty() ? device
@@ -200,7 +256,9 @@ void AxisTable::refresh() {
   }
 }
 
-void AxisTable::submit(const Row& row, const QString& what, std::function<void(devices::Stage&)> command) {
+void AxisTable::submit(Row& row, const QString& what, std::function<void(devices::Stage&)> command) {
+  row.note.clear();  // a new command: the last refusal or stop no longer describes the axis
+  row.stop_pending = false;
   const QString key = row.key;
   const QString unit = row.unit;
   const StageBinding binding = row.worker->binding();
@@ -208,37 +266,71 @@ void AxisTable::submit(const Row& row, const QString& what, std::function<void(d
   auto stops = stops_;
   const int stops_before = *stops;
   ++*pending;
-  row.worker->submit(
-      [this, key, unit, binding, what, command = std::move(command), pending, stops, stops_before](devices::Stage& s) {
-        QString error;
-        bool stopped_by_user = false;
-        double stopped_at = 0;
-        try {
-          command(s);
-        } catch (const std::exception& e) {
-          error = QString::fromStdString(e.what());
-          stopped_by_user = *stops != stops_before;
-          stopped_at = devices::stageToElement(binding, s.state().position);
-        }
-        --*pending;
-        // Queued to the GUI thread; dropped if the table is gone (the panel joins the workers first).
-        QMetaObject::invokeMethod(
-            this,
-            [this, key, unit, what, error, stopped_by_user, stopped_at] {
-              if (error.isEmpty())
-                emit report(tr("%1: %2 done").arg(key, what), false);
-              else if (stopped_by_user)  // in the row's frame, not the stage's raw coordinate
-                emit report(tr("%1: %2 stopped by you at %3").arg(key, what, formatAxisValue(stopped_at, unit)), true);
-              else
-                emit report(tr("%1: %2 refused or failed — %3").arg(key, what, error), true);
-              refresh();
-            },
-            Qt::QueuedConnection);
-      });
+  row.worker->submit([this, key, unit, binding, what, command = std::move(command), pending, stops,
+                      stops_before](devices::Stage& s) {
+    QString error;
+    bool stopped_by_user = false;
+    double stopped_at = 0;
+    try {
+      command(s);
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+      stopped_by_user = *stops != stops_before;
+      stopped_at = devices::stageToElement(binding, s.state().position);
+    }
+    // Queued to the GUI thread; dropped if the table is gone (the panel joins the workers first).
+    QMetaObject::invokeMethod(
+        this,
+        [this, key, unit, what, error, stopped_by_user, stopped_at, pending] {
+          // Counted down here, after the result is reported, so refresh() never reports it first.
+          --*pending;
+          Row* r = row(key);
+          if (error.isEmpty()) {
+            emit report(tr("%1: %2 done").arg(key, what), false);
+          } else if (stopped_by_user) {  // in the row's frame, not the stage's raw coordinate
+            const QString text = tr("%1: %2 stopped by you at %3").arg(key, what, formatAxisValue(stopped_at, unit));
+            if (r) {
+              r->stop_pending = false;
+              r->note = tr("stopped at %1").arg(formatAxisValue(stopped_at, unit));
+              r->note_tip = text;
+              r->note_error = true;
+            }
+            emit report(text, true);
+          } else {
+            const QString text =
+                tr("%1: %2 refused or failed — %3").arg(key, what, error) + (r ? stageFrameHint(*r, error) : QString());
+            if (r) {
+              r->seen_error = error.toStdString();
+              r->note = tr("refused");
+              r->note_tip = text;
+              r->note_error = true;
+            }
+            emit report(text, true);
+          }
+          refresh();
+        },
+        Qt::QueuedConnection);
+  });
 }
 
 void AxisTable::noteEmergencyStop() {
   ++*stops_;
+  for (auto& r : rows_) {
+    const devices::AxisSnapshot s = r.worker->snapshot();
+    if (s.state.moving || s.state.homing || s.busy || *r.pending > 0) r.stop_pending = true;
+  }
+}
+
+void AxisTable::refuse(Row& r, const QString& what, double value) {
+  const StageBinding b = r.worker->binding();
+  const QString lo = formatAxisValue(b.soft_limits[0], r.unit), hi = formatAxisValue(b.soft_limits[1], r.unit);
+  const QString text = tr("%1: %2 %3 refused — outside the soft limits %4 … %5 (%6 coordinates); nothing was sent")
+                           .arg(r.key, what, formatAxisValue(value, r.unit), lo, hi, QString::fromStdString(b.element));
+  const bool below = value < b.soft_limits[0];
+  setNote(r, tr("refused: %1 %2 %3").arg(formatAxisValue(value, r.unit), below ? "<" : ">", below ? lo : hi), text,
+          true);
+  emit report(text, true);
+  refresh();
 }
 
 void AxisTable::jog(const QString& key, int direction) {
@@ -246,6 +338,17 @@ void AxisTable::jog(const QString& key, int direction) {
   if (!r) return;
   if (*r->pending > 1) return;  // key auto-repeat: at most one jog queued behind the running one
   const double step = step_->value(), speed = speed_->value();
+  // A jog that would leave the soft limits is refused here, in the row's frame (the Stage would
+  // refuse it in its own coordinates).
+  const devices::AxisSnapshot snap = r->worker->snapshot();
+  if (snap.state.known && *r->pending == 0) {
+    const double to = snap.element_position + (direction > 0 ? step : -step);
+    const StageBinding b = r->worker->binding();
+    if (to < b.soft_limits[0] - 1e-9 || to > b.soft_limits[1] + 1e-9) {
+      refuse(*r, tr("jog to"), to);
+      return;
+    }
+  }
   submit(*r, direction > 0 ? tr("jog +%1").arg(step) : tr("jog −%1").arg(step),
          [step, speed, direction](devices::Stage& s) {
            devices::JogSettings j = s.jogSettings();
@@ -269,9 +372,7 @@ void AxisTable::goTo(const QString& key, double value) {
   const QString lo = formatAxisValue(b.soft_limits[0], r->unit), hi = formatAxisValue(b.soft_limits[1], r->unit);
   if (!inside) {  // refused here: nothing is sent (the Stage would refuse it as well)
     r->target->setToolTip(tr("Refused: outside the soft limits %1 … %2").arg(lo, hi));
-    emit report(tr("%1: go to %2 refused — outside the soft limits %3 … %4 (%5 coordinates); nothing was sent")
-                    .arg(r->key, formatAxisValue(value, r->unit), lo, hi, QString::fromStdString(b.element)),
-                true);
+    refuse(*r, tr("go to"), value);
     return;
   }
   r->target->setToolTip(tr("Element coordinate; soft limits %1 … %2").arg(lo, hi));

@@ -38,8 +38,13 @@ class AxisTable : public QGroupBox {
   void jog(const QString& axis_key, int direction);  // +1 forward, -1 reverse
   void goTo(const QString& axis_key, double element_value);
   void homeAll();
-  // Call right after the bench's emergencyStopAll(): the rows report where they stopped.
+  // Call right after the bench's emergencyStopAll(): the rows that were moving say "stopped
+  // at X" (the row's frame) once they stand, and each is reported.
   void noteEmergencyStop();
+  // A note in the axis's state column ("refused: …", "stopped at …") that stays until the next
+  // command of that row; the full text in its tooltip. Empty: none.
+  void setRowNote(const QString& axis_key, const QString& note, const QString& message, bool error);
+  QString stateText(const QString& axis_key) const;
 
   double stepSize() const;
   void setStepSize(double step);
@@ -66,9 +71,16 @@ class AxisTable : public QGroupBox {
     QPushButton *reverse = nullptr, *forward = nullptr, *home = nullptr, *go = nullptr;
     QDoubleSpinBox* target = nullptr;
     std::shared_ptr<std::atomic<int>> pending = std::make_shared<std::atomic<int>>(0);
+    QString note, note_tip;  // shown instead of the computed state while set
+    bool note_error = false;
+    bool stop_pending = false;  // Esc while it moved: say where it stopped once it stands
+    std::string seen_error;     // the snapshot's last error already reported
   };
+  void refuse(Row& row, const QString& what, double value);
+  void setNote(Row& row, const QString& note, const QString& message, bool error);
   void clearRows();
-  void submit(const Row& row, const QString& what, std::function<void(devices::Stage&)> command);
+  void submit(Row& row, const QString& what, std::function<void(devices::Stage&)> command);
+  QString stageFrameHint(const Row& row, const QString& error) const;
   Row* row(const QString& key);
   const Row* row(const QString& key) const;
 

@@ -66,6 +66,7 @@ DevicesPanel::DevicesPanel(SceneDocument* document, QWidget* parent, DevicesPane
   follow_ = new FollowGazeBox(scene, options_.analysed_follow, this);
   root->addWidget(follow_);
   connect(follow_, &FollowGazeBox::report, this, &DevicesPanel::report);
+  connect(follow_, &FollowGazeBox::axisNote, axes_, &AxisTable::setRowNote);
 
   camera_ = new EyeCameraBox(scene, options_.live_camera, this);
   root->addWidget(camera_, 1);
@@ -188,6 +189,8 @@ void DevicesPanel::finishConnect(int generation, const std::shared_ptr<std::uniq
   axes_->setBench(live_.get());
   camera_->setBench(live_.get());
   follow_->setBench(live_.get());
+  scene_gaze_ = currentScene().eye.gaze_deg;
+  follow_->setSceneGaze(scene_gaze_);
   if (options_.live_camera && isVisible()) camera_->start();
   report(live_->isVirtual()
              ? tr("Virtual bench started: %n emulated axis/axes (no stage controller of the scene on USB)", "",
@@ -258,6 +261,7 @@ void DevicesPanel::report(const QString& text, bool error) {
   status_->setStyleSheet(error ? "color: #c62828; font-weight: bold;" : "");
   status_->setProperty("isError", error);
   emit statusChanged(text);
+  emit message(text, error);
 }
 
 QString DevicesPanel::statusText() const {
@@ -385,8 +389,25 @@ void DevicesPanel::setFollowGaze(bool on) {
 }
 
 void DevicesPanel::setGaze(double yaw, double pitch) {
-  follow_->setGaze(yaw, pitch);
+  // The studio's one gaze is the scene's (the Gaze dock's): set it there, follow gaze hears it
+  // through onSceneChanged.
+  if (document_) {
+    const QStringList problems = document_->applyEdit(tr("Gaze %1°, %2°").arg(yaw).arg(pitch), [&](Scene& s) {
+      s.eye.gaze_deg = {yaw, pitch};
+    });
+    if (!problems.isEmpty()) report(problems.join("; "), true);
+  } else {
+    follow_->setGaze(yaw, pitch);
+  }
   refresh();
+}
+
+QString DevicesPanel::axisStateText(const QString& key) const {
+  return axes_->stateText(key);
+}
+
+QString DevicesPanel::followInfoText() const {
+  return follow_->infoText();
 }
 
 // ---------------------------------------------------------------------------------------

@@ -9,8 +9,11 @@
 //    jog, Home, Go to; the controller set-up read on connect in the axis name's tooltip.
 //  - Keyboard (panel focused): Left / Right jog the selected axis, Up / Down select the axis,
 //    + / - double / halve the step. Esc stops every axis at once (anywhere in the window).
-//  - Refusals (soft limits: nothing is sent) and device errors (the controller's own code
-//    and text) appear in the status line.
+//  - Refusals (soft limits: nothing is sent; limits in the row's frame and the user's units),
+//    device errors (the controller's own code and text) and emergency stops appear in the
+//    axis row's state ("refused", "stopped at X"), the status line and, through message(),
+//    the Messages dock, all at once.
+//  - One gaze: the scene's eye.gaze_deg (the Gaze dock sets it; setGaze() here sets it too).
 //  - Eye camera (eye_camera_box.h): live view with crosshair, exposure and gain, and the
 //    test pattern the virtual displays show.
 //  - Follow gaze (follow_gaze_box.h): the HOE stages track x_p(alpha) from the gaze study,
@@ -77,6 +80,8 @@ class DevicesPanel : public QWidget {
   bool isStarting() const { return connect_thread_.joinable(); }
   // The gaze study's x_p(alpha) table (follow gaze) is complete.
   bool followTableReady() const;
+  QString axisStateText(const QString& axis_key) const;  // the row's state column
+  QString followInfoText() const;
 
  public slots:
   void connectBench();
@@ -94,6 +99,7 @@ class DevicesPanel : public QWidget {
   void benchConnected(bool is_virtual);
   void benchDisconnected();
   void statusChanged(const QString& text);
+  void message(const QString& text, bool error);  // every report, for the Messages dock
 
  protected:
   void keyPressEvent(QKeyEvent* event) override;

@@ -33,6 +33,7 @@ struct PlotAxis {
   bool log = false;
   std::optional<double> min, max;
   QStringList categories;  // when set: category i is labelled at value i (a bar chart's names)
+  int labelAngle = 0;      // degrees the category labels are turned (-90: read upwards, for long names)
 };
 
 struct PlotData {

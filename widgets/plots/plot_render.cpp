@@ -39,6 +39,7 @@ QAbstractAxis* makeAxis(const PlotAxis& a, Range data, QFont font) {
     auto* axis = new QCategoryAxis;
     for (int i = 0; i < a.categories.size(); ++i) axis->append(a.categories[i], i);
     axis->setLabelsPosition(QCategoryAxis::AxisLabelsPositionOnValue);
+    if (a.labelAngle != 0) axis->setLabelsAngle(a.labelAngle);
     axis->setRange(-0.6, a.categories.size() - 0.4);
     axis->setGridLineVisible(false);
     axis->setTitleText(a.title);

@@ -187,13 +187,30 @@ PlotData rankingPlot(const nlohmann::json& r, const QString& source) {
   QString html =
       "<table border='1' cellspacing='0' cellpadding='3'><tr><th>rank</th><th>parameter</th><th>total index</th>"
       "<th>first-order index</th></tr>";
-  for (const QVariantList& row : p.rows)
+  // A row is resolved when its total index stands clear of zero (more than two standard errors);
+  // the others are named once under the table instead of as rows of "0 ± 0".
+  QStringList unresolved;
+  int shown = 0;
+  for (const QVariantList& row : p.rows) {
+    const double t = row[2].toDouble(), tse = row[3].toDouble();
+    if (!(t > 0.005 && t > 2 * tse)) {
+      unresolved << row[1].toString().toHtmlEscaped();
+      continue;
+    }
+    ++shown;
     html += QString(
                 "<tr><td align='right'>%1</td><td>%2</td><td align='right'>%3 ± %4</td>"
                 "<td align='right'>%5 ± %6</td></tr>")
                 .arg(row[0].toString(), row[1].toString().toHtmlEscaped(), fmt(row[2].toDouble(), 2),
                      fmt(row[3].toDouble(), 2), fmt(row[4].toDouble(), 2), fmt(row[5].toDouble(), 2));
-  p.summaryHtml = html + "</table>";
+  }
+  p.summaryHtml = shown > 0 ? html + "</table>" : QString();
+  if (!unresolved.isEmpty())
+    p.summaryHtml +=
+        QString(
+            "<p>Not resolved with %1 base samples (total index within two standard errors of 0, or exactly 0 when "
+            "re-drawing that tolerance changed no unit's result): %2. More trials tell them apart.</p>")
+            .arg(fmt(jsonNumber(sens, {"base_samples"}), 6), unresolved.join(", "));
   p.caption = QString(
                   "Which tolerance drives %1: total (Jansen 1999) and first-order (Saltelli et al. 2010) "
                   "variance-based indices of each parameter from the Saltelli design (%2 base samples), with "
