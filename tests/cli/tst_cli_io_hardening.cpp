@@ -4,6 +4,7 @@
 // "wrote"; inputs are regular files of bounded size (devices and FIFOs refused at once, an image's
 // header checked before decoding, a truncated JPEG refused); errors name the file and the key.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QProcess>
 #include <QTemporaryDir>

@@ -4,6 +4,7 @@
 // compare-shift, sensitivity and the fit observable x_p_mm (target parameter xp_rule), with
 // focus_axial_miss_mm in the sweep's samples.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QFile>
 #include <QTemporaryDir>
@@ -17,7 +18,7 @@
 using fovea::testing::runFoveaCli;
 
 namespace {
-const QString kScene = QStringLiteral(FOVEA_SOURCE_DIR "/resources/scenes/prototype-bench.json");
+const QString kScene = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
 
 nlohmann::json runJson(const QStringList& args) {
   const auto r = runFoveaCli(args);

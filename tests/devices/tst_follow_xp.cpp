@@ -3,6 +3,7 @@
 // table take x_p from model/analysis/hoe_travel.h, so at a gaze the sweep samples they give
 // the sweep's x_p (to 0.01 mm) under either x_p rule.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <cmath>
 

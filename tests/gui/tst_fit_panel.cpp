@@ -3,6 +3,7 @@
 // plot (one row per target, the fitted residuals small), and "Apply fitted values" sets every
 // fitted value as one undo step that Undo takes back. Screenshots at 1366x768 and 1920x1080.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QComboBox>
 #include <QDockWidget>
@@ -118,7 +119,7 @@ class TestFitPanel : public QObject {
     window.findChild<QDockWidget*>("AnalysesDock")->raise();
     AnalysesPanel* panel = window.analysisFeatures()->analysesPanel();
     panel->selectAnalysis("fit");
-    QVERIFY(panel->setParameter("targets", QString(FOVEA_SOURCE_DIR "/resources/seed/seed-targets.json")));
+    QVERIFY(panel->setParameter("targets", QString(FOVEA_SOURCE_DIR) + "/resources/seed/seed-targets.json"));
     QVERIFY(panel->setParameter("free", "eye.relief_mm"));
     QVERIFY(panel->setParameter("targets-select", "sim-"));
     QVERIFY(panel->setParameter("starts", 1));

@@ -3,6 +3,7 @@
 // same scene, gaze and shift (0.01 deg, 0.01 mm), the report's x_p and FOV against the same,
 // and the docks naming the FOV they show.
 #include <QtTest>
+#include "tests/test_paths.h"
 
 #include <QComboBox>
 #include <QLabel>
@@ -23,7 +24,7 @@
 using namespace fovea;
 
 namespace {
-const QString kScene = QStringLiteral(FOVEA_SOURCE_DIR "/resources/scenes/prototype-bench.json");
+const QString kScene = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
 
 nlohmann::json cliJson(const QStringList& args) {
   const auto r = testing::runFoveaCli(args);
