@@ -21,6 +21,7 @@
 
 #include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
+#include "app/studio/report_html.h"
 #include "app/studio/report_tolerance.h"
 #include "app/studio/window_capture.h"
 #include "fovea/version.h"
@@ -39,20 +40,11 @@ namespace fovea::studio {
 using widgets::DisplayUnits;
 using widgets::PlotData;
 
-namespace {
+using report_html::esc;
+using report_html::g;
+using report_html::pct;
 
-QString esc(const QString& s) {
-  return s.toHtmlEscaped();
-}
-QString esc(const std::string& s) {
-  return QString::fromStdString(s).toHtmlEscaped();
-}
-QString g(double v, int significant = 4) {
-  return widgets::numberText(v, significant);
-}
-QString pct(double v) {
-  return widgets::percentText(v);
-}
+namespace {
 
 QString vec(const std::array<double, 3>& v, const DisplayUnits& u) {
   return QString("(%1, %2, %3) %4")

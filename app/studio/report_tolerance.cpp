@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "app/studio/report_html.h"
 #include "model/json_numbers.h"
 #include "widgets/analyses/analysis_summary.h"
 #include "widgets/number_text.h"
@@ -11,14 +12,10 @@
 
 namespace fovea::studio {
 
-namespace {
+using report_html::g;
+using report_html::pct;
 
-QString g(double v, int significant = 4) {
-  return widgets::numberText(v, significant);
-}
-QString pct(double v) {
-  return widgets::percentText(v);
-}
+namespace {
 QString text(const nlohmann::json& j, const char* key, const char* fallback = "") {
   return QString::fromStdString(j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>()
                                                                                        : std::string(fallback))

@@ -241,7 +241,7 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
                      [&](std::size_t a, std::size_t b) { return std::abs((*rp)[a]) > std::abs((*rp)[b]); });
     order.resize(std::min<std::size_t>(3, order.size()));
     out.worst_targets = order;
-    char head[160];
+    char head[256];
     std::snprintf(head, sizeof head,
                   "reduced chi2 %.3g > 1 (chi2 %.4g for %d dof): the targets disagree with the model beyond their "
                   "sigmas; uncertainties scaled by sqrt(chi2/dof) = %.3g are the ones to quote; worst targets:",

@@ -151,8 +151,8 @@ class TestDevicesPanel : public QObject {
     const QString status = rig.panel->statusText();
     const bool is_x = status.startsWith("hoe.x");
     const double stage = is_x ? x : y;
-    const QRegularExpression at("stopped by you at (-?[0-9.]+) mm");
-    const auto m = at.match(status);
+    const QRegularExpression stopped_re("stopped by you at (-?[0-9.]+) mm");
+    const auto m = stopped_re.match(status);
     QVERIFY2(m.hasMatch(), qPrintable(status));
     QVERIFY2(std::abs(m.captured(1).toDouble() - (stage - 12.5)) < 2e-3, qPrintable(status));
     // Each stopped row's state says so, with the position in the row's frame (not "ready").

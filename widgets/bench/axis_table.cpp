@@ -284,7 +284,7 @@ void AxisTable::submit(Row& row, const QString& what, std::function<void(devices
         [this, key, unit, what, error, stopped_by_user, stopped_at, pending] {
           // Counted down here, after the result is reported, so refresh() never reports it first.
           --*pending;
-          Row* r = row(key);
+          Row* r = this->row(key);
           if (error.isEmpty()) {
             emit report(tr("%1: %2 done").arg(key, what), false);
           } else if (stopped_by_user) {  // in the row's frame, not the stage's raw coordinate
