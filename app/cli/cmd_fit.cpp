@@ -74,8 +74,13 @@ void install(CLI::App& app) {
   cmd->callback([a, &def, write_scene] {
     std::string free;
     for (const auto& f : a->free) free += (free.empty() ? "" : " ") + f;
-    nlohmann::json values{{"targets", a->targets}, {"free", free},    {"targets-select", a->targets_select},
-                          {"starts", a->starts},   {"seed", a->seed}, {"max-evals", a->max_evals}};
+    nlohmann::json values{
+        {"targets", a->targets},
+        {"free", free},
+        {"targets-select", a->targets_select.empty() ? nlohmann::json() : nlohmann::json(a->targets_select)},
+        {"starts", a->starts},
+        {"seed", a->seed},
+        {"max-evals", a->max_evals}};
     for (const auto& p : analysis::validateValues(def, values)) usageError(p.text("--"));
     const Scene scene = loadSceneOrExit(a->scene);
     checkOutputOption(write_scene, a->write_scene);

@@ -82,7 +82,7 @@ nlohmann::json sweepResultJson(const GazeSweepResult& r, const std::string& axis
          {"pupil_position_mm", s.pupil_position_mm},
          {"shift_plateau_mm", s.plateau_mm},
          {"best_fov_deg", s.best_fov_deg},
-         {"focus_axial_miss_mm", s.focus_axial_miss_mm}});
+         {"focus_axial_miss_mm", numberOrNull(s.focus_axial_miss_mm)}});
   j["samples"] = arr;
   j["eyebox_mm"] = r.eyebox.width_mm;
   j["eyebox"] = eyeBoxJson(r.eyebox);

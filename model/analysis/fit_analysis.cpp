@@ -44,7 +44,9 @@ AnalysisDefinition fitAnalysis() {
   free.unset_meaning = "choose the parameters to fit";
   ParameterSpec select = text("targets-select", "Targets used", {"sim-", "meas-", "all"}, "",
                               "which targets to fit: ids or groups ending in '-' (sim-, meas-), separated by commas; "
-                              "'!' removes; empty: all");
+                              "'!' removes; unset: all");
+  select.default_value = nullptr;  // unset: every target (an empty text is no valid value)
+  select.unset_meaning = "all targets";
   d.parameters = {targets,
                   free,
                   select,
@@ -65,7 +67,7 @@ AnalysisDefinition fitAnalysis() {
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(path + ": " + e.what());
     }
-    const std::string selection = textOf(v, "targets-select");
+    const std::string selection = v.at("targets-select").is_null() ? std::string() : textOf(v, "targets-select");
     t = selectFitTargets(t, selection);  // its errors name the item and the file's groups
     std::vector<FreeParameter> free_parameters;
     try {

@@ -45,7 +45,8 @@ inline std::map<int, std::size_t> indexShardParts(const std::vector<nlohmann::js
     std::vector<int> sh;
     if (p.contains("shard") && p["shard"].is_array() && p["shard"].size() == 2)
       for (const auto& v : p["shard"])
-        if (v.is_number_unsigned() && v.get<std::uint64_t>() <= 100000) sh.push_back(v.get<int>());
+        if (v.is_number_integer() && v.get<std::int64_t>() >= 0 && v.get<std::int64_t>() <= 100000)
+          sh.push_back(v.get<int>());
     if (sh.size() != 2 || sh[0] >= sh[1])
       throw std::invalid_argument(where + ": shard: must be [K, N], integers with 0 <= K < N <= 100000");
     if (shards < 0) shards = sh[1];

@@ -178,7 +178,10 @@ nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts, con
     throw std::invalid_argument(first + ": spec: " + e.what());
   }
   auto unsignedAt = [&](const char* key, std::uint64_t max) {
-    if (!h.contains(key) || !h[key].is_number_unsigned() || h[key].get<std::uint64_t>() > max)
+    // A non-negative integer: a JSON parser gives unsigned, a built document may hold signed.
+    const bool whole = h.contains(key) &&
+                       (h[key].is_number_unsigned() || (h[key].is_number_integer() && h[key].get<std::int64_t>() >= 0));
+    if (!whole || h[key].get<std::uint64_t>() > max)
       throw std::invalid_argument(first + ": " + key + ": must be an integer in [0, " + std::to_string(max) + "]");
     return h[key].get<std::uint64_t>();
   };

@@ -94,7 +94,8 @@ nlohmann::json distribution(const std::vector<double>& all) {
     ++counts[static_cast<std::size_t>(b)];
   }
   std::vector<double> edges(kBins + 1);
-  for (int b = 0; b <= kBins; ++b) edges[b] = b == kBins ? hi : lo + (0.5 * hi - 0.5 * lo) * (2.0 * b / kBins);
+  // std::lerp: (1 - t) lo + t hi term by term, finite for any finite lo, hi (hi - lo may overflow).
+  for (int b = 0; b <= kBins; ++b) edges[b] = b == kBins ? hi : std::lerp(lo, hi, static_cast<double>(b) / kBins);
   j["histogram"] = {{"edges", edges}, {"counts", counts}};
   return j;
 }

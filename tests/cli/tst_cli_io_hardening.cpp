@@ -278,9 +278,11 @@ class TestCliIoHardening : public QObject {
     r = runFoveaCli({"tolerance", "--spec", fifo, "--trials", "1"}, 30000);
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("is a FIFO, not a regular file"), r.err.constData());
-    r = runFoveaCli({"validate", "/dev/zero"}, 30000);
+    r = runFoveaCli({"validate", "/dev/zero"}, 30000);  // validate lists the problems on stdout
     QCOMPARE(r.code, 1);
-    QVERIFY2(r.err.contains("is a character device, not a regular file"), r.err.constData());
+    QVERIFY2(r.out.contains("/dev/zero: cannot read scene file: is a character device, not a regular file"),
+             r.out.constData());
+    QVERIFY2(r.err.contains("1 problem(s) in /dev/zero"), r.err.constData());
   }
 };
 

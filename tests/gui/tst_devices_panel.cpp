@@ -30,6 +30,7 @@
 #include "devices/virtual/sim_clock.h"
 #include "devices/virtual/virtual_controller.h"
 #include "model/analysis/gaze_studies.h"
+#include "model/analysis/hoe_travel.h"
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_io.h"
 #include "widgets/bench/capture_wizard.h"
@@ -206,6 +207,7 @@ class TestDevicesPanel : public QObject {
     window.document()->applyEdit("gaze", [](Scene& s) { s.eye.gaze_deg = {10.0, 0.0}; });
     QVERIFY(!panel->axisStateText("foveal_display.x").startsWith("refused"));
     QTRY_VERIFY_WITH_TIMEOUT(std::abs(*panel->axisPosition("foveal_display.x") - 6.534) < 1e-3, 15000);
+    window.document()->undoStack()->setClean();  // the gaze edits: no "Unsaved changes" question on close
     window.close();
   }
 
@@ -339,14 +341,10 @@ class TestDevicesPanel : public QObject {
     // The studio's gaze slider edits the scene's eye.gaze_deg: 10 deg yaw (a table sample).
     const double yaw = 10.0;
     rig.document.applyEdit("gaze", [yaw](Scene& s) { s.eye.gaze_deg = {yaw, 0.0}; });
-    // x_p(alpha) from gaze_studies, relative to the optimum at zero gaze, as the panel uses it.
-    TraceEvaluatorOptions to;
-    to.rays = 800;
-    const FovEvaluator eval = traceEvaluator(to);
+    // x_p(alpha) from the one x_p source (hoe_travel.h: what `fovea-cli sweep` reports), absolute.
     const Scene scene = prototype();
-    const double xp = optimiseShift(scene, eval, yaw, GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm -
-                      optimiseShift(scene, eval, 0.0, GazeAxis::Yaw, ShiftMethod::Hoe).shift_mm;
-    qInfo("x_p(%.1f deg) = %.4f mm from gaze_studies", yaw, xp);
+    const double xp = hoeTravel(scene, {yaw, 0.0}, sceneXpRule(scene)).shift_mm[0];
+    qInfo("x_p(%.1f deg) = %.4f mm from hoeTravel", yaw, xp);
     QTRY_VERIFY_WITH_TIMEOUT(std::abs(*rig.panel->axisPosition("hoe.x") - xp) < 2e-3, 10000);
     QVERIFY(std::abs(rig.emulator("hoe", "x").position() - (12.5 + xp)) < 2e-3);
     QVERIFY(std::abs(*rig.panel->axisPosition("camera.yaw") - yaw) < 1e-3);  // the camera turns to the gaze

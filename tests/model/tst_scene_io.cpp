@@ -33,6 +33,12 @@ std::string edited(const std::string& from, const std::string& to) {
   if (at == std::string::npos) qFatal("fixture text not found: %s", from.c_str());
   return t.replace(at, from.size(), to);
 }
+// The 1-based line of the first occurrence of `what` in `text` (the parser's error position).
+int lineOf(const std::string& text, const std::string& what) {
+  const auto at = text.find(what);
+  if (at == std::string::npos) qFatal("fixture text not found: %s", what.c_str());
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+}
 std::filesystem::path tmpDir() {
   auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "scene_io";
   std::filesystem::create_directories(d);
@@ -217,12 +223,15 @@ class TestSceneIo : public QObject {
     QTest::newRow("newer version")
         << QString::fromStdString(edited("\"version\": 1,", "\"version\": 7,"))
         << "f.json: version: file is version 7, this studio reads up to version 1 (update the studio)";
+    const int relief_line = lineOf(prototypeText(), "\"relief_mm\"");  // moves when the scene gains a field
     QTest::newRow("overflow number")
         << QString::fromStdString(edited("\"relief_mm\": 22.0", "\"relief_mm\": 1e999"))
-        << "f.json: malformed JSON at line 159, column 18: number overflow parsing '1e999'";
+        << QString("f.json: malformed JSON at line %1, column 18: number overflow parsing '1e999'").arg(relief_line);
     QTest::newRow("malformed JSON") << QString::fromStdString(edited("\"relief_mm\": 22.0,", "\"relief_mm\": 22.0,,"))
-                                    << "f.json: malformed JSON at line 159, column 23: syntax error while parsing "
-                                       "object key - unexpected ','; expected string literal";
+                                    << QString(
+                                           "f.json: malformed JSON at line %1, column 23: syntax error while "
+                                           "parsing object key - unexpected ','; expected string literal")
+                                           .arg(relief_line);
     QTest::newRow("not an object") << QString("[1, 2]")
                                    << "f.json: the top level must be a JSON object, got an array of 2";
     QTest::newRow("bad stage axis") << QString::fromStdString(edited("\"axis\": \"x\"", "\"axis\": \"w\""))

@@ -128,7 +128,7 @@ DevicesPanel::~DevicesPanel() {
   ++connect_generation_;
   if (connect_thread_.joinable()) connect_thread_.join();  // a pending result is dropped with this object
   camera_->setBench(nullptr);
-  follow_->setBench(nullptr);
+  follow_->detachBench();
   if (wizard_) wizard_->detachBench();
   live_.reset();  // joins the axis threads before the widgets go
 }
@@ -209,7 +209,7 @@ void DevicesPanel::disconnectBench() {
     return;
   }
   camera_->setBench(nullptr);
-  follow_->setBench(nullptr);
+  follow_->detachBench();
   if (wizard_) wizard_->detachBench();
   axes_->setBench(nullptr);
   connecting_.clear();

@@ -39,10 +39,15 @@ FollowGazeBox::~FollowGazeBox() {
   task_.reset();  // cancels and waits for the running sample
 }
 
-void FollowGazeBox::setBench(devices::LiveBench* live) {
+void FollowGazeBox::detachBench() {
   follower_.reset();
   task_.reset();  // the next bench may hold another scene
   table_applied_ = false;
+  live_ = nullptr;
+}
+
+void FollowGazeBox::setBench(devices::LiveBench* live) {
+  detachBench();
   live_ = live;
   if (live_ && follow_->isChecked()) setFollowGaze(true);
   refresh();

@@ -31,6 +31,9 @@ class FollowGazeBox : public QGroupBox {
   ~FollowGazeBox() override;
 
   void setBench(devices::LiveBench* live);  // nullptr: stops following, forgets the table
+  // The owner is going: stops following and forgets the bench without a refresh (the scene
+  // callback may name what is already destroyed).
+  void detachBench();
   bool followGaze() const;
   void setFollowGaze(bool on);
   void setGaze(double yaw_deg, double pitch_deg);
