@@ -198,8 +198,9 @@ nlohmann::json mergeToleranceParts(const std::vector<nlohmann::json>& parts, con
   if (!h.contains("nominal") || !h["nominal"].is_object())
     throw std::invalid_argument(first + ": nominal: must be an object");
   for (const auto& name : toleranceFigureNames()) {
-    if (!h["nominal"].contains(name)) throw std::invalid_argument(first + ": nominal." + name + ": missing");
-    info.nominal.push_back(recordNumber(h["nominal"][name], first + ": nominal." + name));
+    const std::string where = std::string(first).append(": nominal.").append(name);
+    if (!h["nominal"].contains(name)) throw std::invalid_argument(where + ": missing");
+    info.nominal.push_back(recordNumber(h["nominal"][name], where));
   }
   std::map<std::uint64_t, ToleranceRecord> records;
   for (const auto& [k, i] : by_shard) {
