@@ -2,6 +2,7 @@
 // 20 000-ray gaze update in <= 16 ms, the 41-gaze sweep and its scaling over cores).
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -67,6 +68,32 @@ void BM_Diffract3d(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
 }
 BENCHMARK(BM_Diffract3d);
+
+// 10^6 planar gratings as `fovea.kogelnik` answers them from NumPy (app/python/py_gratings.cpp:
+// diffractPlanar per element, one core): the C++ side of its 1.2x target (docs/benchmarks.md).
+void BM_DiffractPlanar1e6(benchmark::State& state) {
+  constexpr std::size_t n = 1000000;
+  std::vector<fovea::PlanarGrating> g(n);
+  std::uint64_t x = 88172645463325252ULL;  // xorshift64: uniform in [0, 1)
+  auto u = [&x] {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    return static_cast<double>(x >> 11) * 0x1.0p-53;
+  };
+  for (auto& p : g) {
+    p.film = {1.45 + 0.15 * u(), 0.001 + 0.039 * u(), 2 + 38 * u(), 0.0};
+    p.period_nm = 150 + 450 * u();
+    p.slant_deg = -30 + 60 * u();
+    p.probe_deg = -40 + 80 * u();
+    p.wavelength_nm = 450 + 230 * u();
+  }
+  std::vector<double> eta(n);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < n; ++i) eta[i] = fovea::diffractPlanar(g[i]).grating.kogelnik.efficiency;
+    benchmark::DoNotOptimize(eta.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(n));
+}
+BENCHMARK(BM_DiffractPlanar1e6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Full trace (diffraction + gaze) of ~20 000 rays in total (3 wavelengths).
 void BM_TraceScene20k(benchmark::State& state) {

@@ -10,7 +10,7 @@ PACKAGES=(
   libglm-dev libusb-1.0-0-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev libtbb-dev
   xvfb xauth libgl1-mesa-dri x11-utils xdotool
-  poppler-utils python3-numpy python3-matplotlib opencv-doc
+  poppler-utils python3-numpy python3-matplotlib opencv-doc python3-dev pybind11-dev python3-pybind11
   clang-format clang-tidy umockdev libumockdev-dev
   slurmctld slurmd slurm-client munge
 )

@@ -1,0 +1,14 @@
+// The `fovea` Python module: the studio's model (model/, no Qt, no VTK) for notebooks and
+// scripts. Every computation releases the GIL. docs/python.md; stubs in fovea.pyi.
+#include <pybind11/pybind11.h>
+
+#include "app/python/py_bindings.h"
+#include "fovea/version.h"
+
+PYBIND11_MODULE(fovea, m) {
+  m.doc() = "Foveated AR Studio's model: scenes, traces, the registered analyses and grating physics.";
+  m.attr("__version__") = FOVEA_VERSION_STRING;
+  fovea::python::bindScene(m);
+  fovea::python::bindAnalyses(m);
+  fovea::python::bindGratings(m);
+}

@@ -1,0 +1,236 @@
+"""The `fovea` Python module (app/python) against fovea-cli: the same documents, the same
+errors, the NumPy batch equal to the scalar answers. Run by CTest (label "python") with
+PYTHONPATH=<build>/python and FOVEA_CLI_PATH, FOVEA_SOURCE_DIR, FOVEA_TEST_TMP set."""
+import json
+import math
+import os
+import subprocess
+import tempfile
+import threading
+import unittest
+
+import numpy as np
+
+import fovea
+
+CLI = os.environ["FOVEA_CLI_PATH"]
+SOURCE = os.environ["FOVEA_SOURCE_DIR"]
+TMP = os.environ.get("FOVEA_TEST_TMP", tempfile.gettempdir())
+
+
+def cli(*args, code=0):
+    """Runs fovea-cli; returns (stdout, stderr) after checking the exit code."""
+    env = dict(os.environ, FOVEA_CACHE_DIR=os.path.join(TMP, "python-cache"))
+    p = subprocess.run([CLI, *args], capture_output=True, text=True, env=env, timeout=600)
+    if p.returncode != code:
+        raise AssertionError(f"fovea-cli {' '.join(args)}: exit {p.returncode} (want {code})\n{p.stderr}")
+    return p.stdout, p.stderr
+
+
+def cli_json(*args):
+    doc = json.loads(cli(*args, "--json")[0])
+    doc.pop("cached", None)  # the CLI's study cache says whether it computed; not the result
+    return doc
+
+
+def canonical(doc):
+    return json.dumps(doc, sort_keys=True)
+
+
+class SceneTest(unittest.TestCase):
+    def test_embedded_is_the_prototype(self):
+        s = fovea.Scene.embedded()
+        self.assertEqual(s["eye.relief_mm"], 22.0)
+        self.assertEqual(s["projector.pixels[0]"], 1280)
+        self.assertIsInstance(s["projector.pixels[0]"], int)
+        self.assertEqual(s.validate(), [])
+        self.assertIn("3 HOE layers", s.summary())
+
+    def test_refused_value_has_the_validators_message_and_changes_nothing(self):
+        s = fovea.Scene.embedded()
+        before = s.to_json()
+        with self.assertRaises(ValueError) as e:
+            s["hoe_layers[0].n1"] = 1.6  # the file's first "n1" below
+        self.assertEqual(s.to_json(), before)
+        # The same words as `fovea-cli validate` on a file holding that value (minus "FILE: ").
+        path = os.path.join(TMP, "python-bad-n1.json")
+        with open(path, "w") as f:
+            f.write(before.replace('"n1": 0.015', '"n1": 1.6', 1))
+        out, _ = cli("validate", path, code=1)
+        name = os.path.basename(path)  # the reader names a file by its name
+        cli_lines = [line.split(": ", 1)[1] for line in out.splitlines() if line.startswith(name + ":")]
+        self.assertEqual(len(cli_lines), 1)
+        self.assertEqual(str(e.exception).splitlines(), cli_lines)
+        with self.assertRaises(KeyError):
+            s["eye.no_such_field"] = 1.0
+        with self.assertRaises(ValueError):
+            s["projector.pixels[0]"] = 12.5  # an integer field
+
+    def test_save_load_round_trip(self):
+        s = fovea.Scene.embedded()
+        s["eye.relief_mm"] = 23.5
+        path = os.path.join(TMP, "python-scene.json")
+        s.save(path)
+        again = fovea.Scene.load(path)
+        self.assertEqual(again["eye.relief_mm"], 23.5)
+        self.assertEqual(again.to_json(), s.to_json())
+        with open(path) as f:
+            self.assertEqual(f.read(), s.to_json())
+
+    def test_unreadable_scene_is_a_value_error_naming_it(self):
+        path = os.path.join(TMP, "python-malformed.json")
+        with open(path, "w") as f:
+            f.write("{ not json")
+        with self.assertRaises(ValueError) as e:
+            fovea.Scene.load(path)
+        out, err = cli("validate", path, code=1)
+        self.assertTrue(str(e.exception).startswith("python-malformed.json: malformed JSON at line 1"))
+        self.assertIn(str(e.exception).splitlines()[0], out + err)
+
+
+class AnalysesTest(unittest.TestCase):
+    """Every registry analysis with fovea-cli options generated from the registry, with small
+    settings, gives through Python the document `fovea-cli ... --json` prints."""
+
+    CASES = {
+        "trace": ({"gaze_yaw": 10.0, "gaze_pitch": 0.0, "rays": 1500},
+                  ["--gaze-deg", "10,0", "--rays", "1500"]),
+        "sweep": ({"gaze_from": -10.0, "gaze_to": 10.0, "gaze_step": 10.0, "rays": 1000},
+                  ["--gaze-from", "-10", "--gaze-to", "10", "--gaze-step", "10", "--rays", "1000", "--no-cache"]),
+        "compare-shift": ({"gaze_from": 0.0, "gaze_to": 10.0, "gaze_step": 10.0, "rays": 1000},
+                          ["--gaze-from", "0", "--gaze-to", "10", "--gaze-step", "10", "--rays", "1000",
+                           "--no-cache"]),
+        "sensitivity": ({"parameter": "eye.relief_mm", "from": 20.0, "to": 24.0, "steps": 2, "rays": 1000},
+                        ["--parameter", "eye.relief_mm", "--from", "20", "--to", "24", "--steps", "2", "--rays",
+                         "1000", "--no-cache"]),
+        "resolution": ({"samples": 61}, ["--samples", "61"]),
+        "selectivity": ({"samples": 51}, ["--samples", "51"]),
+        "optimize-lens": ({"starts": 1}, ["--starts", "1", "--no-cache"]),
+    }
+
+    def test_every_generated_analysis_is_covered(self):
+        generated = {k for k, v in fovea.analyses().items() if v["cli_generated"]}
+        self.assertEqual(generated, set(self.CASES))
+
+    def test_python_equals_the_cli(self):
+        scene = fovea.Scene.embedded()
+        for analysis, (kwargs, flags) in self.CASES.items():
+            with self.subTest(analysis=analysis):
+                py = fovea.run(analysis, scene, **kwargs)
+                py.pop("cached", None)
+                doc = cli_json(analysis, "", *flags)
+                if isinstance(doc, list):  # trace prints a list only for several gazes
+                    doc = doc[0]
+                self.assertEqual(canonical(py), canonical(doc))
+
+    def test_trace_arrays_match_its_document(self):
+        scene = fovea.Scene.embedded()
+        r = fovea.trace(scene, gaze_deg=(10.0, 0.0), hoe_shift_mm=(1.5, 0.0), rays=1500)
+        doc = cli_json("trace", "", "--gaze-deg", "10,0", "--hoe-shift-mm", "1.5,0", "--rays", "1500")
+        a = r.pop("ray_arrays")
+        self.assertEqual(canonical(r), canonical(doc))
+        n = len(a["efficiency"])
+        self.assertEqual(a["source_mm"].shape, (n, 3))
+        self.assertEqual(a["field_deg"].shape, (n, 2))
+        self.assertEqual(int(a["in_pupil"].sum()), doc["rays_in_pupil"])
+        self.assertTrue(np.allclose(np.linalg.norm(a["out_direction"][a["hits_hoe"]], axis=1), 1.0, atol=1e-12)
+                        or not a["hits_hoe"].any())
+
+    def test_refused_parameter_has_the_cli_message(self):
+        scene = fovea.Scene.embedded()
+        with self.assertRaises(ValueError) as e:
+            fovea.run("sweep", scene, gaze_step=0.0)
+        _, err = cli("sweep", "", "--gaze-step", "0", "--json", code=2)
+        self.assertIn(str(e.exception), err)
+        with self.assertRaises(ValueError):
+            fovea.run("no-such-analysis", scene)
+
+    def test_progress_and_cancellation(self):
+        scene = fovea.Scene.embedded()
+        seen = []
+        fovea.run("sweep", scene, gaze_from=0.0, gaze_to=10.0, gaze_step=5.0, rays=500, tolerance_deg=0.41,
+                  progress=seen.append)
+        self.assertEqual(seen[-1], 1.0)
+        self.assertEqual(seen, sorted(seen))
+
+        # An exception from the callback (as Ctrl-C raises KeyboardInterrupt in it) stops the
+        # study: 161 gazes would take minutes; the first progress report ends it.
+        def interrupt(_):
+            raise KeyboardInterrupt
+
+        with self.assertRaises(KeyboardInterrupt):
+            fovea.run("sweep", scene, gaze_from=-40.0, gaze_to=40.0, gaze_step=0.5, rays=500, tolerance_deg=0.43,
+                      progress=interrupt)
+
+    def test_threads_run_studies_side_by_side(self):
+        scene = fovea.Scene.embedded()
+        results = [None, None]
+
+        def work(i):
+            results[i] = fovea.trace(scene, gaze_deg=(5.0 * i, 0.0), rays=800)["fov_deg"]
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for i in range(2):
+            self.assertEqual(results[i], fovea.trace(scene, gaze_deg=(5.0 * i, 0.0), rays=800)["fov_deg"])
+
+
+class GratingTest(unittest.TestCase):
+    def random_gratings(self, n, seed=7):
+        rng = np.random.default_rng(seed)
+        return dict(n0=rng.uniform(1.45, 1.6, n), n1=rng.uniform(0.001, 0.04, n),
+                    thickness_um=rng.uniform(2, 40, n), period_nm=rng.uniform(150, 600, n),
+                    slant_deg=rng.uniform(-30, 30, n), probe_deg=rng.uniform(-40, 40, n),
+                    wavelength_nm=rng.uniform(450, 680, n))
+
+    def test_batch_equals_the_scalar_calls(self):
+        g = self.random_gratings(100_000)
+        batch = fovea.kogelnik(**g)
+        self.assertEqual(batch["efficiency"].shape, (100_000,))
+        for i in range(0, 100_000, 97):  # 1 031 scalar calls spread over the batch
+            one = fovea.kogelnik(**{k: v[i] for k, v in g.items()})
+            for key in ("efficiency", "zero_order", "nu", "xi"):
+                self.assertEqual(float(one[key][()]), float(batch[key][i]), key)
+        eff = batch["efficiency"]
+        self.assertTrue(np.all((eff >= 0) & (eff <= 1)))
+        # Lossless: what is not diffracted stays in the zero order (energy).
+        self.assertLess(np.max(np.abs(eff + batch["zero_order"] - 1)), 1e-12)
+
+    def test_batch_equals_the_cli(self):
+        g = self.random_gratings(5, seed=3)
+        batch = fovea.kogelnik(**g)
+        for i in range(5):
+            flags = []
+            for k, v in g.items():
+                flags += ["--" + k.replace("_", "-"), repr(float(v[i]))]
+            doc = json.loads(cli("grating", *flags, "--json")[0])
+            self.assertLess(abs(doc["efficiency"] - batch["efficiency"][i]), 1e-12)
+            self.assertLess(abs(doc["xi"] - batch["xi"][i]), 1e-9 * max(1.0, abs(doc["xi"])))
+            if doc["diffracted_deg"] is None:
+                self.assertTrue(math.isnan(batch["diffracted_deg"][i]))
+            else:
+                self.assertLess(abs(doc["diffracted_deg"] - batch["diffracted_deg"][i]), 1e-9)
+
+    def test_broadcasting_and_refusals(self):
+        angles = np.linspace(-5, 5, 11)
+        r = fovea.kogelnik(1.5, 0.02, 16.0, 177.333, 0.0, angles[:, None], np.array([520.0, 532.0, 545.0]))
+        self.assertEqual(r["efficiency"].shape, (11, 3))
+        with self.assertRaises(ValueError) as e:
+            fovea.kogelnik(1.5, [0.02, 1.6], 16.0, 177.333, 0.0, 0.0, 532.0)
+        self.assertIn("grating 1: n1", str(e.exception))
+        with self.assertRaises(ValueError):
+            fovea.kogelnik(1.5, 0.02, 16.0, 177.333, 0.0, 0.0, 532.0, polarization="q")
+
+    def test_rcwa_equals_the_cli(self):
+        flags = ["--n0", "1.5", "--n1", "0.02", "--thickness-um", "8", "--period-nm", "177.333",
+                 "--slant-deg", "0", "--probe-deg", "0", "--wavelength-nm", "532", "--model", "rcwa"]
+        doc = json.loads(cli("grating", *flags, "--json")[0])
+        r = fovea.rcwa(1.5, 0.02, 8.0, 177.333, 0.0, 0.0, 532.0)
+        self.assertLess(abs(float(r["efficiency"][()]) - doc["efficiency"]), 1e-12)
+
+
+if __name__ == "__main__":
+    unittest.main()
