@@ -119,7 +119,7 @@ PupilPsf defocusedPupilPsf(double pupil_diameter_mm, double wavelength_nm, doubl
   const double blur_units = std::abs(e) * d * d / lambda;  // geometric diameter in lambda/D
   int np = std::max(128, static_cast<int>(std::ceil(3.0 * blur_units + 40.0)));
   int n = grid;
-  while (np > n / 2 && n < 4096) n *= 2;
+  while (np > n / 2 && n < 2048) n *= 2;
   np = std::min(np, n / 2);
   const double dx = d / np;
   cv::Mat field(n, n, CV_64FC2, cv::Scalar(0, 0));
@@ -181,6 +181,10 @@ double psfFwhmArcmin(const cv::Mat& psf, double sample) {
   return (outer(1) + outer(-1)) * sample;
 }
 
+double spotWidthArcmin(const cv::Mat& psf, double sample_arcmin) {
+  return 2.0 * encircledEnergyRadiusArcmin(psf, sample_arcmin, 0.5);
+}
+
 double encircledEnergyRadiusArcmin(const cv::Mat& psf, double sample, double fraction) {
   const int c = psf.cols / 2, cy = psf.rows / 2;
   std::vector<std::pair<double, double>> rv;
@@ -208,13 +212,17 @@ double encircledEnergyRadiusArcmin(const cv::Mat& psf, double sample, double fra
 }
 
 double firstMinimumArcmin(const cv::Mat& psf, double sample) {
+  // The Airy zero is a simple zero of the amplitude: |amplitude| = sqrt(intensity) is V-shaped
+  // there, so the root is found by linear interpolation of the signed amplitude between the
+  // smallest sample and its smaller neighbour (a parabola through the intensity would be
+  // biased by the lobes' asymmetry).
   const int c = psf.cols / 2;
   const double* row = psf.ptr<double>(psf.rows / 2);
   for (int k = 1; c + k + 1 < psf.cols; ++k) {
     const double a = row[c + k - 1], b = row[c + k], d = row[c + k + 1];
-    if (b <= a && b <= d) {  // parabola through the three samples
-      const double den = a - 2 * b + d;
-      const double off = den > 0 ? 0.5 * (a - d) / den : 0.0;
+    if (b <= a && b <= d) {
+      const double sa = std::sqrt(a), sb = std::sqrt(b), sd = std::sqrt(d);
+      const double off = sd < sa ? sb / (sb + sd) : -sb / (sb + sa);
       return (k + off) * sample;
     }
   }
@@ -283,7 +291,8 @@ FovealSpot fovealSpot(const Scene& scene, double wavelength_nm, double accommoda
   const PupilPsf p = defocusedPupilPsf(pupil, wavelength_nm, s.defocus_d);
   s.sample_arcmin = p.sample_arcmin;
   const MtfCurve eye_mtf = mtfFromPsf(p.psf, p.sample_arcmin);
-  s.eye_only = {psfFwhmArcmin(p.psf, p.sample_arcmin), eye_mtf.frequencyAt(0.5), eye_mtf.frequencyAt(0.1)};
+  s.eye_only = {spotWidthArcmin(p.psf, p.sample_arcmin), eye_mtf.frequencyAt(0.5), eye_mtf.frequencyAt(0.1)};
+  s.eye_profile_fwhm_arcmin = psfFwhmArcmin(p.psf, p.sample_arcmin);
   const double pixel_deg = s.pixel_arcmin / 60.0;
   const MtfCurve total = mtfFromPsf(p.psf, p.sample_arcmin, pixel_deg, s.combiner_rms_arcmin);
   cv::Mat otf = psfOtfWithFactors(p.psf, p.sample_arcmin, pixel_deg, s.combiner_rms_arcmin), back;
@@ -292,7 +301,8 @@ FovealSpot fovealSpot(const Scene& scene, double wavelength_nm, double accommoda
   back = cv::max(back, 0.0);
   back /= cv::sum(back)[0];
   s.psf = back;
-  s.metrics = {psfFwhmArcmin(back, p.sample_arcmin), total.frequencyAt(0.5), total.frequencyAt(0.1)};
+  s.metrics = {spotWidthArcmin(back, p.sample_arcmin), total.frequencyAt(0.5), total.frequencyAt(0.1)};
+  s.profile_fwhm_arcmin = psfFwhmArcmin(back, p.sample_arcmin);
   return s;
 }
 

@@ -34,7 +34,7 @@
 namespace fovea {
 
 struct SpotMetrics {
-  double fwhm_arcmin = 0;
+  double fwhm_arcmin = 0;  // Gaussian: the FWHM; a pupil PSF: the EE50 diameter (spotWidthArcmin)
   double mtf50_cpd = 0;
   double mtf10_cpd = 0;
 };
@@ -76,6 +76,12 @@ PupilPsf defocusedPupilPsf(double pupil_diameter_mm, double wavelength_nm, doubl
 double psfFwhmArcmin(const cv::Mat& psf, double sample_arcmin);
 double encircledEnergyRadiusArcmin(const cv::Mat& psf, double sample_arcmin, double fraction);
 double firstMinimumArcmin(const cv::Mat& psf, double sample_arcmin);
+// The spot width the JSON reports as spot_fwhm_arcmin: the diameter enclosing half the power
+// (EE50). It equals the FWHM exactly for a Gaussian (r50 = w sqrt(ln 2 / 2) = FWHM/2), is 4 %
+// above it for the Airy disc (1.070 vs 1.029 lambda/D: 1 - J0^2(x) - J1^2(x) = 1/2 at x = 1.680),
+// and stays meaningful for a defocused PSF, whose profile has a bright central spot and rings
+// (EE50 diameter of the geometric disc: its diameter / sqrt 2).
+double spotWidthArcmin(const cv::Mat& psf, double sample_arcmin);
 
 // MTF along the horizontal frequency axis of a PSF grid times optional extra factors
 // (pixel box of angular width pixel_deg, Gaussian RMS blur sigma_arcmin). Frequencies in cpd.
@@ -92,7 +98,8 @@ struct FovealSpot {
   double pixel_arcmin = 0;          // micro-OLED pixel pitch as visual angle
   double combiner_rms_arcmin = 0;   // traced combiner aberration blur (foveal_optics.h)
   SpotMetrics eye_only;             // the eye's PSF of a point
-  SpotMetrics metrics;              // eye x pixel x combiner
+  SpotMetrics metrics;              // eye x pixel x combiner (fwhm_arcmin: spotWidthArcmin)
+  double profile_fwhm_arcmin = 0, eye_profile_fwhm_arcmin = 0;  // half-maximum width of the profile
   cv::Mat psf;                      // total PSF (CV_64F, sum 1) on its grid
   double sample_arcmin = 0;
 };
