@@ -50,7 +50,8 @@ void install(CLI::App& app) {
       usageError("--gaze-deg: each angle must be within -60..60 degrees");
     o.accommodation_d = parseNumberList(a->accommodation, "--accommodation-d", 1, 1)[0];
     if (o.accommodation_d < 0 || o.accommodation_d > 4)
-      usageError("--accommodation-d: must be within 0..4 D (the schematic eye's range), got '" + a->accommodation + "'");
+      usageError("--accommodation-d: must be within 0..4 D (the schematic eye's range), got '" + a->accommodation +
+                 "'");
     const auto s = parseNumberList(a->shift, "--hoe-shift-mm", 1, 2);
     o.hoe_shift_mm = {s[0], s.size() > 1 ? s[1] : 0.0};
     const double speckle = parseNumberList(a->speckle, "--speckle", 1, 1)[0];
@@ -97,6 +98,7 @@ void install(CLI::App& app) {
     j["speckle_expected"] = r.speckle_expected ? nlohmann::json(*r.speckle_expected) : nlohmann::json(nullptr);
     j["speckle_patterns"] = o.speckle_patterns;
     j["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
+    j["power_off_canvas"] = r.power_off_canvas;
     j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
     nlohmann::json per = nlohmann::json::array();
     for (const auto& p : r.peripheral) {

@@ -43,7 +43,7 @@ struct SpotMetrics {
 SpotMetrics gaussianSpotMetrics(double radius_1e2_arcmin);
 
 struct PeripheralSpot {
-  bool valid = false;          // the line of sight meets the plate
+  bool valid = false;  // the line of sight meets the plate
   double wavelength_nm = 0;
   int layer = -1;              // HOE layer used (recorded nearest the wavelength)
   double throw_mm = 0;         // projector source to the plate point
@@ -62,8 +62,8 @@ PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double a
 
 // The pupil PSF on a square grid, centred at (n/2, n/2), sum 1.
 struct PupilPsf {
-  cv::Mat psf;              // CV_64FC1
-  double sample_arcmin = 0; // angular pixel
+  cv::Mat psf;               // CV_64FC1
+  double sample_arcmin = 0;  // angular pixel
   double pupil_diameter_mm = 0, wavelength_nm = 0, defocus_d = 0;
 };
 // grid: FFT size (power of two); the pupil is sampled finely enough for the defocus phase
@@ -93,14 +93,14 @@ MtfCurve mtfFromPsf(const cv::Mat& psf, double sample_arcmin, double pixel_deg =
 
 struct FovealSpot {
   double wavelength_nm = 0;
-  double defocus_d = 0;             // E at the pupil
-  double geometric_blur_arcmin = 0; // pupil x |E| (angular diameter of the defocus disc)
-  double pixel_arcmin = 0;          // micro-OLED pixel pitch as visual angle
-  double combiner_rms_arcmin = 0;   // traced combiner aberration blur (foveal_optics.h)
-  SpotMetrics eye_only;             // the eye's PSF of a point
-  SpotMetrics metrics;              // eye x pixel x combiner (fwhm_arcmin: spotWidthArcmin)
+  double defocus_d = 0;                                         // E at the pupil
+  double geometric_blur_arcmin = 0;                             // pupil x |E| (angular diameter of the defocus disc)
+  double pixel_arcmin = 0;                                      // micro-OLED pixel pitch as visual angle
+  double combiner_rms_arcmin = 0;                               // traced combiner aberration blur (foveal_optics.h)
+  SpotMetrics eye_only;                                         // the eye's PSF of a point
+  SpotMetrics metrics;                                          // eye x pixel x combiner (fwhm_arcmin: spotWidthArcmin)
   double profile_fwhm_arcmin = 0, eye_profile_fwhm_arcmin = 0;  // half-maximum width of the profile
-  cv::Mat psf;                      // total PSF (CV_64F, sum 1) on its grid
+  cv::Mat psf;                                                  // total PSF (CV_64F, sum 1) on its grid
   double sample_arcmin = 0;
 };
 FovealSpot fovealSpot(const Scene& scene, double wavelength_nm, double accommodation_d, std::array<double, 2> gaze_deg,

@@ -41,8 +41,7 @@ cv::Vec3d retinaSample(const cv::Mat& img, double x, double y) {
   const cv::Vec3f a = img.at<cv::Vec3f>(y0, x0), b = img.at<cv::Vec3f>(y0, x1), c = img.at<cv::Vec3f>(y1, x0),
                   d = img.at<cv::Vec3f>(y1, x1);
   cv::Vec3d out;
-  for (int k = 0; k < 3; ++k)
-    out[k] = (1 - fy) * ((1 - fx) * a[k] + fx * b[k]) + fy * ((1 - fx) * c[k] + fx * d[k]);
+  for (int k = 0; k < 3; ++k) out[k] = (1 - fy) * ((1 - fx) * a[k] + fx * b[k]) + fy * ((1 - fx) * c[k] + fx * d[k]);
   return out;
 }
 
@@ -101,7 +100,8 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
 
   // Line-of-sight PSFs.
   const auto& lasers = scene.projector.wavelengths_nm;
-  for (double wl : lasers) r.peripheral.push_back(peripheralSpot(scene, wl, o.accommodation_d, o.gaze_deg, o.hoe_shift_mm));
+  for (double wl : lasers)
+    r.peripheral.push_back(peripheralSpot(scene, wl, o.accommodation_d, o.gaze_deg, o.hoe_shift_mm));
   for (double wl : scene.foveal_display.primaries_nm)
     r.foveal.push_back(fovealSpot(scene, wl, o.accommodation_d, o.gaze_deg));
   auto nearest555 = [](auto getter, std::size_t n) {
@@ -111,8 +111,8 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     return best;
   };
   r.peripheral_reference = nearest555([&](std::size_t i) { return lasers[i]; }, lasers.size());
-  r.foveal_reference =
-      nearest555([&](std::size_t i) { return scene.foveal_display.primaries_nm[i]; }, scene.foveal_display.primaries_nm.size());
+  r.foveal_reference = nearest555([&](std::size_t i) { return scene.foveal_display.primaries_nm[i]; },
+                                  scene.foveal_display.primaries_nm.size());
 
   // Peripheral kernels: sigma = w/2 (1/e^2 radius w) in canvas pixels; a spot whose line of
   // sight misses the plate takes the largest valid one (or none).
@@ -131,11 +131,17 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     fkernels.push_back(retinaBinPsf(f.psf, f.sample_arcmin, ppx, ppy));
     margin = std::max(margin, std::max(fkernels.back().cols, fkernels.back().rows) / 2 + 2);
   }
+  // Cells at the field's edge spread up to 64 px beyond it; kernels need `margin` more.
+  const int kernel_margin = margin;
+  margin += 64;
   r.margin_px = margin;
   const cv::Size canvas_size(target.cols + 2 * margin, target.rows + 2 * margin);
   auto cx = [&](double yaw) { return (yaw / ang.peripheral_fov_deg[0] + 0.5) * target.cols - 0.5 + margin; };
   auto cy = [&](double pitch) { return (0.5 - pitch / ang.peripheral_fov_deg[1]) * target.rows - 0.5 + margin; };
-  auto inside = [&](double x, double y) { return x >= 0 && y >= 0 && x < canvas_size.width - 1 && y < canvas_size.height - 1; };
+  auto inside = [&](double x, double y) {
+    return x >= kernel_margin && y >= kernel_margin && x < canvas_size.width - 1 - kernel_margin &&
+           y < canvas_size.height - 1 - kernel_margin;
+  };
 
   // The preview's two display images.
   FoveatedCompositor comp(scene, o.blend);
@@ -155,7 +161,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   std::array<int, 3> lasers_in_channel{0, 0, 0};
   for (double wl : lasers) ++lasers_in_channel[static_cast<std::size_t>(retinaChannelOf(wl))];
   std::vector<cv::Mat> planes;
-  double deposited = 0;
+  double deposited = 0, lost = 0;
   for (std::size_t li = 0; li < lasers.size(); ++li) {
     cv::Mat plane(canvas_size, CV_64F, cv::Scalar(0));
     // The rays of this laser on their grid.
@@ -168,8 +174,10 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     auto at = [&](int ix, int iy) -> const TracedRay* {
       return ix < 0 || iy < 0 || ix >= nx || iy >= ny ? nullptr : cell[static_cast<std::size_t>(iy) * nx + ix];
     };
-    // Field-angle area of each cell: |det J| from central (or one-sided) differences.
+    // Field-angle area of each cell: |det J| from central (or one-sided) differences; J's
+    // columns (du, dv: the cell's edges in the visual field) also shape its splat.
     std::vector<double> areas(cell.size(), 0.0);
+    std::vector<std::array<double, 4>> edges(cell.size(), {0, 0, 0, 0});
     std::vector<double> known;
     for (int iy = 0; iy < ny; ++iy)
       for (int ix = 0; ix < nx; ++ix) {
@@ -178,7 +186,9 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
         auto diff = [&](int dx, int dy) -> std::optional<std::array<double, 2>> {
           const TracedRay* p = at(ix + dx, iy + dy);
           const TracedRay* m = at(ix - dx, iy - dy);
-          if (p && m) return std::array<double, 2>{0.5 * (p->field_deg[0] - m->field_deg[0]), 0.5 * (p->field_deg[1] - m->field_deg[1])};
+          if (p && m)
+            return std::array<double, 2>{0.5 * (p->field_deg[0] - m->field_deg[0]),
+                                         0.5 * (p->field_deg[1] - m->field_deg[1])};
           if (p) return std::array<double, 2>{p->field_deg[0] - c->field_deg[0], p->field_deg[1] - c->field_deg[1]};
           if (m) return std::array<double, 2>{c->field_deg[0] - m->field_deg[0], c->field_deg[1] - m->field_deg[1]};
           return std::nullopt;
@@ -187,6 +197,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
         if (du && dv) {
           const double a = std::abs((*du)[0] * (*dv)[1] - (*du)[1] * (*dv)[0]);
           areas[static_cast<std::size_t>(iy) * nx + ix] = a;
+          edges[static_cast<std::size_t>(iy) * nx + ix] = {(*du)[0], (*du)[1], (*dv)[0], (*dv)[1]};
           known.push_back(a);
         }
       }
@@ -205,12 +216,29 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       const double x = cx(yaw), y = cy(pitch);
       if (!inside(x, y)) continue;  // outside the target field: the projector shows black there
       const cv::Vec3d v = retinaSample(periph, (yaw / ang.peripheral_fov_deg[0] + 0.5) * periph.cols - 0.5,
-                                 (0.5 - pitch / ang.peripheral_fov_deg[1]) * periph.rows - 0.5);
+                                       (0.5 - pitch / ang.peripheral_fov_deg[1]) * periph.rows - 0.5);
       const double area = (areas[k] > 0 ? areas[k] : median_area) * ppx * ppy;
       const double power = share * v[ch] * c->efficiency * area;
       if (power == 0) continue;
-      retinaSplat(plane, x, y, power);
-      deposited += power;
+      // The ray stands for its cell of projector pixels: its power is spread evenly over the
+      // cell's parallelogram in the visual field (Kx x Ky bilinear sub-splats, about one per
+      // canvas pixel), so a ray grid coarser than the PSF leaves no ripple.
+      const auto& ed = edges[k];
+      const double ux = ed[0] * ppx, uy = -ed[1] * ppy, vx = ed[2] * ppx, vy = -ed[3] * ppy;
+      const int kx = std::clamp(static_cast<int>(std::ceil(std::hypot(ux, uy))), 1, 64);
+      const int ky = std::clamp(static_cast<int>(std::ceil(std::hypot(vx, vy))), 1, 64);
+      const double sub = power / (kx * ky);
+      for (int j = 0; j < ky; ++j)
+        for (int i = 0; i < kx; ++i) {
+          const double fu = (i + 0.5) / kx - 0.5, fv = (j + 0.5) / ky - 0.5;
+          const double sx = x + fu * ux + fv * vx, sy = y + fu * uy + fv * vy;
+          if (inside(sx, sy)) {
+            retinaSplat(plane, sx, sy, sub);
+            deposited += sub;
+          } else {
+            lost += sub;
+          }
+        }
     }
     planes.push_back(plane);
   }
@@ -285,7 +313,8 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   }
 
   cv::merge(channels, r.canvas);
-  r.power_in_pupil = deposited;
+  r.power_in_pupil = deposited + lost;
+  r.power_off_canvas = lost;
   const cv::Scalar tot = cv::sum(r.canvas);
   r.power_on_retina = tot[0] + tot[1] + tot[2];
   r.canvas(cv::Rect(margin, margin, target.cols, target.rows)).convertTo(r.image, CV_32FC3);

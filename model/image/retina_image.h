@@ -8,7 +8,8 @@
 // geometric calibration (B.2.1): each projector pixel shows the content of the world angle at
 // which its traced ray actually reaches the eye. Every traced ray (trace.h, per laser) that
 // enters the pupil deposits power  value x efficiency x (its cell's area in the visual field)
-// at gaze + its field angle, with a bilinear splat (weights sum to 1). Rays that miss the pupil
+// at gaze + its field angle, spread evenly over its cell's parallelogram in the visual field
+// (bilinear sub-splats whose weights sum to 1). Rays that miss the pupil
 // deposit nothing (holes, vignetting), the efficiency map shades. The cell area is |det J| of
 // the ray grid's field angles (central differences on the grid, per laser). Then each laser's
 // plane is blurred by its peripheral PSF (retinal_psf.h, Gaussian, the line-of-sight value
@@ -48,7 +49,7 @@ struct RetinaImageOptions {
   bool blend = true;
   int speckle_patterns = 0;  // 0: no speckle
   std::uint64_t speckle_seed = 1;
-  int rays = 20000;          // traced rays per laser
+  int rays = 20000;  // traced rays per laser
 };
 
 struct RetinaImageResult {
@@ -57,11 +58,13 @@ struct RetinaImageResult {
   int margin_px = 0;
   double pixels_per_degree = 0;
   double power_in_pupil = 0, power_on_retina = 0;
+  double power_off_canvas =
+      0;  // of power_in_pupil, what edge cells would put beyond the canvas (dropped; 0 in practice)
   int rays_in_pupil = 0, rays_traced = 0;
-  std::optional<double> speckle_contrast;   // measured over the lit canvas
-  std::optional<double> speckle_expected;   // 1/sqrt(patterns x lasers)
-  std::vector<PeripheralSpot> peripheral;   // per laser, at the line of sight
-  std::vector<FovealSpot> foveal;           // per micro-OLED primary
+  std::optional<double> speckle_contrast;                      // measured over the lit canvas
+  std::optional<double> speckle_expected;                      // 1/sqrt(patterns x lasers)
+  std::vector<PeripheralSpot> peripheral;                      // per laser, at the line of sight
+  std::vector<FovealSpot> foveal;                              // per micro-OLED primary
   std::size_t peripheral_reference = 0, foveal_reference = 0;  // entries nearest 555 nm
 };
 

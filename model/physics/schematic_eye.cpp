@@ -85,9 +85,10 @@ SchematicEyeState navarroBuildEye(double lens_a, double wavelength_nm) {
   // axis (the entrance pupil) B/A behind the vertex.
   e.entrance_pupil_mm = stop.B / stop.A;
   const double vitreous = e.axial_length_mm - (s.t[0] + s.t[1] + s.t[2]);
-  const double chroma_per_mm = -(chromaticRefractionD(wavelength_nm) - chromaticRefractionD(kEyeReferenceWavelengthNm)) / 1000.0;
-  e.pupil_to_retina =
-      freeSpace(vitreous, s.n[3]) * navarroCorneaToLensBack(s) * freeSpace(-e.entrance_pupil_mm) * thinLens(chroma_per_mm);
+  const double chroma_per_mm =
+      -(chromaticRefractionD(wavelength_nm) - chromaticRefractionD(kEyeReferenceWavelengthNm)) / 1000.0;
+  e.pupil_to_retina = freeSpace(vitreous, s.n[3]) * navarroCorneaToLensBack(s) * freeSpace(-e.entrance_pupil_mm) *
+                      thinLens(chroma_per_mm);
   e.retina_mm_per_rad = e.pupil_to_retina.B;
   e.power_d = -e.pupil_to_retina.C * 1000.0;
   return e;
@@ -124,8 +125,8 @@ SchematicEyeState navarroEye(double accommodation_d, double wavelength_nm) {
 }
 
 double defocusD(const SchematicEyeState& eye, double vergence_d) {
-  const double focus = -eye.accommodation_d + (chromaticRefractionD(eye.wavelength_nm) -
-                                               chromaticRefractionD(kEyeReferenceWavelengthNm));
+  const double focus = -eye.accommodation_d +
+                       (chromaticRefractionD(eye.wavelength_nm) - chromaticRefractionD(kEyeReferenceWavelengthNm));
   return vergence_d - focus;
 }
 

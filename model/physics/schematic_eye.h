@@ -54,15 +54,15 @@ inline constexpr double kEyeReferenceWavelengthNm = 555.0;
 double chromaticRefractionD(double wavelength_nm);
 
 struct SchematicEyeState {
-  double accommodation_d = 0;      // requested: vergence in focus at the entrance pupil (555 nm)
-  double lens_parameter_d = 0;     // Navarro's A that achieves it
+  double accommodation_d = 0;   // requested: vergence in focus at the entrance pupil (555 nm)
+  double lens_parameter_d = 0;  // Navarro's A that achieves it
   double wavelength_nm = kEyeReferenceWavelengthNm;
-  double entrance_pupil_mm = 0;    // entrance pupil behind the corneal vertex
-  double axial_length_mm = 0;      // corneal vertex to retina
+  double entrance_pupil_mm = 0;  // entrance pupil behind the corneal vertex
+  double axial_length_mm = 0;    // corneal vertex to retina
   double vitreous_index = 1.336;
-  RayMatrix pupil_to_retina;       // from the entrance-pupil plane (in air) to the retina
-  double retina_mm_per_rad = 0;    // B of pupil_to_retina: chief-ray image height per radian
-  double power_d = 0;              // equivalent power of the eye (-C * 1000)
+  RayMatrix pupil_to_retina;     // from the entrance-pupil plane (in air) to the retina
+  double retina_mm_per_rad = 0;  // B of pupil_to_retina: chief-ray image height per radian
+  double power_d = 0;            // equivalent power of the eye (-C * 1000)
 };
 
 // The eye accommodated to accommodation_d (0..10 D accepted; the issue asks 0..4) at a wavelength.

@@ -33,7 +33,8 @@ fs::path tmpDir() {
 }
 QString target() {
   const fs::path p = tmpDir() / "target.png";
-  if (!fs::exists(p)) fovea::image::writeLinearRgb(p.string(), fovea::image::makeTestTarget(cv::Size(480, 277), {40.0, 23.1}, 15.0));
+  if (!fs::exists(p))
+    fovea::image::writeLinearRgb(p.string(), fovea::image::makeTestTarget(cv::Size(480, 277), {40.0, 23.1}, 15.0));
   return QString::fromStdString(p.string());
 }
 QString outPath(const char* name) {
@@ -54,8 +55,8 @@ class TestCliRetinaImage : public QObject {
  private slots:
   void contractKeys() {
     const QString out = outPath("retina.png");
-    const Run r = cli({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "5,2", "--accommodation-d", "2.5",
-                       "--rays", "4000", "--json"});
+    const Run r = cli({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "5,2", "--accommodation-d",
+                       "2.5", "--rays", "4000", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json j = r.j();
     checkSpot(j["peripheral"]);
@@ -76,8 +77,8 @@ class TestCliRetinaImage : public QObject {
   }
 
   void speckleIsReported() {
-    const Run r = cli({"retina-image", "--image", target(), "--out", outPath("speckle.png"), "--speckle", "3",
-                       "--rays", "4000", "--json"});
+    const Run r = cli({"retina-image", "--image", target(), "--out", outPath("speckle.png"), "--speckle", "3", "--rays",
+                       "4000", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json j = r.j();
     QVERIFY(j["speckle_contrast"].is_number());

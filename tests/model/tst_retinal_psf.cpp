@@ -39,7 +39,8 @@ class TestRetinalPsf : public QObject {
         const double w_abcd = gaussianRadiusMm(out, lambda);
         const double f = n / p, zrm = n * kPi * w0 * w0 / lambda;
         const double w_closed = w0 * std::sqrt(std::pow(1 - z / f, 2) + std::pow(z / zrm, 2));
-        QVERIFY2(std::abs(w_abcd / w_closed - 1) < 0.01, qPrintable(QString("w0 %1 z %2: %3 vs %4").arg(w0).arg(z).arg(w_abcd).arg(w_closed)));
+        QVERIFY2(std::abs(w_abcd / w_closed - 1) < 0.01,
+                 qPrintable(QString("w0 %1 z %2: %3 vs %4").arg(w0).arg(z).arg(w_abcd).arg(w_closed)));
       }
   }
 
@@ -86,8 +87,10 @@ class TestRetinalPsf : public QObject {
       const double ee80 = encircledEnergyRadiusArcmin(p.psf, p.sample_arcmin, 0.8);
       const double ee50 = spotWidthArcmin(p.psf, p.sample_arcmin);
       const double err = ee80 / (std::sqrt(0.8) * radius) - 1;
-      qInfo("defocus %g D (%.1f waves): EE80 radius %.3f arcmin vs geometric %.3f (%+.2f %%); EE50 diameter %.2f vs %.2f",
-            dd, dd * 1e-3 * 6.25 / 2 / 550e-6, ee80, std::sqrt(0.8) * radius, 100 * err, ee50, std::sqrt(0.5) * 2 * radius);
+      qInfo(
+          "defocus %g D (%.1f waves): EE80 radius %.3f arcmin vs geometric %.3f (%+.2f %%); EE50 diameter %.2f vs %.2f",
+          dd, dd * 1e-3 * 6.25 / 2 / 550e-6, ee80, std::sqrt(0.8) * radius, 100 * err, ee50,
+          std::sqrt(0.5) * 2 * radius);
       if (dd >= 4.0) QVERIFY(std::abs(err) < 0.03);
       QVERIFY(std::abs(err) <= last_error + 1e-3);
       last_error = std::abs(err);
@@ -126,10 +129,11 @@ class TestRetinalPsf : public QObject {
       const PeripheralSpot b = peripheralSpot(s, wl, 3.3, {0, 0});
       QVERIFY(a.valid && b.valid);
       const double change = b.metrics.fwhm_arcmin / a.metrics.fwhm_arcmin - 1;
-      qInfo("peripheral %g nm: FWHM %.2f arcmin at 0.4 D, %.2f at 3.3 D (%+.2f %%); MTF50 %.3f cpd; beam at HOE %.3f mm, "
-            "pupil %.4f mm; HOE %.1f D",
-            wl, a.metrics.fwhm_arcmin, b.metrics.fwhm_arcmin, 100 * change, a.metrics.mtf50_cpd, a.beam_radius_hoe_mm,
-            a.beam_radius_pupil_mm, a.hoe_power_d);
+      qInfo(
+          "peripheral %g nm: FWHM %.2f arcmin at 0.4 D, %.2f at 3.3 D (%+.2f %%); MTF50 %.3f cpd; beam at HOE %.3f mm, "
+          "pupil %.4f mm; HOE %.1f D",
+          wl, a.metrics.fwhm_arcmin, b.metrics.fwhm_arcmin, 100 * change, a.metrics.mtf50_cpd, a.beam_radius_hoe_mm,
+          a.beam_radius_pupil_mm, a.hoe_power_d);
       QVERIFY(std::abs(change) < 0.05);
       QVERIFY(a.pupil_transmission > 0.999);
     }
@@ -137,10 +141,11 @@ class TestRetinalPsf : public QObject {
     const FovealSpot in = fovealSpot(s, 530, 1.25, {0, 0});
     const FovealSpot near = fovealSpot(s, 530, 3.3, {0, 0});
     const FovealSpot far = fovealSpot(s, 530, 0.4, {0, 0});
-    qInfo("foveal 530 nm: FWHM %.2f / %.2f / %.2f arcmin at 1.25 / 3.3 / 0.4 D (geometric %.1f, %.1f); MTF50 %.1f / %.2f "
-          "/ %.2f cpd",
-          in.metrics.fwhm_arcmin, near.metrics.fwhm_arcmin, far.metrics.fwhm_arcmin, near.geometric_blur_arcmin,
-          far.geometric_blur_arcmin, in.metrics.mtf50_cpd, near.metrics.mtf50_cpd, far.metrics.mtf50_cpd);
+    qInfo(
+        "foveal 530 nm: FWHM %.2f / %.2f / %.2f arcmin at 1.25 / 3.3 / 0.4 D (geometric %.1f, %.1f); MTF50 %.1f / %.2f "
+        "/ %.2f cpd",
+        in.metrics.fwhm_arcmin, near.metrics.fwhm_arcmin, far.metrics.fwhm_arcmin, near.geometric_blur_arcmin,
+        far.geometric_blur_arcmin, in.metrics.mtf50_cpd, near.metrics.mtf50_cpd, far.metrics.mtf50_cpd);
     QVERIFY(near.metrics.fwhm_arcmin > 5 * in.metrics.fwhm_arcmin);
     QVERIFY(far.metrics.fwhm_arcmin > 5 * in.metrics.fwhm_arcmin);
     // EE50 of the defocus disc: diameter / sqrt(2).
@@ -154,6 +159,24 @@ class TestRetinalPsf : public QObject {
       qInfo("speckle N=%d: contrast %.4f vs %.4f", n, c, 1 / std::sqrt(n));
       QVERIFY(std::abs(c * std::sqrt(n) - 1) < 0.05);
     }
+  }
+
+  void uniformFieldHasNoRayRipple() {
+    // A white target: away from the edges and the foveal disc, the retinal image varies only
+    // as slowly as the efficiency map, not with the ray grid (cells are splatted as areas).
+    const Scene s = prototype();
+    const cv::Mat target(277, 480, CV_32FC3, cv::Scalar(1, 1, 1));
+    image::RetinaImageOptions o;
+    o.rays = 20000;
+    o.blend = false;
+    const auto r = image::renderRetinaImage(s, target, o);
+    double worst = 0;
+    for (int x = 60; x + 4 < 160; ++x) {
+      const double a = r.image.at<cv::Vec3f>(40, x)[1], b = r.image.at<cv::Vec3f>(40, x + 4)[1];
+      worst = std::max(worst, std::abs(b / a - 1));
+    }
+    qInfo("largest change over 4 px (1/3 deg) on a white field: %.4f", worst);
+    QVERIFY(worst < 0.01);
   }
 
   void retinalImageConservesPupilPower() {
