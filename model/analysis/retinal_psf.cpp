@@ -93,6 +93,20 @@ PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double a
   }
   s.lambda_eff_nm = lambda_eff * 1e6;
   std::complex<double> q(s.throw_mm - pb.waist_distance_mm, z_r);
+  // The beam-shaping lens (A.2), when the scene enables it, as an ideal thin lens where the
+  // chief ray passes its plane's foot point: q is propagated back to the lens, through it and on
+  // to the plate (the real thick lens and its obliquity are beam_shaping.h's business).
+  if (scene.lens.enabled && scene.lens.focal_length_mm != 0) {
+    const Eigen::Vector3d src = projectorSource(scene.projector, 0.0);
+    const Eigen::Vector3d u = (hit - src).normalized();
+    const double d1 = (toVec(scene.lens.pose.position_mm) - src).dot(u);
+    if (d1 > 0 && d1 < s.throw_mm) {
+      std::complex<double> ql(d1 - pb.waist_distance_mm, z_r);
+      ql = transformQ(thinLens(1.0 / scene.lens.focal_length_mm), ql);
+      q = transformQ(freeSpace(s.throw_mm - d1), ql);
+      s.through_lens = true;
+    }
+  }
   s.beam_radius_hoe_mm = gaussianRadiusMm(q, lambda_eff);
   q = transformQ(thinLens(phi), q);
   q = transformQ(freeSpace(t), q);

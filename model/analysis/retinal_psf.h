@@ -9,7 +9,8 @@
 // diverging from the reference point (distance L_r) into one converging to the signal point
 // (L_s), so Phi_rec = 1/L_r + 1/L_s, and at another wavelength the same fringes bend by
 // lambda/lambda_rec: Phi = Phi_rec lambda/lambda_rec (per layer: the layer recorded nearest
-// the laser). Obliquity (astigmatism of the off-axis hologram) and the plate's finite
+// the laser). An enabled beam-shaping lens acts as an ideal thin lens on the chief ray
+// before the plate. Obliquity (astigmatism of the off-axis hologram) and the plate's finite
 // thickness are neglected. Then free space to the entrance pupil (on the trace's pupil disc)
 // and the schematic eye (schematic_eye.h) to the retina. The spot on the retina is Gaussian
 // with 1/e^2 radius w_r; as a visual angle w_r / B (B = retina mm per radian of the chief ray),
@@ -52,6 +53,7 @@ struct PeripheralSpot {
   double lambda_eff_nm = 0;    // M^2 lambda
   double beam_radius_hoe_mm = 0, beam_radius_pupil_mm = 0, beam_radius_retina_mm = 0;  // 1/e^2
   double pupil_transmission = 1;  // Gaussian power inside the pupil disc
+  bool through_lens = false;      // the scene's beam-shaping lens (thin-lens model) shaped it
   double radius_1e2_arcmin = 0;   // retinal spot as visual angle
   SpotMetrics metrics;
 };

@@ -10,6 +10,7 @@
 #include "model/image/retina_image.h"
 #include "model/image/test_target.h"
 #include "model/physics/schematic_eye.h"
+#include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
 
@@ -137,6 +138,24 @@ class TestRetinalPsf : public QObject {
       QVERIFY(std::abs(change) < 0.05);
       QVERIFY(a.pupil_transmission > 0.999);
     }
+    // With a beam-shaping lens that images the beam near the plate, the pixel on the HOE and
+    // so on the retina shrinks (the seed's A.2): LB1471-like f = 50 mm at 62.7 mm on the axis.
+    Scene lensed = s;
+    lensed.lens.enabled = true;
+    lensed.lens.focal_length_mm = 50.0;
+    {
+      const Frame pf = frameOf(s.projector.pose);
+      lensed.lens.pose.position_mm = fromVec(pf.origin + 62.7 * pf.z());
+    }
+    const PeripheralSpot with = peripheralSpot(lensed, 532, 1.25, {0, 0});
+    const PeripheralSpot without = peripheralSpot(s, 532, 1.25, {0, 0});
+    qInfo(
+        "with an f = 50 mm lens at 62.7 mm: beam at HOE %.4f mm (was %.4f), FWHM %.2f arcmin, MTF50 %.2f cpd, MTF10 "
+        "%.2f cpd",
+        with.beam_radius_hoe_mm, without.beam_radius_hoe_mm, with.metrics.fwhm_arcmin, with.metrics.mtf50_cpd,
+        with.metrics.mtf10_cpd);
+    QVERIFY(with.through_lens);
+    QVERIFY(with.metrics.fwhm_arcmin < without.metrics.fwhm_arcmin);
     // Foveal (virtual image at 0.8 m = 1.25 D): sharp in focus, blurred as pupil x |dD| away.
     const FovealSpot in = fovealSpot(s, 530, 1.25, {0, 0});
     const FovealSpot near = fovealSpot(s, 530, 3.3, {0, 0});
