@@ -200,29 +200,30 @@ double spotWidthArcmin(const cv::Mat& psf, double sample_arcmin) {
 }
 
 double encircledEnergyRadiusArcmin(const cv::Mat& psf, double sample, double fraction) {
+  // Radial histogram of the power in bins of 1/8 sample (O(N), no sort), cumulated, and the
+  // crossing interpolated linearly inside its bin.
   const int c = psf.cols / 2, cy = psf.rows / 2;
-  std::vector<std::pair<double, double>> rv;
-  rv.reserve(static_cast<std::size_t>(psf.total()));
+  constexpr double kBinsPerSample = 8.0;
+  const double r_max = std::hypot(psf.cols, psf.rows);
+  std::vector<double> hist(static_cast<std::size_t>(r_max * kBinsPerSample) + 2, 0.0);
   double total = 0;
   for (int y = 0; y < psf.rows; ++y) {
     const double* row = psf.ptr<double>(y);
+    const double dy2 = static_cast<double>(y - cy) * (y - cy);
     for (int x = 0; x < psf.cols; ++x) {
-      rv.emplace_back(std::hypot(x - c, y - cy), row[x]);
+      if (row[x] == 0) continue;
+      hist[static_cast<std::size_t>(std::sqrt((x - c) * (x - c) + dy2) * kBinsPerSample)] += row[x];
       total += row[x];
     }
   }
-  std::sort(rv.begin(), rv.end());
-  double acc = 0, prev_r = 0, prev_acc = 0;
-  for (const auto& [rr, v] : rv) {
-    acc += v;
-    if (acc >= fraction * total) {
-      const double f = acc > prev_acc ? (fraction * total - prev_acc) / (acc - prev_acc) : 1.0;
-      return (prev_r + f * (rr - prev_r)) * sample;
-    }
-    prev_r = rr;
-    prev_acc = acc;
+  const double goal = fraction * total;
+  double acc = 0;
+  for (std::size_t i = 0; i < hist.size(); ++i) {
+    if (acc + hist[i] >= goal && hist[i] > 0)
+      return (static_cast<double>(i) + (goal - acc) / hist[i]) / kBinsPerSample * sample;
+    acc += hist[i];
   }
-  return prev_r * sample;
+  return static_cast<double>(hist.size()) / kBinsPerSample * sample;
 }
 
 double firstMinimumArcmin(const cv::Mat& psf, double sample) {
@@ -284,7 +285,7 @@ MtfCurve mtfFromPsf(const cv::Mat& psf, double sample_arcmin, double pixel_deg, 
   const double dc = std::hypot(otf.at<cv::Vec2d>(0, 0)[0], otf.at<cv::Vec2d>(0, 0)[1]);
   MtfCurve m;
   for (int k = 0; k <= n / 2; ++k) {
-    const cv::Vec2d v = otf.at<cv::Vec2d>(0, k);
+    const cv::Vec2d& v = otf.at<cv::Vec2d>(0, k);
     m.cpd.push_back(k * df_cpd);
     m.mtf.push_back(std::hypot(v[0], v[1]) / dc);
   }

@@ -38,8 +38,10 @@ cv::Vec3d retinaSample(const cv::Mat& img, double x, double y) {
   const int y0 = std::min(static_cast<int>(cy), img.rows - 2 < 0 ? 0 : img.rows - 2);
   const int x1 = std::min(x0 + 1, img.cols - 1), y1 = std::min(y0 + 1, img.rows - 1);
   const double fx = cx - x0, fy = cy - y0;
-  const cv::Vec3f a = img.at<cv::Vec3f>(y0, x0), b = img.at<cv::Vec3f>(y0, x1), c = img.at<cv::Vec3f>(y1, x0),
-                  d = img.at<cv::Vec3f>(y1, x1);
+  const cv::Vec3f& a = img.at<cv::Vec3f>(y0, x0);
+  const cv::Vec3f& b = img.at<cv::Vec3f>(y0, x1);
+  const cv::Vec3f& c = img.at<cv::Vec3f>(y1, x0);
+  const cv::Vec3f& d = img.at<cv::Vec3f>(y1, x1);
   cv::Vec3d out;
   for (int k = 0; k < 3; ++k) out[k] = (1 - fy) * ((1 - fx) * a[k] + fx * b[k]) + fy * ((1 - fx) * c[k] + fx * d[k]);
   return out;
@@ -63,6 +65,34 @@ cv::Mat retinaBinPsf(const cv::Mat& psf, double sample_arcmin, double ppx, doubl
   }
   k /= cv::sum(k)[0];
   return k;
+}
+
+// Gaussian blur of a power plane (zero outside), sigma in pixels, power conserved. A wide
+// kernel runs on a k-times sum-pooled copy (sigma/k >= 4 px; pooling adds a k-px box, variance
+// k^2/12, under 0.6 % of sigma^2) and is brought back bilinearly, rescaled to the exact power.
+cv::Mat retinaGaussianBlur(const cv::Mat& plane, double sx, double sy) {
+  if (sx <= 0.05 && sy <= 0.05) return plane.clone();
+  const int k = std::max(1, static_cast<int>(std::floor(std::min(sx, sy) / 4.0)));
+  auto blur = [](const cv::Mat& in, double gx, double gy) {
+    cv::Mat out;
+    const int kx = 2 * static_cast<int>(std::ceil(4.0 * gx)) + 1, ky = 2 * static_cast<int>(std::ceil(4.0 * gy)) + 1;
+    cv::GaussianBlur(in, out, cv::Size(kx, ky), gx, gy, cv::BORDER_CONSTANT);
+    return out;
+  };
+  if (k == 1) return blur(plane, sx, sy);
+  const double power = cv::sum(plane)[0];
+  cv::Mat padded;
+  const int pw = (plane.cols + k - 1) / k * k, ph = (plane.rows + k - 1) / k * k;
+  cv::copyMakeBorder(plane, padded, 0, ph - plane.rows, 0, pw - plane.cols, cv::BORDER_CONSTANT, 0);
+  cv::Mat low;
+  cv::resize(padded, low, cv::Size(pw / k, ph / k), 0, 0, cv::INTER_AREA);  // block means
+  low = blur(low, sx / k, sy / k);
+  cv::Mat up;
+  cv::resize(low, up, padded.size(), 0, 0, cv::INTER_LINEAR);
+  cv::Mat out = up(cv::Rect(0, 0, plane.cols, plane.rows)).clone();
+  const double now = cv::sum(out)[0];
+  if (now > 0) out *= power / now;
+  return out;
 }
 
 }  // namespace
@@ -249,14 +279,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   for (auto& c : channels) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
   cv::Mat speckle_sum(canvas_size, CV_64F, cv::Scalar(0)), lit;
   for (std::size_t li = 0; li < planes.size(); ++li) {
-    cv::Mat blurred;
-    if (sig[li][0] > 0.05) {
-      const int kx = 2 * static_cast<int>(std::ceil(4.0 * sig[li][0])) + 1;
-      const int ky = 2 * static_cast<int>(std::ceil(4.0 * sig[li][1])) + 1;
-      cv::GaussianBlur(planes[li], blurred, cv::Size(kx, ky), sig[li][0], sig[li][1], cv::BORDER_CONSTANT);
-    } else {
-      blurred = planes[li];
-    }
+    cv::Mat blurred = retinaGaussianBlur(planes[li], sig[li][0], sig[li][1]);
     if (o.speckle_patterns > 0) {
       const cv::Mat s = speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
       const double before = cv::sum(blurred)[0];
@@ -287,7 +310,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     const double pitch = o.gaze_deg[1] + (0.5 - (v + 0.5) / fov.rows) * ang.foveal_fov_deg[1];
     const auto* row = fov.ptr<cv::Vec3f>(v);
     for (int u = 0; u < fov.cols; ++u) {
-      const cv::Vec3f val = row[u];
+      const cv::Vec3f& val = row[u];
       if (val[0] == 0 && val[1] == 0 && val[2] == 0) continue;
       const double yaw = o.gaze_deg[0] + ((u + 0.5) / fov.cols - 0.5) * ang.foveal_fov_deg[0];
       const double x = cx(yaw), y = cy(pitch);

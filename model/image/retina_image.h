@@ -13,11 +13,10 @@
 // deposit nothing (holes, vignetting), the efficiency map shades. The cell area is |det J| of
 // the ray grid's field angles (central differences on the grid, per laser). Then each laser's
 // plane is blurred by its peripheral PSF (retinal_psf.h, Gaussian, the line-of-sight value
-// used over the whole field) and added to its colour channel (>= 590 nm R, >= 490 nm G, else
-// B; lasers sharing a channel share its value equally).
-// Foveal: the preview's micro-OLED image (blend blur and weight included), pixel by pixel at
-// gaze + its equal-angle offset (paraxial magnifier), power value x pixel area, blurred per
-// channel by the foveal PSF of that primary (retinal_psf.h, its total PSF binned to canvas
+// used over the whole field; a wide one on a sum-pooled copy, see the .cpp) and added to its colour channel (>= 590 nm
+// R, >= 490 nm G, else B; lasers sharing a channel share its value equally). Foveal: the preview's micro-OLED image
+// (blend blur and weight included), pixel by pixel at gaze + its equal-angle offset (paraxial magnifier), power value x
+// pixel area, blurred per channel by the foveal PSF of that primary (retinal_psf.h, its total PSF binned to canvas
 // pixels).
 // Units: power = sum of linear value x area in canvas pixels (a uniform white field of
 // radiance 1 gives 1 per pixel). power_in_pupil is the sum of the deposited powers; every
