@@ -1,0 +1,161 @@
+// fovea-cli retina-image [SCENE] --image IMG --out OUT.png [--gaze-deg A[,B]] [--accommodation-d D]
+//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--seed S] [--rays N] [--no-blend] [--json]
+// Issue 29: the image on both displays -> the retinal image in visual angle (linear RGB,
+// written sRGB-encoded), with the line-of-sight spot and resolution of each display
+// (model/image/retina_image.h, model/analysis/retinal_psf.h; docs/physics.md section 6).
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "app/cli/cli_common.h"
+#include "model/image/image_io.h"
+#include "model/image/retina_image.h"
+
+namespace fovea::cli {
+namespace cmd_retina_image {  // one per command file: fovea-cli compiles in unity batches
+namespace {
+
+nlohmann::json spotJson(const SpotMetrics& m) {
+  return {{"spot_fwhm_arcmin", m.fwhm_arcmin}, {"cpd_mtf50", m.mtf50_cpd}, {"cpd_mtf10", m.mtf10_cpd}};
+}
+
+void install(CLI::App& app) {
+  auto* cmd = app.add_subcommand("retina-image",
+                                 "Retinal image of both displays at a gaze and accommodation (PSFs, shading, speckle)");
+  struct Args {
+    std::string scene, image, out, gaze = "0,0", accommodation = "1.25", shift = "0,0", speckle = "0", rays = "20000",
+                                   seed = "1";
+    bool json = false, noBlend = false;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("SCENE", a->scene, "scene file (default: the embedded prototype bench)");
+  cmd->add_option("--image", a->image, "image shown on both displays (spans the projector's FOV)")->required();
+  auto* out = cmd->add_option("--out", a->out, "retinal image to write (PNG, TIFF or EXR)")->required();
+  cmd->add_option("--gaze-deg", a->gaze, "gaze yaw[,pitch] in degrees (default 0,0)");
+  cmd->add_option("--accommodation-d", a->accommodation,
+                  "accommodation in diopters, 0..4 (default 1.25: the foveal image at 0.8 m)");
+  cmd->add_option("--hoe-shift-mm", a->shift, "HOE lateral shift x[,y] in mm (default 0,0)");
+  cmd->add_option("--speckle", a->speckle, "independent speckle patterns per laser (0: speckle off, default)");
+  cmd->add_option("--seed", a->seed, "speckle random seed (default 1)");
+  cmd->add_option("--rays", a->rays, "traced rays per laser (default 20000)");
+  cmd->add_flag("--no-blend", a->noBlend, "hard switch at eps_o instead of the B.2.3 blend");
+  cmd->add_flag("--json", a->json, "print the JSON result");
+  cmd->callback([a, out] {
+    checkOutputOption(out, a->out);
+    image::RetinaImageOptions o;
+    const auto g = parseNumberList(a->gaze, "--gaze-deg", 1, 2);
+    o.gaze_deg = {g[0], g.size() > 1 ? g[1] : 0.0};
+    if (std::abs(o.gaze_deg[0]) > 60 || std::abs(o.gaze_deg[1]) > 60)
+      usageError("--gaze-deg: each angle must be within -60..60 degrees");
+    o.accommodation_d = parseNumberList(a->accommodation, "--accommodation-d", 1, 1)[0];
+    if (o.accommodation_d < 0 || o.accommodation_d > 4)
+      usageError("--accommodation-d: must be within 0..4 D (the schematic eye's range), got '" + a->accommodation +
+                 "'");
+    const auto s = parseNumberList(a->shift, "--hoe-shift-mm", 1, 2);
+    o.hoe_shift_mm = {s[0], s.size() > 1 ? s[1] : 0.0};
+    const double speckle = parseNumberList(a->speckle, "--speckle", 1, 1)[0];
+    if (speckle < 0 || speckle > 1000 || speckle != std::floor(speckle))
+      usageError("--speckle: a whole number of patterns within 0..1000, got '" + a->speckle + "'");
+    o.speckle_patterns = static_cast<int>(speckle);
+    o.speckle_seed = parseSeed(a->seed, "--seed");
+    const double rays = parseNumberList(a->rays, "--rays", 1, 1)[0];
+    if (rays < 100 || rays > 1e6 || rays != std::floor(rays))
+      usageError("--rays: a whole number within 100..1000000, got '" + a->rays + "'");
+    o.rays = static_cast<int>(rays);
+    o.blend = !a->noBlend;
+    const Scene scene = loadSceneOrExit(a->scene);
+    cv::Mat target;
+    try {
+      target = image::readLinearRgb(a->image);
+    } catch (const image::ImageIoError& e) {
+      inputError(e.what());
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    image::RetinaImageResult r;
+    try {
+      r = image::renderRetinaImage(scene, target, o);
+    } catch (const std::invalid_argument& e) {
+      inputError(e.what());
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    try {
+      image::writeLinearRgb(a->out, r.image);
+    } catch (const image::ImageIoError& e) {
+      inputError(e.what());
+    }
+    nlohmann::json j;
+    const bool have_p = !r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid;
+    j["peripheral"] = have_p ? spotJson(r.peripheral[r.peripheral_reference].metrics) : nlohmann::json(nullptr);
+    j["foveal"] = r.foveal.empty() ? nlohmann::json(nullptr) : spotJson(r.foveal[r.foveal_reference].metrics);
+    j["speckle_contrast"] = r.speckle_contrast ? nlohmann::json(*r.speckle_contrast) : nlohmann::json(nullptr);
+    j["power_in_pupil"] = r.power_in_pupil;
+    j["power_on_retina"] = r.power_on_retina;
+    j["accommodation_d"] = o.accommodation_d;
+    j["gaze_deg"] = {o.gaze_deg[0], o.gaze_deg[1]};
+    // Additions.
+    j["hoe_shift_mm"] = {o.hoe_shift_mm[0], o.hoe_shift_mm[1]};
+    j["speckle_expected"] = r.speckle_expected ? nlohmann::json(*r.speckle_expected) : nlohmann::json(nullptr);
+    j["speckle_patterns"] = o.speckle_patterns;
+    j["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
+    j["power_off_canvas"] = r.power_off_canvas;
+    j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
+    nlohmann::json per = nlohmann::json::array();
+    for (const auto& p : r.peripheral) {
+      nlohmann::json e = spotJson(p.metrics);
+      e["wavelength_nm"] = p.wavelength_nm;
+      e["valid"] = p.valid;
+      e["layer"] = p.layer;
+      e["throw_mm"] = p.throw_mm;
+      e["hoe_to_pupil_mm"] = p.hoe_to_pupil_mm;
+      e["hoe_power_d"] = p.hoe_power_d;
+      e["lambda_eff_nm"] = p.lambda_eff_nm;
+      e["beam_radius_hoe_mm"] = p.beam_radius_hoe_mm;
+      e["beam_radius_pupil_mm"] = p.beam_radius_pupil_mm;
+      e["pupil_transmission"] = p.pupil_transmission;
+      per.push_back(e);
+    }
+    j["peripheral_per_wavelength"] = per;
+    nlohmann::json fov = nlohmann::json::array();
+    for (const auto& f : r.foveal) {
+      nlohmann::json e = spotJson(f.metrics);
+      e["wavelength_nm"] = f.wavelength_nm;
+      e["defocus_d"] = f.defocus_d;
+      e["geometric_blur_arcmin"] = f.geometric_blur_arcmin;
+      e["pixel_arcmin"] = f.pixel_arcmin;
+      e["combiner_rms_arcmin"] = f.combiner_rms_arcmin;
+      e["eye_only"] = spotJson(f.eye_only);
+      fov.push_back(e);
+    }
+    j["foveal_per_primary"] = fov;
+    j["rays_in_pupil"] = r.rays_in_pupil;
+    j["pixels_per_degree"] = r.pixels_per_degree;
+    j["size"] = {r.image.cols, r.image.rows};
+    j["render_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    if (a->json) {
+      printJson(j);
+      return;
+    }
+    std::ostringstream os;
+    os << "retinal image " << a->out << " (" << r.image.cols << "x" << r.image.rows << "), accommodation "
+       << o.accommodation_d << " D\n";
+    if (have_p) {
+      const auto& m = r.peripheral[r.peripheral_reference].metrics;
+      os << "peripheral: spot " << m.fwhm_arcmin << " arcmin, MTF50 " << m.mtf50_cpd << " cpd, MTF10 " << m.mtf10_cpd
+         << " cpd\n";
+    }
+    if (!r.foveal.empty()) {
+      const auto& m = r.foveal[r.foveal_reference].metrics;
+      os << "foveal: spot " << m.fwhm_arcmin << " arcmin, MTF50 " << m.mtf50_cpd << " cpd, MTF10 " << m.mtf10_cpd
+         << " cpd\n";
+    }
+    os << "power in pupil " << r.power_in_pupil << ", on retina " << r.power_on_retina << "\n";
+    printText(os.str());
+  });
+}
+
+const Registrar reg{"retina-image", &install};
+
+}  // namespace
+}  // namespace cmd_retina_image
+}  // namespace fovea::cli

@@ -1,0 +1,324 @@
+#include "model/analysis/retinal_psf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/core.hpp>
+
+#include "model/analysis/foveal_optics.h"
+#include "model/physics/eye_model.h"
+#include "model/physics/projector_rays.h"
+#include "model/physics/schematic_eye.h"
+#include "model/scene/scene_geometry.h"
+#include "model/units.h"
+
+namespace fovea {
+
+namespace {
+
+constexpr double kPsfFwhmPerRadius = 1.1774100225154747;  // sqrt(2 ln 2): Gaussian FWHM / 1/e^2 radius
+constexpr double kPsfArcminPerRad = 60.0 / kDeg;
+
+// Moves the zero frequency / zero angle to the grid centre (n even: its own inverse).
+void psfFftShift(cv::Mat& m) {
+  const int cx = m.cols / 2, cy = m.rows / 2;
+  cv::Mat q0(m, cv::Rect(0, 0, cx, cy)), q1(m, cv::Rect(cx, 0, cx, cy)), q2(m, cv::Rect(0, cy, cx, cy)),
+      q3(m, cv::Rect(cx, cy, cx, cy)), tmp;
+  q0.copyTo(tmp);
+  q3.copyTo(q0);
+  tmp.copyTo(q3);
+  q1.copyTo(tmp);
+  q2.copyTo(q1);
+  tmp.copyTo(q2);
+}
+
+double psfSincPi(double x) {
+  return std::abs(x) < 1e-12 ? 1.0 : std::sin(kPi * x) / (kPi * x);
+}
+
+}  // namespace
+
+SpotMetrics gaussianSpotMetrics(double w_arcmin) {
+  SpotMetrics m;
+  m.fwhm_arcmin = kPsfFwhmPerRadius * w_arcmin;
+  const double sigma_deg = 0.5 * w_arcmin / 60.0;
+  auto at = [&](double level) { return std::sqrt(-std::log(level) / 2.0) / (kPi * sigma_deg); };
+  m.mtf50_cpd = at(0.5);
+  m.mtf10_cpd = at(0.1);
+  return m;
+}
+
+PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double accommodation_d,
+                              std::array<double, 2> gaze_deg, std::array<double, 2> hoe_shift_mm) {
+  PeripheralSpot s;
+  s.wavelength_nm = wavelength_nm;
+  const EyePlacement eye = placeEye(scene, gaze_deg[0], gaze_deg[1]);
+  const Frame plate = frameOf(scene.hoe.pose);
+  const Eigen::Vector3d shift = plate.x() * hoe_shift_mm[0] + plate.y() * hoe_shift_mm[1];
+  const Eigen::Vector3d origin = plate.origin + shift;
+  const double denom = eye.gaze.dot(plate.z());
+  if (std::abs(denom) < 1e-12) return s;
+  const double t = (origin - eye.pupil_center).dot(plate.z()) / denom;
+  if (t <= 0) return s;
+  const Eigen::Vector3d hit = eye.pupil_center + t * eye.gaze;
+  const Eigen::Vector3d local = plate.toLocal(hit - shift);
+  if (std::abs(local.x()) > 0.5 * scene.hoe.size_mm[0] || std::abs(local.y()) > 0.5 * scene.hoe.size_mm[1]) return s;
+  if (scene.hoe_layers.empty()) return s;
+  // The layer recorded nearest the laser carries it (the others are far off Bragg).
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < scene.hoe_layers.size(); ++i)
+    if (std::abs(scene.hoe_layers[i].recording.wavelength_nm - wavelength_nm) <
+        std::abs(scene.hoe_layers[best].recording.wavelength_nm - wavelength_nm))
+      best = i;
+  const HoeRecording& rec = scene.hoe_layers[best].recording;
+  const Eigen::Vector3d nominal = hit - shift;  // the fringes at `hit` were recorded here
+  const double lr = (nominal - toVec(rec.reference_point_mm)).norm();
+  const double ls = (nominal - toVec(rec.signal_point_mm)).norm();
+  const double phi = (1.0 / lr + 1.0 / ls) * wavelength_nm / rec.wavelength_nm;  // 1/mm
+  s.layer = static_cast<int>(best);
+  s.hoe_power_d = phi * 1000.0;
+  s.throw_mm = (hit - projectorSource(scene.projector, 0.0)).norm();
+  s.hoe_to_pupil_mm = t;
+
+  const PixelBeamModel& pb = scene.projector.pixel_beam;
+  const double lambda_mm = wavelength_nm * 1e-6;
+  const double w0 = pb.waist_fwhm_um * 1e-3 / kPsfFwhmPerRadius;
+  const double theta = pb.divergence_mrad * 1e-3 / kPsfFwhmPerRadius;
+  double lambda_eff = kPi * w0 * theta;
+  double z_r = theta > 0 ? w0 / theta : 1e12;
+  if (lambda_eff < lambda_mm) {  // below the diffraction limit: a true Gaussian of that waist
+    lambda_eff = lambda_mm;
+    z_r = kPi * w0 * w0 / lambda_mm;
+  }
+  s.lambda_eff_nm = lambda_eff * 1e6;
+  std::complex<double> q(s.throw_mm - pb.waist_distance_mm, z_r);
+  // The beam-shaping lens (A.2), when the scene enables it, as an ideal thin lens where the
+  // chief ray passes its plane's foot point: q is propagated back to the lens, through it and on
+  // to the plate (the real thick lens and its obliquity are beam_shaping.h's business).
+  if (scene.lens.enabled && scene.lens.focal_length_mm != 0) {
+    const Eigen::Vector3d src = projectorSource(scene.projector, 0.0);
+    const Eigen::Vector3d u = (hit - src).normalized();
+    const double d1 = (toVec(scene.lens.pose.position_mm) - src).dot(u);
+    if (d1 > 0 && d1 < s.throw_mm) {
+      std::complex<double> ql(d1 - pb.waist_distance_mm, z_r);
+      ql = transformQ(thinLens(1.0 / scene.lens.focal_length_mm), ql);
+      q = transformQ(freeSpace(s.throw_mm - d1), ql);
+      s.through_lens = true;
+    }
+  }
+  s.beam_radius_hoe_mm = gaussianRadiusMm(q, lambda_eff);
+  q = transformQ(thinLens(phi), q);
+  q = transformQ(freeSpace(t), q);
+  s.beam_radius_pupil_mm = gaussianRadiusMm(q, lambda_eff);
+  const double a = 0.5 * scene.eye.pupil_diameter_mm;
+  s.pupil_transmission = 1.0 - std::exp(-2.0 * a * a / (s.beam_radius_pupil_mm * s.beam_radius_pupil_mm));
+  const SchematicEyeState e = navarroEye(accommodation_d, wavelength_nm);
+  q = transformQ(e.pupil_to_retina, q);
+  s.beam_radius_retina_mm = gaussianRadiusMm(q, lambda_eff);
+  s.radius_1e2_arcmin = s.beam_radius_retina_mm / e.retina_mm_per_rad * kPsfArcminPerRad;
+  s.metrics = gaussianSpotMetrics(s.radius_1e2_arcmin);
+  s.valid = true;
+  return s;
+}
+
+PupilPsf defocusedPupilPsf(double pupil_diameter_mm, double wavelength_nm, double defocus_d, int grid) {
+  if (!(pupil_diameter_mm > 0) || !(wavelength_nm > 0) || !std::isfinite(defocus_d))
+    throw std::invalid_argument("pupil PSF: pupil and wavelength must be positive, defocus finite");
+  const double lambda = wavelength_nm * 1e-6, d = pupil_diameter_mm, e = defocus_d / 1000.0;
+  // Field lambda/dx = lambda N_p / D must hold the geometric disc (|E| D rad) three times over
+  // plus 40 diffraction units; the defocus phase pi E r^2 / lambda then changes by at most
+  // pi E D^2/(lambda N_p) <= pi/1.5 per pupil sample. At least 128 samples across the pupil
+  // (angular pixel lambda/(8 D) at the 1024 grid).
+  const double blur_units = std::abs(e) * d * d / lambda;  // geometric diameter in lambda/D
+  int np = std::max(128, static_cast<int>(std::ceil(3.0 * blur_units + 40.0)));
+  int n = grid;
+  while (np > n / 2 && n < 2048) n *= 2;
+  np = std::min(np, n / 2);
+  const double dx = d / np;
+  cv::Mat field(n, n, CV_64FC2, cv::Scalar(0, 0));
+  const double a = 0.5 * d;
+  const int c = n / 2;
+  constexpr int kSub = 4;
+  for (int iy = c - np / 2 - 2; iy <= c + np / 2 + 2; ++iy) {
+    auto* row = field.ptr<cv::Vec2d>(iy);
+    for (int ix = c - np / 2 - 2; ix <= c + np / 2 + 2; ++ix) {
+      const double x = (ix - c) * dx, y = (iy - c) * dx, r = std::hypot(x, y);
+      double cover = 0;
+      if (r < a - dx) {
+        cover = 1;
+      } else if (r < a + dx) {  // anti-aliased edge: sub-sampled coverage
+        int in = 0;
+        for (int sy = 0; sy < kSub; ++sy)
+          for (int sx = 0; sx < kSub; ++sx)
+            in += std::hypot(x + ((sx + 0.5) / kSub - 0.5) * dx, y + ((sy + 0.5) / kSub - 0.5) * dx) <= a;
+        cover = static_cast<double>(in) / (kSub * kSub);
+      }
+      if (cover == 0) continue;
+      const double phase = kPi * e * r * r / lambda;  // k W, W = E r^2 / 2
+      row[ix] = cv::Vec2d(cover * std::cos(phase), cover * std::sin(phase));
+    }
+  }
+  psfFftShift(field);  // pupil centre to (0, 0) so the PSF comes out real-centred after the shift
+  cv::dft(field, field);
+  psfFftShift(field);
+  std::vector<cv::Mat> parts;
+  cv::split(field, parts);
+  cv::Mat psf;
+  cv::magnitude(parts[0], parts[1], psf);
+  psf = psf.mul(psf);
+  psf /= cv::sum(psf)[0];
+  PupilPsf out;
+  out.psf = psf;
+  out.sample_arcmin = lambda / (n * dx) * kPsfArcminPerRad;
+  out.pupil_diameter_mm = d;
+  out.wavelength_nm = wavelength_nm;
+  out.defocus_d = defocus_d;
+  return out;
+}
+
+double psfFwhmArcmin(const cv::Mat& psf, double sample) {
+  const int c = psf.cols / 2, r = psf.rows / 2;
+  const double* row = psf.ptr<double>(r);
+  double peak = 0;
+  for (int i = 0; i < psf.cols; ++i) peak = std::max(peak, row[i]);
+  const double half = 0.5 * peak;
+  auto outer = [&](int dir) {  // outermost crossing of half maximum on one side
+    int last = 0;
+    for (int k = 0; c + dir * k >= 0 && c + dir * k < psf.cols; ++k)
+      if (row[c + dir * k] >= half) last = k;
+    const int k1 = last + 1;
+    if (c + dir * k1 < 0 || c + dir * k1 >= psf.cols) return static_cast<double>(last);
+    const double v0 = row[c + dir * last], v1 = row[c + dir * k1];
+    return last + (v0 - half) / (v0 - v1);
+  };
+  return (outer(1) + outer(-1)) * sample;
+}
+
+double spotWidthArcmin(const cv::Mat& psf, double sample_arcmin) {
+  return 2.0 * encircledEnergyRadiusArcmin(psf, sample_arcmin, 0.5);
+}
+
+double encircledEnergyRadiusArcmin(const cv::Mat& psf, double sample, double fraction) {
+  // Radial histogram of the power in bins of 1/8 sample (O(N), no sort), cumulated, and the
+  // crossing interpolated linearly inside its bin.
+  const int c = psf.cols / 2, cy = psf.rows / 2;
+  constexpr double kBinsPerSample = 8.0;
+  const double r_max = std::hypot(psf.cols, psf.rows);
+  std::vector<double> hist(static_cast<std::size_t>(r_max * kBinsPerSample) + 2, 0.0);
+  double total = 0;
+  for (int y = 0; y < psf.rows; ++y) {
+    const double* row = psf.ptr<double>(y);
+    const double dy2 = static_cast<double>(y - cy) * (y - cy);
+    for (int x = 0; x < psf.cols; ++x) {
+      if (row[x] == 0) continue;
+      hist[static_cast<std::size_t>(std::sqrt((x - c) * (x - c) + dy2) * kBinsPerSample)] += row[x];
+      total += row[x];
+    }
+  }
+  const double goal = fraction * total;
+  double acc = 0;
+  for (std::size_t i = 0; i < hist.size(); ++i) {
+    if (acc + hist[i] >= goal && hist[i] > 0)
+      return (static_cast<double>(i) + (goal - acc) / hist[i]) / kBinsPerSample * sample;
+    acc += hist[i];
+  }
+  return static_cast<double>(hist.size()) / kBinsPerSample * sample;
+}
+
+double firstMinimumArcmin(const cv::Mat& psf, double sample) {
+  // The Airy zero is a simple zero of the amplitude: |amplitude| = sqrt(intensity) is V-shaped
+  // there, so the root is found by linear interpolation of the signed amplitude between the
+  // smallest sample and its smaller neighbour (a parabola through the intensity would be
+  // biased by the lobes' asymmetry).
+  const int c = psf.cols / 2;
+  const double* row = psf.ptr<double>(psf.rows / 2);
+  for (int k = 1; c + k + 1 < psf.cols; ++k) {
+    const double a = row[c + k - 1], b = row[c + k], d = row[c + k + 1];
+    if (b <= a && b <= d) {
+      const double sa = std::sqrt(a), sb = std::sqrt(b), sd = std::sqrt(d);
+      const double off = sd < sa ? sb / (sb + sd) : -sb / (sb + sa);
+      return (k + off) * sample;
+    }
+  }
+  return 0;
+}
+
+double MtfCurve::frequencyAt(double level) const {
+  for (std::size_t i = 1; i < mtf.size(); ++i)
+    if (mtf[i] < level && mtf[i - 1] >= level)
+      return cpd[i - 1] + (mtf[i - 1] - level) / (mtf[i - 1] - mtf[i]) * (cpd[i] - cpd[i - 1]);
+  return 0;
+}
+
+namespace {
+
+// OTF of a centred PSF grid (complex, zero frequency at (0,0)), times the pixel box and Gaussian factors.
+cv::Mat psfOtfWithFactors(const cv::Mat& psf, double sample_arcmin, double pixel_deg, double sigma_arcmin) {
+  cv::Mat f = psf.clone();
+  psfFftShift(f);
+  cv::Mat planes[] = {f, cv::Mat::zeros(f.size(), CV_64F)}, otf;
+  cv::merge(planes, 2, otf);
+  cv::dft(otf, otf);
+  const int n = psf.cols;
+  const double df_cpd = 60.0 / (n * sample_arcmin);  // cycles per degree per frequency bin
+  const double sigma_deg = sigma_arcmin / 60.0;
+  for (int y = 0; y < n; ++y) {
+    auto* row = otf.ptr<cv::Vec2d>(y);
+    const double fy = (y <= n / 2 ? y : y - n) * df_cpd;
+    for (int x = 0; x < n; ++x) {
+      const double fx = (x <= n / 2 ? x : x - n) * df_cpd;
+      const double g = psfSincPi(pixel_deg * fx) * psfSincPi(pixel_deg * fy) *
+                       std::exp(-2.0 * kPi * kPi * sigma_deg * sigma_deg * (fx * fx + fy * fy));
+      row[x] *= g;
+    }
+  }
+  return otf;
+}
+
+}  // namespace
+
+MtfCurve mtfFromPsf(const cv::Mat& psf, double sample_arcmin, double pixel_deg, double sigma_arcmin) {
+  const cv::Mat otf = psfOtfWithFactors(psf, sample_arcmin, pixel_deg, sigma_arcmin);
+  const int n = psf.cols;
+  const double df_cpd = 60.0 / (n * sample_arcmin);
+  const double dc = std::hypot(otf.at<cv::Vec2d>(0, 0)[0], otf.at<cv::Vec2d>(0, 0)[1]);
+  MtfCurve m;
+  for (int k = 0; k <= n / 2; ++k) {
+    const cv::Vec2d& v = otf.at<cv::Vec2d>(0, k);
+    m.cpd.push_back(k * df_cpd);
+    m.mtf.push_back(std::hypot(v[0], v[1]) / dc);
+  }
+  return m;
+}
+
+FovealSpot fovealSpot(const Scene& scene, double wavelength_nm, double accommodation_d, std::array<double, 2> gaze_deg,
+                      std::optional<double> pupil_diameter_mm) {
+  FovealSpot s;
+  s.wavelength_nm = wavelength_nm;
+  const double pupil = pupil_diameter_mm.value_or(scene.eye.pupil_diameter_mm);
+  const SchematicEyeState eye = navarroEye(accommodation_d, wavelength_nm);
+  const double d_f = scene.foveal_display.combiner.image_distance_mm;
+  s.defocus_d = defocusD(eye, -1000.0 / d_f);
+  s.geometric_blur_arcmin = std::abs(s.defocus_d) / 1000.0 * pupil * kPsfArcminPerRad;
+  s.pixel_arcmin = fovealFovDeg(scene)[0] / scene.foveal_display.pixels[0] * 60.0;
+  s.combiner_rms_arcmin = tracedCombinerMtf30(scene, gaze_deg[0], gaze_deg[0]).rms_blur_arcmin;
+  const PupilPsf p = defocusedPupilPsf(pupil, wavelength_nm, s.defocus_d);
+  s.sample_arcmin = p.sample_arcmin;
+  const MtfCurve eye_mtf = mtfFromPsf(p.psf, p.sample_arcmin);
+  s.eye_only = {spotWidthArcmin(p.psf, p.sample_arcmin), eye_mtf.frequencyAt(0.5), eye_mtf.frequencyAt(0.1)};
+  s.eye_profile_fwhm_arcmin = psfFwhmArcmin(p.psf, p.sample_arcmin);
+  const double pixel_deg = s.pixel_arcmin / 60.0;
+  const MtfCurve total = mtfFromPsf(p.psf, p.sample_arcmin, pixel_deg, s.combiner_rms_arcmin);
+  cv::Mat otf = psfOtfWithFactors(p.psf, p.sample_arcmin, pixel_deg, s.combiner_rms_arcmin), back;
+  cv::dft(otf, back, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  psfFftShift(back);
+  back = cv::max(back, 0.0);
+  back /= cv::sum(back)[0];
+  s.psf = back;
+  s.metrics = {spotWidthArcmin(back, p.sample_arcmin), total.frequencyAt(0.5), total.frequencyAt(0.1)};
+  s.profile_fwhm_arcmin = psfFwhmArcmin(back, p.sample_arcmin);
+  return s;
+}
+
+}  // namespace fovea

@@ -1,0 +1,115 @@
+// fovea-cli retina-image (issue 29): the JSON contract (every key), the written image, energy,
+// speckle, and clear refusals of bad input.
+#include <QtTest>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "model/image/image_io.h"
+#include "model/image/test_target.h"
+
+#include "tests/cli/cli_process.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+struct Run {
+  int code = -1;
+  QString out, err;
+  json j() const { return json::parse(out.toStdString()); }
+};
+Run cli(const QStringList& args) {
+  const auto r = fovea::testing::runFoveaCli(args);
+  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
+}
+fs::path tmpDir() {
+  auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_retina_image";
+  fs::create_directories(d);
+  return d;
+}
+QString target() {
+  const fs::path p = tmpDir() / "target.png";
+  if (!fs::exists(p))
+    fovea::image::writeLinearRgb(p.string(), fovea::image::makeTestTarget(cv::Size(480, 277), {40.0, 23.1}, 15.0));
+  return QString::fromStdString(p.string());
+}
+QString outPath(const char* name) {
+  return QString::fromStdString((tmpDir() / name).string());
+}
+void checkSpot(const json& s) {
+  QVERIFY(s.is_object());
+  for (const char* k : {"spot_fwhm_arcmin", "cpd_mtf50", "cpd_mtf10"}) {
+    QVERIFY2(s.contains(k) && s[k].is_number(), k);
+    QVERIFY(s[k].get<double>() > 0);
+  }
+  QVERIFY(s["cpd_mtf10"].get<double>() > s["cpd_mtf50"].get<double>());
+}
+}  // namespace
+
+class TestCliRetinaImage : public QObject {
+  Q_OBJECT
+ private slots:
+  void contractKeys() {
+    const QString out = outPath("retina.png");
+    const Run r = cli({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "5,2", "--accommodation-d",
+                       "2.5", "--rays", "4000", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json j = r.j();
+    checkSpot(j["peripheral"]);
+    checkSpot(j["foveal"]);
+    QVERIFY(j.contains("speckle_contrast") && j["speckle_contrast"].is_null());
+    QVERIFY(j["power_in_pupil"].is_number() && j["power_in_pupil"].get<double>() > 0);
+    QVERIFY(j["power_on_retina"].is_number());
+    QVERIFY(std::abs(j["power_on_retina"].get<double>() - j["power_in_pupil"].get<double>()) <=
+            1e-6 * j["power_in_pupil"].get<double>());
+    QCOMPARE(j["accommodation_d"].get<double>(), 2.5);
+    QCOMPARE(j["gaze_deg"], json({5.0, 2.0}));
+    // Far from the foveal image (0.8 m = 1.25 D) the inset blurs; the periphery does not care.
+    QVERIFY(j["foveal"]["cpd_mtf50"].get<double>() < 5.0);
+    const cv::Mat img = fovea::image::readLinearRgb(out.toStdString());
+    QCOMPARE(img.cols, 480);
+    QCOMPARE(img.rows, 277);
+    QVERIFY(cv::sum(img)[1] > 0);
+  }
+
+  void speckleIsReported() {
+    const Run r = cli({"retina-image", "--image", target(), "--out", outPath("speckle.png"), "--speckle", "3", "--rays",
+                       "4000", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const json j = r.j();
+    QVERIFY(j["speckle_contrast"].is_number());
+    const double expected = 1.0 / std::sqrt(3.0 * 3.0);  // 3 patterns x 3 lasers
+    QVERIFY(std::abs(j["speckle_contrast"].get<double>() / expected - 1) < 0.05);
+  }
+
+  void badInput() {
+    const QString out = outPath("bad.png");
+    Run r = cli({"retina-image", "--image", outPath("missing.png"), "--out", out});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("missing.png"), qPrintable(r.err));
+    r = cli({"retina-image", "--image", target(), "--out", out, "--accommodation-d", "nan"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--accommodation-d"), qPrintable(r.err));
+    r = cli({"retina-image", "--image", target(), "--out", out, "--accommodation-d", "7"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("0..4"), qPrintable(r.err));
+    r = cli({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "1,x"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--gaze-deg"), qPrintable(r.err));
+    r = cli({"retina-image", "--image", target(), "--out", out, "--speckle", "1.5"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--speckle"), qPrintable(r.err));
+    const fs::path notImage = tmpDir() / "not-an-image.png";
+    std::ofstream(notImage) << "hello";
+    r = cli({"retina-image", "--image", QString::fromStdString(notImage.string()), "--out", out});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("not-an-image.png"), qPrintable(r.err));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliRetinaImage)
+#include "tst_cli_retina_image.moc"
