@@ -175,20 +175,22 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
   p.setPen(QPen(QColor(230, 230, 230), 1));
   p.drawLine(at(-2, 0), at(2, 0));
   p.drawLine(at(0, -2), at(0, 2));
-  // FOV box and its numbers.
+  // The box of the drawn rays and its size, named as such: the extent of the ray grid's lit
+  // cells (about a ray spacing inside the exact FOV the header gives; issue 26, one number per
+  // quantity: the two definitions are told apart).
   if (box_.valid) {
     const QRectF b(at(box_.yaw_min, box_.pitch_max), at(box_.yaw_max, box_.pitch_min));
     p.setPen(QPen(QColor(255, 255, 255), 1.5, Qt::DashLine));
     p.setBrush(Qt::NoBrush);
     p.drawRect(b);
     p.setPen(Qt::white);
-    p.drawText(QRectF(b.left(), b.top() - 15, b.width(), 14), Qt::AlignCenter,
-               QString::fromUtf8("%1°").arg(box_.yaw_max - box_.yaw_min, 0, 'f', 1));
+    p.drawText(QRectF(b.left() - 40, b.top() - 15, b.width() + 80, 14), Qt::AlignCenter,
+               tr("%1° drawn rays").arg(box_.yaw_max - box_.yaw_min, 0, 'f', 1));
     p.save();
     p.translate(b.right() + 4, b.center().y());
     p.rotate(90);
-    p.drawText(QRectF(-40, -14, 80, 14), Qt::AlignCenter,
-               QString::fromUtf8("%1°").arg(box_.pitch_max - box_.pitch_min, 0, 'f', 1));
+    p.drawText(QRectF(-60, -14, 120, 14), Qt::AlignCenter,
+               tr("%1° drawn rays").arg(box_.pitch_max - box_.pitch_min, 0, 'f', 1));
     p.restore();
   }
   // The numbers, wrapped to the width (computed first: the plot starts below them).
