@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -193,7 +194,12 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
   };
   std::vector<Command> commands;
   std::vector<double> raw_err, filt_err, sigmas;
-  const double d_min = 1000.0 / (o.far_mm + radius), d_max = 1000.0 / (o.near_mm + radius);
+  // The focus stage's mechanical travel, centred on the 30-250 cm panel range (a fixation off
+  // axis at 30 cm needs its image plane nearer than 30 cm along z), short of the focal point.
+  const double mid = 0.5 * (r.travel.panel_near_mm + r.travel.panel_far_mm);
+  const double half = 0.5 * (focus.travel_max - focus.travel_min);
+  const double u_lo = std::max(0.5 * r.travel.panel_near_mm, mid - half),
+               u_hi = std::min(r.focus_model.focal_length_mm - 0.01, mid + half);
   const std::size_t frames = std::min(runs[0].frames.size(), runs[1].frames.size());
   for (std::size_t k = 0; k < frames; ++k) {
     const TrackedFrame& fl = runs[0].frames[k];
@@ -219,8 +225,9 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
       if (est.valid) raw_err.push_back(d - truth);
       filt_err.push_back(filtered - truth);
     }
-    const double target_d = std::clamp(filtered, d_min, d_max);
-    commands.push_back({fl.exposure_start_s + r.to_command_s + o.vergence_s, panelForDepth(1000.0 / target_d) - u0});
+    const double depth = filtered > 0 ? 1000.0 / filtered : std::numeric_limits<double>::infinity();
+    const double u = std::isfinite(depth) && depth > radius ? panelForDepth(depth) : u_hi;
+    commands.push_back({fl.exposure_start_s + r.to_command_s + o.vergence_s, std::clamp(u, u_lo, u_hi) - u0});
   }
   r.closed_form_sigma_d_mean = meanSd(sigmas)[0];
   const auto rs = meanSd(raw_err), fs = meanSd(filt_err);

@@ -46,7 +46,14 @@ DioptreUncertainty depthDioptreUncertainty(const BinocularGeometry& g, const std
   const double sec2l = 1 + tl * tl, sec2r = 1 + tr * tr;
   DioptreUncertainty u;
   u.sigma_d = k * std::sqrt(sec2l * sec2l * sl * sl + sec2r * sec2r * sr * sr);
+  // Yaw: the curvature of tan. Pitch (same sigma per axis): the lines pass each other at
+  // heights differing by ~rho (dp_L - dp_R); the closest approach then slides both points
+  // towards the eyes by rho (dp_L - dp_R)^2 / gamma^2 (gamma the horizontal vergence angle),
+  // so D rises by 1000 (sigma_L^2 + sigma_R^2) / (gamma^2 Z) on average.
+  const double gamma = (left_deg[0] - right_deg[0]) * kDeg;
+  const double z = g.ipd_mm / (tl - tr);
   u.bias_d = k * (sec2l * tl * sl * sl - sec2r * tr * sr * sr);
+  if (gamma > 0 && z > 0) u.bias_d += 1000 * (sl * sl + sr * sr) / (gamma * gamma * z);
   return u;
 }
 
