@@ -10,6 +10,7 @@
 #include "devices/bench/followed_axis.h"
 #include "devices/virtual/motion_profile.h"
 #include "model/gaze/gaze_calibration.h"
+#include "model/physics/display_camera_map.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 
@@ -299,6 +300,29 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
     r.fixations.push_back(out);
   }
   r.focus_move_s = statsOf(focus_moves);
+
+  // The lateral stages' moves per fixation change (trapezoids between the settled targets, the
+  // slower axis), per eye in its own train: the motion part of each path's budget.
+  for (std::size_t e = 0; e < 2; ++e) {
+    const apt::StageModel hoe = stageModelFor(scene, "hoe", o.loop, r.eyes[e].hoe_stage);
+    const apt::StageModel oled = stageModelFor(scene, "foveal_display", o.loop, r.eyes[e].oled_stage);
+    std::vector<double> hoe_moves, oled_moves;
+    for (const auto& seg : sched->segments) {
+      const auto from = ownGaze(static_cast<int>(e), seg.onset_s), to = ownGaze(static_cast<int>(e), seg.onset_s + 10);
+      const auto h0 = geometricHoeShiftForGaze(scene, from), h1 = geometricHoeShiftForGaze(scene, to);
+      const auto f0 = fovealShiftForGaze(scene, from), f1 = fovealShiftForGaze(scene, to);
+      double th = 0, tf = 0;
+      for (std::size_t k = 0; k < 2; ++k) {
+        th = std::max(th, MotionProfile::trapezoid(0, h0[k], h1[k], hoe.max_velocity, hoe.max_acceleration).endTime());
+        tf =
+            std::max(tf, MotionProfile::trapezoid(0, f0[k], f1[k], oled.max_velocity, oled.max_acceleration).endTime());
+      }
+      hoe_moves.push_back(th);
+      oled_moves.push_back(tf);
+    }
+    r.hoe_move_s[e] = statsOf(hoe_moves);
+    r.oled_move_s[e] = statsOf(oled_moves);
+  }
   return r;
 }
 

@@ -84,7 +84,8 @@ struct BinocularResult {
   FocusTravel travel;
   double focus_counts_per_mm = 0;
   double to_command_s = 0, vergence_s = 0;
-  Stats focus_move_s;
+  Stats focus_move_s;                            // per fixation change: the focus stage's move
+  std::array<Stats, 2> hoe_move_s, oled_move_s;  // the same for each eye's lateral stages
   int vergence_samples = 0, vergence_invalid = 0;
   double precision_sd_deg_left = 0, precision_sd_deg_right = 0;                             // per-axis sample SD used
   double closed_form_sigma_d_mean = 0;                                                      // over the samples
