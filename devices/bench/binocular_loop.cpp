@@ -295,7 +295,8 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
     for (std::size_t e = 0; e < 2; ++e) {
       const auto& er = r.eyes[e];
       if (i < er.off_fovea_per_saccade_s.size() && er.interval_per_saccade_s[i] > 0)
-        out.inset_on_fovea_fraction[e] = 1 - er.off_fovea_per_saccade_s[i] / er.interval_per_saccade_s[i];
+        out.inset_on_fovea_fraction[e] =
+            std::clamp(1 - er.off_fovea_per_saccade_s[i] / er.interval_per_saccade_s[i], 0.0, 1.0);
     }
     r.fixations.push_back(out);
   }
