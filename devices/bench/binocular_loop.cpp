@@ -251,7 +251,9 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
     const double target_d = 1000.0 / fixations[i].distance_mm;
     std::array<double, 2> err{0, 0};
     // Start at the first step at or after the onset; the steps run on a global grid.
-    for (double te = std::ceil(seg.onset_s / step - 1e-9) * step; te < end; te += step) {
+    for (auto k = static_cast<long long>(std::ceil(seg.onset_s / step - 1e-9));; ++k) {
+      const double te = static_cast<double>(k) * step;
+      if (te >= end) break;
       while (next < commands.size() && commands[next].t <= te) {
         for (auto& a : axes) a.command(commands[next].t, commands[next].offset);
         ++next;
