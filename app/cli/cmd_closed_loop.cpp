@@ -6,10 +6,24 @@
 // (capture, detect, map, command, stage motion), the foveal inset's error and the FOV lost
 // while the HOE is in transit; --latency-sweep repeats the stage simulation with extra
 // latency added before the command (the same tracked frames).
+//
+// fovea-cli closed-loop SCENE --binocular --fixations FILE|N [--ipd MM] [--seed S]
+//                         [--stage-model M] [--focus-stage-model M] [--fps F] [--json]
+// The binocular loop with focus (devices/bench/binocular_loop.h): both eyes (the left one on
+// the mirrored train) fixate points in depth and direction; vergence from both trackers drives
+// the focus stages. FILE: {"fixations": [{"distance_cm", "direction_deg": [yaw, pitch] or yaw,
+// "hold_ms"}]}; N: that many random fixations (30-250 cm) drawn with the seed.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <iostream>
+#include <limits>
 
 #include "app/cli/cli_common.h"
+#include "devices/bench/binocular_loop.h"
 #include "devices/bench/closed_gaze_loop.h"
+#include "model/io/json_fields.h"
+#include "model/io/json_input.h"
 
 namespace fovea::cli {
 namespace cmd_closed_loop {  // one per command file: fovea-cli compiles in unity batches
@@ -65,10 +79,164 @@ nlohmann::json resultJson(const devices::ClosedLoopResult& r) {
         {"duration_ms", statsJson(devices::statsOf(dur), ms)}}}};
 }
 
+// --fixations FILE|N: a whole number is a count, anything else a file.
+std::vector<devices::BinocularFixation> fixationsFrom(const std::string& text, unsigned seed) {
+  const bool count = !text.empty() && text.size() <= 4 && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) != 0;
+  });
+  if (count) {
+    const int n = std::stoi(text);
+    if (n < 1 || n > 200) usageError("--fixations: the count must be in [1, 200]");
+    return devices::randomFixations(n, seed * 2654435761u + 17u);
+  }
+  std::vector<devices::BinocularFixation> out;
+  try {
+    const nlohmann::json doc = readJsonFile(text);
+    const JsonFields top(doc, text);
+    for (const JsonFields& f : top.objects("fixations", true, 200)) {
+      devices::BinocularFixation b;
+      b.distance_mm = 10 * f.number("distance_cm", Range::closed(20, 1000));
+      const nlohmann::json* dir = f.get("direction_deg", false);
+      if (dir != nullptr && dir->is_array()) {
+        const auto v = f.numbers("direction_deg", Range::closed(-20, 20), 2);
+        b.direction_deg = {v[0], v[1]};
+      } else if (dir != nullptr) {
+        b.direction_deg = {f.number("direction_deg", Range::closed(-20, 20)), 0};
+      }
+      b.hold_s = f.number("hold_ms", Range::closed(100, 10000), 1000.0) / 1000;
+      out.push_back(b);
+    }
+    if (out.empty()) top.fail("fixations", "must hold at least one fixation");
+  } catch (const std::exception& e) {
+    inputError(std::string("closed-loop: ") + e.what());
+  }
+  return out;
+}
+
+nlohmann::json optionalMs(const std::optional<double>& s) {
+  return s ? nlohmann::json(*s * 1000) : nlohmann::json(nullptr);
+}
+
+nlohmann::json binocularJson(const devices::BinocularResult& r, const devices::BinocularOptions& o) {
+  const double ms = 1000;
+  nlohmann::json fix = nlohmann::json::array();
+  std::vector<double> times;
+  int within = 0;
+  for (const auto& f : r.fixations) {
+    // Unsettled fixations count as never (infinite) in the median.
+    times.push_back(f.time_to_tolerance_s ? *f.time_to_tolerance_s * ms : std::numeric_limits<double>::infinity());
+    if (f.time_to_tolerance_s && *f.time_to_tolerance_s <= 0.3 &&
+        std::abs(f.final_focus_error_worst_d) <= o.tolerance_d)
+      ++within;
+    fix.push_back(
+        {{"distance_cm", f.fixation.distance_mm / 10},
+         {"direction_deg", {f.fixation.direction_deg[0], f.fixation.direction_deg[1]}},
+         {"hold_ms", f.fixation.hold_s * ms},
+         {"onset_ms", f.onset_s * ms},
+         {"vergence_change_deg", f.vergence_change_deg},
+         {"time_to_0_25d_ms", optionalMs(f.time_to_tolerance_s)},
+         {"eye_time_to_0_25d_ms", optionalMs(f.eye_time_to_tolerance_s)},
+         {"final_focus_error_d", f.final_focus_error_worst_d},
+         {"final_focus_error_per_eye_d", {{"left", f.final_focus_error_d[0]}, {"right", f.final_focus_error_d[1]}}},
+         {"peak_focus_error_d", f.peak_focus_error_d},
+         {"focus_motion_ms", f.focus_motion_s * ms},
+         {"inset_on_fovea_fraction",
+          {{"left", f.inset_on_fovea_fraction[0]}, {"right", f.inset_on_fovea_fraction[1]}}}});
+  }
+  std::vector<double> sorted = times;
+  std::sort(sorted.begin(), sorted.end());
+  nlohmann::json median = nullptr;
+  if (!sorted.empty()) {
+    const std::size_t n = sorted.size();
+    const double m = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    if (std::isfinite(m)) median = m;
+  }
+  const auto& L = r.eyes[0];
+  const auto& R = r.eyes[1];
+  const double to_focus = r.to_command_s + r.vergence_s;
+  auto path = [&](double to_cmd, const devices::Stats& s) {
+    return s.count ? nlohmann::json(to_cmd * ms + s.mean * ms) : nlohmann::json(nullptr);
+  };
+  nlohmann::json out = {
+      {"fixations", fix},
+      {"summary",
+       {{"fixations", r.fixations.size()},
+        {"within_0_25d_fraction", r.fixations.empty() ? 0.0 : double(within) / double(r.fixations.size())},
+        {"median_time_to_0_25d_ms", median},
+        {"settled_fixations", std::count_if(times.begin(), times.end(), [](double x) { return std::isfinite(x); })},
+        {"target_ms", 300},
+        {"tolerance_d", o.tolerance_d}}},
+      {"latency_budget_ms",
+       {{"capture", R.capture_s * ms},
+        {"detect", R.detect_s * ms},
+        {"detect_measured_mean", 0.5 * (L.detect_measured_mean_s + R.detect_measured_mean_s) * ms},
+        {"map", R.map_s * ms},
+        {"command", R.command_s * ms},
+        {"to_command", r.to_command_s * ms},
+        {"vergence", r.vergence_s * ms},
+        {"focus_to_command", to_focus * ms},
+        {"hoe_motion", {{"left", statsJson(r.hoe_move_s[0], ms)}, {"right", statsJson(r.hoe_move_s[1], ms)}}},
+        {"oled_motion", {{"left", statsJson(r.oled_move_s[0], ms)}, {"right", statsJson(r.oled_move_s[1], ms)}}},
+        {"focus_motion", statsJson(r.focus_move_s, ms)},
+        {"eye_vergence_latency", o.dynamics.latency_s * ms},
+        {"paths",
+         {{"periphery_hoe",
+           {{"left", path(r.to_command_s, r.hoe_move_s[0])}, {"right", path(r.to_command_s, r.hoe_move_s[1])}}},
+          {"inset_oled",
+           {{"left", path(r.to_command_s, r.oled_move_s[0])}, {"right", path(r.to_command_s, r.oled_move_s[1])}}},
+          {"focus", path(to_focus, r.focus_move_s)}}}}},
+      {"stages", {{"hoe", R.hoe_stage}, {"foveal_display", R.oled_stage}, {"focus", r.focus_stage}}},
+      {"focus_stage",
+       {{"mirror_distance_mm", r.focus_model.mirror_distance_mm},
+        {"focal_length_mm", r.focus_model.focal_length_mm},
+        {"nominal_panel_mm", r.focus_model.nominal_panel_mm},
+        {"near_mm", r.travel.near_mm},
+        {"far_mm", r.travel.far_mm},
+        {"panel_near_mm", r.travel.panel_near_mm},
+        {"panel_far_mm", r.travel.panel_far_mm},
+        {"travel_mm", r.travel.travel_mm},
+        {"range_d", r.travel.range_d},
+        {"d_per_mm", {{"near", r.travel.sensitivity_near_d_per_mm}, {"far", r.travel.sensitivity_far_d_per_mm}}},
+        {"resolution_d_per_count",
+         {{"near", r.travel.sensitivity_near_d_per_mm / r.focus_counts_per_mm},
+          {"far", r.travel.sensitivity_far_d_per_mm / r.focus_counts_per_mm}}}}},
+      {"vergence",
+       {{"ipd_mm", o.geometry.ipd_mm},
+        {"samples", r.vergence_samples},
+        {"invalid", r.vergence_invalid},
+        {"tracker_sigma_deg", {{"left", r.precision_sd_deg_left}, {"right", r.precision_sd_deg_right}}},
+        {"closed_form_sigma_d", r.closed_form_sigma_d_mean},
+        {"measured_sigma_d_raw", r.measured_sigma_d_raw},
+        {"measured_bias_d_raw", r.measured_bias_d_raw},
+        {"measured_sigma_d_filtered", r.measured_sigma_d_filtered},
+        {"dynamics",
+         {{"latency_ms", o.dynamics.latency_s * ms},
+          {"tau_ms", o.dynamics.tau_s * ms},
+          {"peak_convergence_deg_s", o.dynamics.peak_convergence_deg_s},
+          {"peak_divergence_deg_s", o.dynamics.peak_divergence_deg_s}}}}},
+      {"eyes",
+       {{"left",
+         {{"inset_error_deg", statsJson(L.inset_error_deg)},
+          {"off_fovea_fraction", L.time_off_fovea_s / std::max(L.duration_s, 1e-12)},
+          {"calibration",
+           {{"accuracy_deg", L.calibration_accuracy_deg}, {"precision_deg", L.calibration_precision_deg}}},
+          {"frames", {{"captured", L.frames}, {"tracked", L.frames_found}}}}},
+        {"right",
+         {{"inset_error_deg", statsJson(R.inset_error_deg)},
+          {"off_fovea_fraction", R.time_off_fovea_s / std::max(R.duration_s, 1e-12)},
+          {"calibration",
+           {{"accuracy_deg", R.calibration_accuracy_deg}, {"precision_deg", R.calibration_precision_deg}}},
+          {"frames", {{"captured", R.frames}, {"tracked", R.frames_found}}}}}}},
+      {"duration_s", r.duration_s}};
+  return out;
+}
+
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("closed-loop", "Simulate the gaze-following loop on the virtual bench");
   struct Args {
-    std::string scene, stage_model, sweep;
+    std::string scene, stage_model, sweep, fixations, focus_stage_model;
+    bool binocular = false;
+    double ipd_mm = 63;
     int saccades = 10;
     unsigned seed = 1;
     double fps = 120;
@@ -83,8 +251,51 @@ void install(CLI::App& app) {
   cmd->add_option("--fps", a->fps, "eye-camera frame rate (default 120)")->check(CLI::Range(1.0, 2000.0));
   cmd->add_option("--latency-sweep", a->sweep, "extra latencies (ms), comma-separated, e.g. 0,10,20,50");
   cmd->add_flag("--json", a->json, "print the result as JSON");
+  cmd->add_flag("--binocular", a->binocular, "both eyes (the left on the mirrored train), vergence and focus stages");
+  cmd->add_option("--fixations", a->fixations, "with --binocular: a fixation file (JSON) or a count of random ones");
+  cmd->add_option("--ipd", a->ipd_mm, "with --binocular: interpupillary distance in mm (default 63)")
+      ->check(CLI::Range(40.0, 80.0));
+  cmd->add_option("--focus-stage-model", a->focus_stage_model,
+                  "with --binocular: the focus stages' model (default: the micro-OLED's)")
+      ->check(CLI::IsMember({"MTS25-Z8", "Z825B", "DDSM50"}));
   cmd->callback([a] {
+    if (!a->binocular && (!a->fixations.empty() || !a->focus_stage_model.empty()))
+      usageError("closed-loop: --fixations and --focus-stage-model need --binocular");
+    if (a->binocular && a->fixations.empty()) usageError("closed-loop: --binocular needs --fixations FILE|N");
+    if (a->binocular && !a->sweep.empty()) usageError("closed-loop: --latency-sweep is not available with --binocular");
     const Scene scene = loadSceneOrExit(a->scene);
+    if (a->binocular) {
+      devices::BinocularOptions bo;
+      bo.loop.camera_fps = a->fps;
+      if (bo.loop.exposure_s + bo.loop.readout_s > 1.0 / bo.loop.camera_fps)
+        bo.loop.exposure_s = 0.5 / bo.loop.camera_fps, bo.loop.readout_s = 0.4 / bo.loop.camera_fps;
+      if (!a->stage_model.empty()) bo.loop.stage_model = a->stage_model;
+      if (!a->focus_stage_model.empty()) bo.focus_stage_model = a->focus_stage_model;
+      bo.geometry.ipd_mm = a->ipd_mm;
+      bo.seed_right = a->seed;
+      bo.seed_left = a->seed + 1000003u;
+      const auto fixations = fixationsFrom(a->fixations, a->seed);
+      devices::BinocularResult br;
+      try {
+        br = devices::runBinocularLoop(scene, fixations, bo);
+      } catch (const std::invalid_argument& e) {
+        inputError(std::string("closed-loop: ") + e.what());
+      }
+      nlohmann::json out = binocularJson(br, bo);
+      out["scene"] = scene.name;
+      out["seed"] = a->seed;
+      out["binocular"] = true;
+      out["camera"] = {{"fps", bo.loop.camera_fps}, {"exposure_ms", bo.loop.exposure_s * 1000}};
+      if (a->json) {
+        printJson(out);
+        return;
+      }
+      std::cout << "binocular closed loop, " << br.fixations.size() << " fixations, focus stage " << br.focus_stage
+                << ": within 0.25 D in 300 ms for " << out["summary"]["within_0_25d_fraction"].get<double>() * 100
+                << " % of the fixations, median time to 0.25 D " << out["summary"]["median_time_to_0_25d_ms"].dump()
+                << " ms\n";
+      return;
+    }
     devices::ClosedLoopOptions o;
     o.saccades = a->saccades;
     o.seed = a->seed;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "devices/apt/stage_models.h"
+#include "devices/bench/followed_axis.h"
 #include "devices/virtual/motion_profile.h"
 #include "model/gaze/pupil_detector.h"
 #include "model/gaze/tracked_calibration.h"
@@ -22,46 +23,7 @@ double minimumJerk(double tau) {
   return tau * tau * tau * (10 - 15 * tau + 6 * tau * tau);
 }
 
-// One stage axis driven like TargetFollower: a move to the latest target starts when the
-// previous one ends.
-class FollowedAxis {
- public:
-  FollowedAxis(double v_max, double accel, double deadband) : v_(v_max), a_(accel), deadband_(deadband) {}
-  void command(double t, double target) {
-    advance(t);
-    if (std::abs(target - last_) <= deadband_) {
-      pending_.reset();
-      return;
-    }
-    if (profile_.activeAt(t)) {
-      pending_ = target;
-      return;
-    }
-    start(t, target);
-  }
-  void advance(double t) {
-    if (pending_ && profile_.endTime() <= t) {
-      start(profile_.endTime(), *pending_);
-      pending_.reset();
-    }
-  }
-  double position(double t) {
-    advance(t);
-    return profile_.position(t);
-  }
-  double busyUntil() const { return profile_.endTime(); }
-  bool pending() const { return pending_.has_value(); }
-
- private:
-  void start(double t, double target) {
-    profile_ = MotionProfile::trapezoid(t, profile_.position(t), target, v_, a_);
-    last_ = target;
-  }
-  double v_, a_, deadband_;
-  MotionProfile profile_ = MotionProfile::rest(0, 0);
-  double last_ = 0;
-  std::optional<double> pending_;
-};
+}  // namespace
 
 apt::StageModel stageModelFor(const Scene& scene, const std::string& element, const ClosedLoopOptions& o,
                               std::string& name) {
@@ -74,6 +36,8 @@ apt::StageModel stageModelFor(const Scene& scene, const std::string& element, co
   if (!m || m->rotation) throw std::invalid_argument("unknown linear stage model '" + name + "'");
   return *m;
 }
+
+namespace {
 
 // Fraction of a disc of radius e, centred d from the centre of a disc of radius p, inside it.
 double discOverlap(double d, double e, double p) {
@@ -96,6 +60,7 @@ double saccadeDuration(double amplitude_deg) {
 }
 
 std::array<double, 2> EyeTrajectory::gazeAt(double t) const {
+  if (path) return path(t);
   std::array<double, 2> g{0, 0};
   for (const auto& s : saccades) {
     if (t < s.onset_s) break;
@@ -149,8 +114,12 @@ Stats statsOf(std::vector<double> v) {
 }
 
 TrackedRun trackTrajectory(const Scene& scene, const ClosedLoopOptions& o) {
+  return trackEyeTrajectory(scene, o, makeSaccadeTrajectory(scene, o));
+}
+
+TrackedRun trackEyeTrajectory(const Scene& scene, const ClosedLoopOptions& o, EyeTrajectory trajectory) {
   TrackedRun run;
-  run.trajectory = makeSaccadeTrajectory(scene, o);
+  run.trajectory = std::move(trajectory);
   gaze::EyeAppearance eye;
   eye.pupil_diameter_mm = scene.eye.pupil_diameter_mm;
   gaze::TrackedCalibrationOptions co;
@@ -161,6 +130,7 @@ TrackedRun trackTrajectory(const Scene& scene, const ClosedLoopOptions& o) {
   const gaze::TrackedCalibration cal = gaze::calibrateWithTracker(co);
   run.calibration_accuracy_deg = cal.result.accuracy_mean_deg;
   run.calibration_precision_deg = cal.result.precision_rms_s2s_deg;
+  run.calibration_precision_sd_deg = cal.result.precision_sd_deg;
 
   gaze::EyeFrameSpec spec;
   spec.leds_mm = gaze::ledRing(o.camera, o.leds, co.led_ring_radius_mm);
@@ -221,7 +191,7 @@ ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const
   const double step = o.eval_step_s;
   std::vector<double> settle, hoe_moves, oled_moves;
   std::size_t saccade_i = 0;
-  double last_beyond = -1;
+  double last_beyond = -1, off_fovea_here = 0, interval_start = -1;
   for (double t = 0; t < run.trajectory.end_s; t += step) {
     // Commands issued up to t.
     while (next_frame < run.frames.size() && run.frames[next_frame].exposure_start_s + r.latency_to_command_s <= t) {
@@ -241,7 +211,11 @@ ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const
                                       std::atan(oled_y.position(t) / k) / kDeg};
     const double err = gaze::angleBetweenDeg(g, inset);
     inset_err.push_back(err);
-    if (err > scene.eye.fovea_radius_deg) r.time_off_fovea_s += step;
+    if (err > scene.eye.fovea_radius_deg) {
+      r.time_off_fovea_s += step;
+      if (saccade_i < r.saccades.size() && t >= r.saccades[saccade_i].onset_s) off_fovea_here += step;
+    }
+    if (saccade_i < r.saccades.size() && t >= r.saccades[saccade_i].onset_s && interval_start < 0) interval_start = t;
     if (err > o.settle_tolerance_deg) r.time_beyond_tolerance_s += step, last_beyond = t;
     const auto xp = geometricHoeShiftForGaze(scene, g);
     const double d = std::hypot(hoe_x.position(t) - xp[0], hoe_y.position(t) - xp[1]);
@@ -262,8 +236,12 @@ ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const
       const double cmd = s.onset_s + r.latency_to_command_s;
       hoe_moves.push_back(std::max(0.0, std::max(hoe_x.busyUntil(), hoe_y.busyUntil()) - cmd));
       oled_moves.push_back(std::max(0.0, std::max(oled_x.busyUntil(), oled_y.busyUntil()) - cmd));
+      r.off_fovea_per_saccade_s.push_back(off_fovea_here);
+      r.interval_per_saccade_s.push_back(t + step - interval_start);
       ++saccade_i;
       last_beyond = -1;
+      off_fovea_here = 0;
+      interval_start = -1;
     }
   }
   r.duration_s = run.trajectory.end_s;

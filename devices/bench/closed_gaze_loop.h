@@ -24,10 +24,12 @@
 // field is lost entirely when the focus leaves the pupil.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "devices/apt/stage_models.h"
 #include "model/gaze/eye_image_renderer.h"
 #include "model/gaze/gaze_calibration.h"
 #include "model/scene/scene.h"
@@ -71,6 +73,9 @@ struct SaccadeEvent {
 struct EyeTrajectory {
   std::vector<SaccadeEvent> saccades;
   double end_s = 0;
+  // When set, the gaze at a time (the binocular loop's eyes, which also verge); `saccades`
+  // then only marks the onsets for the per-saccade statistics.
+  std::function<std::array<double, 2>(double)> path;
   std::array<double, 2> gazeAt(double t_s) const;
 };
 // Main-sequence peak velocity (deg/s) and minimum-jerk duration (s) of a saccade.
@@ -99,15 +104,24 @@ struct ClosedLoopResult {
   int frames = 0, frames_found = 0;
   double calibration_accuracy_deg = 0, calibration_precision_deg = 0;
   std::vector<SaccadeEvent> saccades;
+  // Per saccade: time off the fovea and length of the interval from its onset to the next
+  // onset (or the end).
+  std::vector<double> off_fovea_per_saccade_s, interval_per_saccade_s;
 };
 
 // Renders and tracks the frames of a trajectory (the expensive part, run once).
 struct TrackedRun {
   EyeTrajectory trajectory;
   std::vector<TrackedFrame> frames;
-  double calibration_accuracy_deg = 0, calibration_precision_deg = 0;
+  double calibration_accuracy_deg = 0, calibration_precision_deg = 0, calibration_precision_sd_deg = 0;
 };
 TrackedRun trackTrajectory(const Scene& scene, const ClosedLoopOptions& o);
+// The same for a given trajectory (calibration and frames seeded by o.seed).
+TrackedRun trackEyeTrajectory(const Scene& scene, const ClosedLoopOptions& o, EyeTrajectory trajectory);
+// The stage model of `element`'s lateral axes (o.stage_model, else the scene's, else
+// MTS25-Z8); `name` receives it. Throws std::invalid_argument for an unknown model.
+apt::StageModel stageModelFor(const Scene& scene, const std::string& element, const ClosedLoopOptions& o,
+                              std::string& name);
 // Drives the stages from a tracked run and measures the inset error and FOV loss.
 // Throws std::invalid_argument for an unknown stage model.
 ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const ClosedLoopOptions& o);

@@ -1,0 +1,111 @@
+// fovea-cli closed-loop --binocular contract: every key of the issue-30 JSON (fixations,
+// summary, latency_budget_ms), a fixation file, usage and input errors; the monocular
+// command's keys unchanged beside it (tst_cli_track.cpp).
+#include <QtTest>
+#include "tests/test_paths.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/cli/cli_process.h"
+
+namespace {
+using Run = fovea::testing::CliOutput;
+Run cli(const QStringList& args) {
+  return fovea::testing::runFoveaCli(args, 300000);
+}
+std::filesystem::path tmpDir() {
+  const auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_binocular";
+  std::filesystem::create_directories(d);
+  return d;
+}
+const std::string kScene = std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
+
+void checkContract(const nlohmann::json& j, std::size_t fixations) {
+  QVERIFY(j.contains("fixations") && j["fixations"].is_array());
+  QCOMPARE(j["fixations"].size(), fixations);
+  for (const auto& f : j["fixations"]) {
+    for (const char* k :
+         {"distance_cm", "direction_deg", "time_to_0_25d_ms", "final_focus_error_d", "inset_on_fovea_fraction"})
+      QVERIFY2(f.contains(k), k);
+    QVERIFY(f["distance_cm"].is_number());
+    QVERIFY(f["direction_deg"].is_array() && f["direction_deg"].size() == 2);
+    QVERIFY(f["time_to_0_25d_ms"].is_number() || f["time_to_0_25d_ms"].is_null());
+    QVERIFY(f["final_focus_error_d"].is_number());
+    for (const char* e : {"left", "right"}) {
+      QVERIFY2(f["inset_on_fovea_fraction"].contains(e), e);
+      const double v = f["inset_on_fovea_fraction"][e].get<double>();
+      QVERIFY(v >= 0 && v <= 1);
+    }
+  }
+  const auto& s = j["summary"];
+  for (const char* k : {"fixations", "within_0_25d_fraction", "median_time_to_0_25d_ms"}) QVERIFY2(s.contains(k), k);
+  QCOMPARE(s["fixations"].get<std::size_t>(), fixations);
+  const double w = s["within_0_25d_fraction"].get<double>();
+  QVERIFY(w >= 0 && w <= 1);
+  const auto& b = j["latency_budget_ms"];
+  QVERIFY(b.is_object());
+  for (const char* k : {"capture", "detect", "map", "command", "to_command", "vergence", "focus_to_command",
+                        "hoe_motion", "oled_motion", "focus_motion", "paths"})
+    QVERIFY2(b.contains(k), k);
+  for (const char* k : {"left", "right"}) QVERIFY2(b["hoe_motion"].contains(k) && b["oled_motion"].contains(k), k);
+  QVERIFY(std::abs(b["to_command"].get<double>() - (b["capture"].get<double>() + b["detect"].get<double>() +
+                                                    b["map"].get<double>() + b["command"].get<double>())) < 1e-9);
+  QVERIFY(std::abs(b["focus_to_command"].get<double>() - b["to_command"].get<double>() - b["vergence"].get<double>()) <
+          1e-9);
+  for (const char* k : {"travel_mm", "range_d", "d_per_mm", "resolution_d_per_count"})
+    QVERIFY2(j["focus_stage"].contains(k), k);
+}
+}  // namespace
+
+class TestCliBinocular : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void usageAndInputErrors() {
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--fixations", "2"}).code, 2);
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--binocular"}).code, 2);
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", "0"}).code, 2);
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", "2", "--latency-sweep", "0"}).code, 2);
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", "/nonexistent/f.json"}).code, 1);
+    const std::string bad = (tmpDir() / "bad.json").string();
+    std::ofstream(bad) << R"({"fixations": [{"distance_cm": 5}]})";
+    const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", bad.c_str()});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("distance_cm"), r.err.constData());
+  }
+
+  void randomFixationsContract() {
+    const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", "2", "--seed", "3", "--fps", "60",
+                       "--stage-model", "DDSM50", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    checkContract(j, 2);
+    for (const auto& f : j["fixations"]) {
+      QVERIFY(f["distance_cm"].get<double>() >= 30 - 1e-9 && f["distance_cm"].get<double>() <= 250 + 1e-9);
+    }
+    QCOMPARE(j["stages"]["focus"].get<std::string>(), std::string("DDSM50"));
+    QVERIFY(j["vergence"]["samples"].get<int>() > 50);
+  }
+
+  void fixationFileContract() {
+    const std::string file = (tmpDir() / "fixations.json").string();
+    std::ofstream(file) << R"({"fixations": [{"distance_cm": 30, "direction_deg": [5, 0], "hold_ms": 700}]})";
+    const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", file.c_str(), "--fps", "60",
+                       "--stage-model", "DDSM50", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    checkContract(j, 1);
+    const auto& f = j["fixations"][0];
+    QCOMPARE(f["distance_cm"].get<double>(), 30.0);
+    QCOMPARE(f["direction_deg"][0].get<double>(), 5.0);
+    QVERIFY(f["time_to_0_25d_ms"].is_number());
+    QVERIFY(f["time_to_0_25d_ms"].get<double>() <= 300);
+    QVERIFY(std::abs(f["final_focus_error_d"].get<double>()) < 0.25);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliBinocular)
+#include "tst_cli_binocular.moc"

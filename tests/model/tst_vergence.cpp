@@ -1,0 +1,137 @@
+// Vergence from two gazes (model/gaze/vergence.h): the closest approach of the two lines of
+// sight recovers a grid of fixation points exactly; the closed-form dioptre uncertainty
+// matches a Monte-Carlo of noisy gazes; the eye's vergence response and the fixation filter.
+#include <QtTest>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "model/gaze/vergence.h"
+#include "model/scene/scene_geometry.h"
+#include "model/units.h"
+
+using namespace fovea;
+using namespace fovea::gaze;
+
+class TestVergence : public QObject {
+  Q_OBJECT
+  BinocularGeometry geom_;
+
+ private slots:
+  // Grid 30-250 cm x yaw +-20 deg x pitch {-10, 0, 10} deg: exact gazes give the point to 1e-9 mm.
+  void geometryGridIsExact() {
+    double worst = 0;
+    int n = 0;
+    for (double dist : {300.0, 400.0, 600.0, 800.0, 1200.0, 1800.0, 2500.0})
+      for (double yaw = -20; yaw <= 20; yaw += 5)
+        for (double pitch : {-10.0, 0.0, 10.0}) {
+          const Eigen::Vector3d p = gazeDirection(yaw, pitch) * dist;
+          const auto l = gazeTowardsDeg(geom_.leftCentre(), p), r = gazeTowardsDeg(geom_.rightCentre(), p);
+          const FixationEstimate e = fixationFromGazes(geom_, l, r);
+          QVERIFY(e.valid);
+          worst = std::max({worst, std::abs(e.distance_mm - dist), (e.point - p).norm(), e.miss_mm});
+          QVERIFY(std::abs(e.depth_mm - p.z()) < 1e-9);
+          // The closed form of the depth: D = 1000 (tan yL - tan yR) / IPD, exact.
+          const double d_closed = 1000 * (std::tan(l[0] * kDeg) - std::tan(r[0] * kDeg)) / geom_.ipd_mm;
+          QVERIFY(std::abs(d_closed - 1000 / p.z()) < 1e-12);
+          ++n;
+        }
+    qInfo("vergence grid: %d points, worst error %.3g mm", n, worst);
+    QVERIFY(worst < 1e-9);
+  }
+
+  void divergingOrParallelGazesAreInvalid() {
+    QVERIFY(!fixationFromGazes(geom_, {0, 0}, {0, 0}).valid);
+    QVERIFY(!fixationFromGazes(geom_, {-1, 0}, {1, 0}).valid);
+    QVERIFY(fixationFromGazes(geom_, {1, 0}, {-1, 0}).valid);
+  }
+
+  // Monte-Carlo of noisy gazes (yaw and pitch of both eyes) against the closed form.
+  void monteCarloMatchesClosedForm() {
+    std::mt19937 rng(7);
+    const double sigma_deg = 0.1;
+    std::normal_distribution<double> noise(0, sigma_deg);
+    constexpr int kTrials = 40000;
+    for (double dist : {300.0, 800.0, 2500.0})
+      for (double yaw : {0.0, 15.0})
+        for (double pitch : {0.0, 10.0}) {
+          const Eigen::Vector3d p = gazeDirection(yaw, pitch) * dist;
+          const auto l = gazeTowardsDeg(geom_.leftCentre(), p), r = gazeTowardsDeg(geom_.rightCentre(), p);
+          const double truth = 1000 / p.z();
+          double s = 0, ss = 0;
+          for (int i = 0; i < kTrials; ++i) {
+            const FixationEstimate e = fixationFromGazes(geom_, {l[0] + noise(rng), l[1] + noise(rng)},
+                                                         {r[0] + noise(rng), r[1] + noise(rng)});
+            // Far fixations may diverge under noise: the depth is then "beyond infinity", D < 0;
+            // use the closed-form depth estimator's D there (the same quantity for valid ones).
+            const double d = e.valid ? 1000 / e.depth_mm : 0;
+            s += d - truth;
+            ss += (d - truth) * (d - truth);
+          }
+          const double mean = s / kTrials, sd = std::sqrt(ss / kTrials - mean * mean);
+          const DioptreUncertainty u = depthDioptreUncertainty(geom_, l, r, sigma_deg, sigma_deg);
+          qInfo("%.0f mm yaw %.0f pitch %.0f: MC sd %.5f D mean %.5f D; closed form sd %.5f bias %.5f", dist, yaw,
+                pitch, sd, mean, u.sigma_d, u.bias_d);
+          QVERIFY2(std::abs(sd / u.sigma_d - 1) < 0.03, "sd");
+          QVERIFY2(std::abs(mean - u.bias_d) < 4 * u.sigma_d / std::sqrt(double(kTrials)) + 2e-4, "mean");
+        }
+  }
+
+  void vergenceResponse() {
+    const VergenceDynamics v;
+    const double from = vergenceForDistanceDeg(geom_, 2500), to = vergenceForDistanceDeg(geom_, 300);
+    QVERIFY(std::abs(distanceForVergenceMm(geom_, to) - 300) < 1e-9);
+    QCOMPARE(vergenceAngleAt(v, from, to, -0.1), from);
+    // Ramp at the peak velocity, then exponential with tau; continuous velocity at the knee.
+    const double a = to - from, knee = v.peak_convergence_deg_s * v.tau_s;
+    QVERIFY(a > knee);
+    const double t_ramp = (a - knee) / v.peak_convergence_deg_s;
+    const double h = 1e-6;
+    const double slope0 = (vergenceAngleAt(v, from, to, h) - from) / h;
+    QVERIFY(std::abs(slope0 - v.peak_convergence_deg_s) < 1e-6);
+    const double before = (vergenceAngleAt(v, from, to, t_ramp) - vergenceAngleAt(v, from, to, t_ramp - h)) / h;
+    const double after = (vergenceAngleAt(v, from, to, t_ramp + h) - vergenceAngleAt(v, from, to, t_ramp)) / h;
+    QVERIFY(std::abs(before - after) < 1e-3);
+    QVERIFY(std::abs((to - vergenceAngleAt(v, from, to, t_ramp + v.tau_s)) - knee / std::exp(1.0)) < 1e-9);
+    QVERIFY(std::abs(vergenceAngleAt(v, from, to, 5.0) - to) < 1e-9);
+    // Divergence is slower.
+    QVERIFY(std::abs(vergenceAngleAt(v, to, from, 0.05) - to) < std::abs(vergenceAngleAt(v, from, to, 0.05) - from));
+  }
+
+  void filterSmoothsAndFollows() {
+    const VergenceDynamics v;
+    FixationDistanceFilter f(geom_, v);
+    std::mt19937 rng(3);
+    const double sigma = 0.03;
+    std::normal_distribution<double> noise(0, sigma);
+    const double dt = 1.0 / 120;
+    // Steady fixation at 1.25 D: the filtered noise is below the raw.
+    double ss = 0;
+    int n = 0;
+    for (int k = 0; k < 600; ++k) {
+      const double y = f.update(k * dt, 1.25 + noise(rng), sigma);
+      if (k > 120) ss += (y - 1.25) * (y - 1.25), ++n;
+    }
+    const double sd = std::sqrt(ss / n);
+    qInfo("filter: steady noise %.4f D (raw %.4f), q %.0f D^2/s^3", sd, sigma, f.q());
+    // The filter is tuned to follow the eye's fastest vergence (q from v_peak and tau), so it
+    // smooths little: the tracker noise in dioptres (0.02-0.04 D) is far below 0.25 D anyway.
+    QVERIFY(sd < 0.95 * sigma);
+    // A vergence step 250 -> 30 cm: the filter's error against the noiseless eye stays small.
+    const double g0 = vergenceForDistanceDeg(geom_, 2500), g1 = vergenceForDistanceDeg(geom_, 300);
+    FixationDistanceFilter g(geom_, v);
+    double worst = 0;
+    for (int k = 0; k < 240; ++k) {
+      const double t = k * dt;
+      const double truth = 1000 / distanceForVergenceMm(geom_, vergenceAngleAt(v, g0, g1, t - 0.5));
+      const double y = g.update(t, truth + noise(rng), sigma);
+      if (k > 10) worst = std::max(worst, std::abs(y - truth));
+    }
+    qInfo("filter: worst error on a 250 -> 30 cm vergence step %.3f D", worst);
+    QVERIFY(worst < 0.25);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestVergence)
+#include "tst_vergence.moc"
