@@ -102,7 +102,13 @@ void MainWindow::resetLayout() {
   view_->resetCamera();
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() {
+  // The document is a child: ~QWidget deletes it after this object is no MainWindow any more,
+  // and its undo stack's clear() then emits indexChanged into the lambdas above (UBSan: member
+  // access on a QWidget; the status bar touched mid-destruction corrupted the heap under load).
+  QObject::disconnect(document_, nullptr, this, nullptr);
+  QObject::disconnect(document_->undoStack(), nullptr, this, nullptr);
+}
 
 void MainWindow::setBenchAutoStart(bool on) {
   benchAutoStart = on;
