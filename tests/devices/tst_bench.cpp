@@ -2,6 +2,7 @@
 // bench, each axis on its own worker thread; element-coordinate moves through the
 // bindings, soft limits, and the e-stop interrupting a running move.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <chrono>
@@ -15,11 +16,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-Scene prototype() {
-  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
-  if (!r.ok()) qFatal("prototype scene does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 bool sentMoveAbsolute(const VirtualAptController& c, std::int32_t counts) {
   for (const auto& m : c.received())
     if (auto p = apt::parseMoveAbsolute(m); p && p->value == counts) return true;

@@ -3,6 +3,7 @@
 // images (to 1e-12), a direct-drive focus stage meets 0.25 D within 300 ms over 30-250 cm and
 // the prototype's screw stage does not, and the vergence noise matches the closed form.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -14,11 +15,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-Scene prototype() {
-  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
-  if (!r.ok()) qFatal("prototype scene does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 BinocularOptions synthetic(const char* stage) {
   BinocularOptions o;
   o.track = false;

@@ -2,6 +2,7 @@
 // against the true gaze, and the stage simulation: fast stages keep the inset on the
 // fovea, the prototype's slow screw stages do not, and added latency makes it worse.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -16,11 +17,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-Scene prototype() {
-  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
-  if (!r.ok()) qFatal("prototype scene does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 ClosedLoopOptions smallRun() {
   ClosedLoopOptions o;
   o.saccades = 3;

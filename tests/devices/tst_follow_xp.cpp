@@ -3,6 +3,7 @@
 // table take x_p from model/analysis/hoe_travel.h, so at a gaze the sweep samples they give
 // the sweep's x_p (to 0.01 mm) under either x_p rule.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -17,11 +18,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-Scene prototype() {
-  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
-  if (!r.ok()) qFatal("prototype scene does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 }  // namespace
 
 class TestFollowXp : public QObject {

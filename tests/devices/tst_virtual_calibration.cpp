@@ -5,6 +5,7 @@
 // keep every capture in their folder and resume where they stopped; measurement imports are
 // checked. The virtual camera shows what the stages do.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <filesystem>
@@ -22,9 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Scene prototype() {
-  return *loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json").scene;
-}
+using fovea::testing::prototype;
 
 fs::path tmpDir(const std::string& name) {
   const fs::path d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / name;

@@ -6,6 +6,7 @@
 // in the row and in the Messages dock, Esc leaving "stopped at X" in the rows, and the main
 // window's Bench dock marked VIRTUAL.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <QRegularExpression>
@@ -49,11 +50,7 @@ std::filesystem::path tmpDir(const std::string& name) {
   return d;
 }
 
-Scene prototype() {
-  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
-  if (!r.ok()) qFatal("prototype scene does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 
 int moveAbsoluteCount(const devices::VirtualAptController& c) {
   int n = 0;

@@ -7,13 +7,12 @@
 #include "model/analysis/angular_resolution.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 }  // namespace
 
 class TestAngularResolution : public QObject {

@@ -1,6 +1,7 @@
 // Beam-shaping lens (A.2): the pixel-beam model's closed forms, the thin-lens limits, and
 // the optimiser beating the unshaped beam.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -15,9 +16,7 @@
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 // A bench where the HOE faces the projector squarely at distance L on its axis.
 Scene squareBench(double L) {

@@ -16,15 +16,13 @@
 #include "model/image/warp.h"
 #include "model/physics/display_camera_map.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
 
-Scene prototype() {
-  auto r = parseScene(std::string(embeddedDefaultSceneJson()), "prototype");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 
 // Display points on a grid over a board's inner-corner rectangle.
 std::vector<Eigen::Vector2d> boardGrid(const image::DisplayPattern& b, int n = 15) {

@@ -18,13 +18,12 @@
 #include "model/analysis/fit_uncertainty.h"
 #include "model/scene/scene_io.h"
 #include "model/scene/scene_parameters.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 template <class F>
 QString refusal(F&& f) {

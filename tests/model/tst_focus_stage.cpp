@@ -2,6 +2,7 @@
 // both ways, the paraxial magnifier against rays traced through the spherical combiner
 // (to 0.01 D), the travel for 30-250 cm and the stage's resolution in dioptres.
 #include <QtTest>
+#include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -12,11 +13,7 @@
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  auto r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json");
-  if (!r.ok()) qFatal("prototype scene does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 }  // namespace
 
 class TestFocusStage : public QObject {

@@ -16,14 +16,13 @@
 #include "model/physics/trace_pipeline.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
 
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 ContinuousFov denseFov(const Scene& scene, int rays, const std::array<double, 2>& gaze, double lambda) {
   TraceOptions t;

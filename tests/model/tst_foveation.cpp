@@ -13,14 +13,13 @@
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 using namespace fovea::image;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "embedded").scene;
-}
+using fovea::testing::prototype;
 cv::Mat constant(float v) {
   return cv::Mat(1080, 1920, CV_32FC3, cv::Scalar::all(v));
 }

@@ -10,13 +10,12 @@
 #include "model/analysis/gaze_studies.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 // Maxwellian toy: the focus sits at the HOE shift (or moves -0.5 mm per mm of source
 // shift); rays miss the pupil when the focus is more than 1 mm from the pupil centre

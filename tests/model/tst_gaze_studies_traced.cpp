@@ -12,13 +12,12 @@
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 FovEvaluator evaluator() {
   TraceEvaluatorOptions o;
   o.rays = 3000;

@@ -11,15 +11,12 @@
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-  if (!r.ok()) qFatal("prototype does not load");
-  return *r.scene;
-}
+using fovea::testing::prototype;
 // Distance from point q to the ray origin + t dir (t >= 0).
 double distanceToRay(const Eigen::Vector3d& q, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) {
   const double t = std::max(0.0, (q - origin).dot(dir));

@@ -12,13 +12,12 @@
 #include "model/analysis/trace_fov.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 }  // namespace
 
 class TestHoeTravel : public QObject {

@@ -20,15 +20,14 @@
 #include "model/color/measurement_csv.h"
 #include "model/io/json_fields.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 using nlohmann::json;
 
 namespace {
 
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 json spec(const json& patch = json::object()) {
   json j = json::parse(R"({

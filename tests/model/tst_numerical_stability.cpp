@@ -45,6 +45,7 @@
 #include "model/physics/trace_pipeline.h"
 #include "model/physics/trace_reference.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 using LD = long double;
@@ -427,9 +428,7 @@ void checkSample(const Sample& s, std::uint64_t seed, long i, Tally& t) {
 }
 
 // ---- Random scenes ---------------------------------------------------------------------------
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 Scene randomScene(Rng& r) {
   Scene s = prototype();

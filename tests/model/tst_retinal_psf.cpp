@@ -13,13 +13,12 @@
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 constexpr double kArcmin = 60.0 / kDeg;  // arcmin per radian
 }  // namespace
 

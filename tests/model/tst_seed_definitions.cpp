@@ -12,13 +12,12 @@
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 // The prototype with its projector on the bench axis behind the eye, aimed at the HOE centre
 // and recorded from there: mirror-symmetric about the y-z plane.

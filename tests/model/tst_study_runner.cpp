@@ -11,13 +11,12 @@
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/study_runner.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 // A deterministic, moderately expensive per-sample computation with rounding-sensitive
 // floating-point sums (any shared accumulator across threads would change the bits).

@@ -12,13 +12,12 @@
 #include "model/analysis/tolerance_stats.h"
 #include "model/analysis/tolerance_trial.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 nlohmann::json specJson() {
   return nlohmann::json::parse(R"({

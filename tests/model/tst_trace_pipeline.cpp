@@ -15,13 +15,12 @@
 #include "model/physics/trace_reference.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
+#include "tests/prototype_scene.h"
 
 using namespace fovea;
 
 namespace {
-Scene prototype() {
-  return *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
-}
+using fovea::testing::prototype;
 
 std::set<std::string> stageSet(const TraceStats& s) {
   return {s.stages_recomputed.begin(), s.stages_recomputed.end()};
