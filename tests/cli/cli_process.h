@@ -4,7 +4,9 @@
 #include <QByteArray>
 #include <QProcess>
 #include <QProcessEnvironment>
+#include <QString>
 #include <QStringList>
+#include <nlohmann/json.hpp>
 #include "tests/test_paths.h"
 
 namespace fovea::testing {
@@ -38,6 +40,19 @@ inline CliOutput runFoveaCli(const QStringList& args, int timeout_ms, const QByt
   call.timeout_ms = timeout_ms;
   call.stdin_data = stdin_data;
   return runFoveaCli(args, call);
+}
+
+// The same call with both streams as text and stdout parsed as JSON on demand (j() throws on
+// output that is not JSON: the test then fails with the parser's message).
+struct CliText {
+  int code = -1;
+  QString out, err;
+  nlohmann::json j() const { return nlohmann::json::parse(out.toStdString()); }
+};
+
+inline CliText cliText(const QStringList& args, int timeout_ms = 120000) {
+  const CliOutput r = runFoveaCli(args, timeout_ms);
+  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
 }
 
 }  // namespace fovea::testing

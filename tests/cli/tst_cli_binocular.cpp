@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 using Run = fovea::testing::CliOutput;
@@ -17,9 +18,7 @@ Run cli(const QStringList& args) {
   return fovea::testing::runFoveaCli(args, 300000);
 }
 std::filesystem::path tmpDir() {
-  const auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_binocular";
-  std::filesystem::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir("cli_binocular");
 }
 const std::string kScene = std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
 

@@ -3,12 +3,15 @@
 // warps to < 0.5 px RMS; --output keeps the session; missing --virtual is a usage error.
 #include <QtTest>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 using Run = fovea::testing::CliOutput;
@@ -22,8 +25,7 @@ class TestCliCalibrate : public QObject {
  private slots:
   void geometricVirtualJson() {
     namespace fs = std::filesystem;
-    const fs::path out = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_calibrate";
-    fs::remove_all(out);
+    const fs::path out = fovea::testing::testTmpDir("cli_calibrate", true);
     const Run r =
         cli({"calibrate", "geometric", "--virtual", "--json", "--output", QString::fromStdString(out.string())});
     QVERIFY2(r.code == 0, r.err.constData());
@@ -35,8 +37,9 @@ class TestCliCalibrate : public QObject {
     QCOMPARE(j["captures"].get<int>(), 8);  // 5 gazes x projector + 3 within the micro-OLED's reach
     qInfo("residual %.3f px, ground truth %.3f px", j["residual_px_rms"].get<double>(),
           j["ground_truth_error_px"].get<double>());
-    QVERIFY(j["residual_px_rms"].get<double>() < 0.5);
-    QVERIFY(j["ground_truth_error_px"].get<double>() < 0.5);
+    // docs/bench-devices.md prints residual 0.048 px, ground truth 0.044 px (seed 1): to those digits.
+    QVERIFY(std::abs(j["residual_px_rms"].get<double>() - 0.048) < 0.0005);
+    QVERIFY(std::abs(j["ground_truth_error_px"].get<double>() - 0.044) < 0.0005);
     // The session folder: manifest, one PNG per capture, the per-capture report.
     std::ifstream m(out / "manifest.json");
     const auto manifest = nlohmann::json::parse(m);
@@ -45,7 +48,10 @@ class TestCliCalibrate : public QObject {
     std::ifstream c(out / "calibration.json");
     const auto report = nlohmann::json::parse(c);
     QCOMPARE(report["per_capture"].size(), std::size_t{8});
-    for (const auto& p : report["per_capture"]) QVERIFY(p["ground_truth_error_px"].get<double>() < 0.5);
+    for (const auto& p : report["per_capture"]) {  // docs: per capture 0.02-0.06 px
+      const double e = p["ground_truth_error_px"].get<double>();
+      QVERIFY2(e >= 0.015 && e < 0.065, qPrintable(QString::number(e)));
+    }
   }
 
   void needsVirtual() {

@@ -14,24 +14,16 @@
 #include "model/image/image_io.h"
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-struct Run {
-  int code = -1;
-  QString out, err;
-  json j() const { return json::parse(out.toStdString()); }
-};
-Run cli(const QStringList& args) {
-  const auto r = fovea::testing::runFoveaCli(args);
-  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
-}
+using Run = fovea::testing::CliText;
+using fovea::testing::cliText;
 fs::path tmpDir() {
-  auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_preview";
-  fs::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir("cli_preview");
 }
 QString writeJson(const std::string& name, const json& j) {
   const fs::path p = tmpDir() / name;
@@ -60,7 +52,7 @@ class TestCliPreview : public QObject {
   void colorCalibrateAndMap() {
     const QString meas = writeJson("meas.json", measurementsJson());
     const QString cal = QString::fromStdString((tmpDir() / "cal.json").string());
-    Run r = cli({"color-calibrate", meas, "--out", cal, "--json"});
+    Run r = cliText({"color-calibrate", meas, "--out", cal, "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json j = r.j();
     for (const char* k : {"R", "G", "B"}) QCOMPARE(j["common_primaries_xy"][k].size(), std::size_t{2});
@@ -73,36 +65,36 @@ class TestCliPreview : public QObject {
     // Full white: some channel of one display at 255, none above; black: all zero.
     double top = 0;
     for (const char* d : {"foveal", "peripheral"}) {
-      r = cli({"color-map", cal, "--display", d, "--rgb", "255,255,255", "--json"});
+      r = cliText({"color-map", cal, "--display", d, "--rgb", "255,255,255", "--json"});
       QVERIFY2(r.code == 0, qPrintable(r.err));
       const json white = r.j();
       for (const auto& v : white["drive"]) {
         QVERIFY(v.get<double>() >= 0 && v.get<double>() <= 255.0 + 1e-9);
         top = std::max(top, v.get<double>());
       }
-      r = cli({"color-map", cal, "--display", d, "--rgb", "0,0,0", "--json"});
+      r = cliText({"color-map", cal, "--display", d, "--rgb", "0,0,0", "--json"});
       const json black = r.j();
       for (const auto& v : black["drive"]) QCOMPARE(v.get<double>(), 0.0);
     }
     QVERIFY(std::abs(top - 255.0) < 1e-6);
     // The two displays' drives differ (different primaries and gammas) but emit the same XYZ.
-    const json f = cli({"color-map", cal, "--display", "foveal", "--rgb", "200,100,50", "--json"}).j();
-    const json p = cli({"color-map", cal, "--display", "peripheral", "--rgb", "200,100,50", "--json"}).j();
+    const json f = cliText({"color-map", cal, "--display", "foveal", "--rgb", "200,100,50", "--json"}).j();
+    const json p = cliText({"color-map", cal, "--display", "peripheral", "--rgb", "200,100,50", "--json"}).j();
     QVERIFY(std::abs(f["drive"][0].get<double>() - p["drive"][0].get<double>()) > 1.0);
     QCOMPARE(f["target_xyz"], p["target_xyz"]);
 
     // White outside the common gamut, bad gamma, bad display, missing file.
-    r = cli({"color-calibrate", meas, "--out", cal, "--white-xy", "0.7,0.29", "--json"});
+    r = cliText({"color-calibrate", meas, "--out", cal, "--white-xy", "0.7,0.29", "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY(r.err.contains("white point"));
-    QCOMPARE(cli({"color-calibrate", meas, "--out", cal, "--gamma", "-1"}).code, 2);
-    QCOMPARE(cli({"color-map", cal, "--display", "left", "--rgb", "1,2,3"}).code, 2);
-    r = cli({"color-map", "/nonexistent/cal.json", "--display", "foveal", "--rgb", "1,2,3"});
+    QCOMPARE(cliText({"color-calibrate", meas, "--out", cal, "--gamma", "-1"}).code, 2);
+    QCOMPARE(cliText({"color-map", cal, "--display", "left", "--rgb", "1,2,3"}).code, 2);
+    r = cliText({"color-map", "/nonexistent/cal.json", "--display", "foveal", "--rgb", "1,2,3"});
     QCOMPARE(r.code, 1);
     QVERIFY(r.err.contains("/nonexistent/cal.json"));
     json broken = measurementsJson();
     broken["peripheral"]["B"]["Y"][7] = "x";
-    r = cli({"color-calibrate", writeJson("broken.json", broken), "--out", cal});
+    r = cliText({"color-calibrate", writeJson("broken.json", broken), "--out", cal});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("peripheral.B.Y[7]"), qPrintable(r.err));
   }
@@ -120,8 +112,8 @@ class TestCliPreview : public QObject {
         in["pairs"].push_back({{"src", {x, y}}, {"dst", {d[0], d[1]}}});
       }
     const QString file = writeJson("pairs.json", in);
-    Run r =
-        cli({"fit-warp", "--pairs", file, "--model", "poly2", "--holdout-fraction", "0.25", "--seed", "5", "--json"});
+    Run r = cliText(
+        {"fit-warp", "--pairs", file, "--model", "poly2", "--holdout-fraction", "0.25", "--seed", "5", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     json j = r.j();
     QCOMPARE(j["model"].get<std::string>(), std::string("poly2"));
@@ -132,7 +124,7 @@ class TestCliPreview : public QObject {
     QVERIFY(std::abs(j["query_predicted"][0][0].get<double>() - q[0]) < 1e-8);
     QVERIFY(std::abs(j["query_predicted"][0][1].get<double>() - q[1]) < 1e-8);
     QCOMPARE(j["coefficients"]["terms"].size(), std::size_t{6});
-    r = cli({"fit-warp", "--pairs", file, "--model", "homography", "--json"});
+    r = cliText({"fit-warp", "--pairs", file, "--model", "homography", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QCOMPARE(r.j()["coefficients"]["H"].size(), std::size_t{3});
     QVERIFY(r.j()["rms_px"]["fit"].get<double>() > 0.01);  // not projective
@@ -141,24 +133,24 @@ class TestCliPreview : public QObject {
     // Degenerate: too few, collinear, NaN (null), unknown model.
     json few{{"pairs", json::array()}};
     for (int i = 0; i < 5; ++i) few["pairs"].push_back({{"src", {i, i * i}}, {"dst", {i, i}}});
-    r = cli({"fit-warp", "--pairs", writeJson("few.json", few), "--model", "poly2"});
+    r = cliText({"fit-warp", "--pairs", writeJson("few.json", few), "--model", "poly2"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("too few"), qPrintable(r.err));
     json line{{"pairs", json::array()}};
     for (int i = 0; i < 12; ++i) line["pairs"].push_back({{"src", {i, 3 * i}}, {"dst", {i, i}}});
-    r = cli({"fit-warp", "--pairs", writeJson("line.json", line), "--model", "poly1"});
+    r = cliText({"fit-warp", "--pairs", writeJson("line.json", line), "--model", "poly1"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("collinear"), qPrintable(r.err));
     json nan = in;
     nan["pairs"][3]["dst"][1] = nullptr;
-    r = cli({"fit-warp", "--pairs", writeJson("nan.json", nan), "--model", "poly1"});
+    r = cliText({"fit-warp", "--pairs", writeJson("nan.json", nan), "--model", "poly1"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("non-finite"), qPrintable(r.err));
-    QCOMPARE(cli({"fit-warp", "--pairs", file, "--model", "poly9"}).code, 2);
+    QCOMPARE(cliText({"fit-warp", "--pairs", file, "--model", "poly9"}).code, 2);
   }
 
   void blendProfile() {
-    Run r = cli({"blend-profile", "--json"});
+    Run r = cliText({"blend-profile", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json j = r.j();
     const auto& s = j["samples"];
@@ -175,7 +167,7 @@ class TestCliPreview : public QObject {
     QVERIFY(sm > 0);
     QVERIFY(std::abs(s[16]["blur_sigma_deg"].get<double>() - sm / 2) < 1e-15);  // 4 deg
     QCOMPARE(s[20]["blur_sigma_deg"].get<double>(), sm);                        // 5 deg
-    QCOMPARE(cli({"blend-profile", "--scene", "/nonexistent.json"}).code, 1);
+    QCOMPARE(cliText({"blend-profile", "--scene", "/nonexistent.json"}).code, 1);
   }
 
   void composite() {
@@ -188,7 +180,7 @@ class TestCliPreview : public QObject {
     auto out = [](const char* n) { return QString::fromStdString((tmpDir() / n).string()); };
     const QStringList common{"--out-foveal", out("f.png"), "--out-peripheral", out("p.png"), "--out-perceived",
                              out("q.png"),   "--json"};
-    Run r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2"} + common);
+    Run r = cliText(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2"} + common);
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json soft = r.j();
     QVERIFY(soft["seam_metric"].get<double>() > 0 && soft["seam_metric"].get<double>() < 1);
@@ -205,9 +197,9 @@ class TestCliPreview : public QObject {
     for (double x : {0.0, 400.0, 1279.0})
       for (double y : {0.0, 300.0, 719.0}) shift["pairs"].push_back({{"src", {x, y}}, {"dst", {x + 10, y}}});
     const QString shiftFile = writeJson("shift.json", shift);
-    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--warp-peripheral",
-                        shiftFile, "--warp-model", "poly1", "--out-foveal", out("fw.png"), "--out-peripheral",
-                        out("pw.png"), "--out-perceived", out("qw.png"), "--json"});
+    r = cliText(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2",
+                            "--warp-peripheral", shiftFile, "--warp-model", "poly1", "--out-foveal", out("fw.png"),
+                            "--out-peripheral", out("pw.png"), "--out-perceived", out("qw.png"), "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QCOMPARE(r.j()["prewarp"]["peripheral"].get<bool>(), true);
     const cv::Mat pw = fovea::image::readLinearRgb(out("pw.png").toStdString());
@@ -217,27 +209,28 @@ class TestCliPreview : public QObject {
     json collinear = {{"pairs", json::array()}};
     for (double x : {0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0})
       collinear["pairs"].push_back({{"src", {x, x}}, {"dst", {x, x}}});
-    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "0,0", "--warp-foveal",
-                        writeJson("collinear.json", collinear)} +
-            common);
+    r = cliText(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "0,0", "--warp-foveal",
+                            writeJson("collinear.json", collinear)} +
+                common);
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("collinear.json"), qPrintable(r.err));
 
-    r = cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--no-blend"} +
-            common);
+    r = cliText(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "3,-2", "--no-blend"} +
+                common);
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY(r.j()["seam_metric"].get<double>() > soft["seam_metric"].get<double>());
 
     // Unreadable and unsupported images name the file.
-    r = cli(QStringList{"composite", "--image", "/nonexistent/target.png", "--gaze-deg", "0,0"} + common);
+    r = cliText(QStringList{"composite", "--image", "/nonexistent/target.png", "--gaze-deg", "0,0"} + common);
     QCOMPARE(r.code, 1);
     QVERIFY(r.err.contains("/nonexistent/target.png"));
     const std::string junk = (tmpDir() / "junk.png").string();
     std::ofstream(junk) << "this is not a PNG";
-    r = cli(QStringList{"composite", "--image", QString::fromStdString(junk), "--gaze-deg", "0,0"} + common);
+    r = cliText(QStringList{"composite", "--image", QString::fromStdString(junk), "--gaze-deg", "0,0"} + common);
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("junk.png"), qPrintable(r.err));
-    QCOMPARE(cli(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "x"} + common).code, 2);
+    QCOMPARE(cliText(QStringList{"composite", "--image", QString::fromStdString(in), "--gaze-deg", "x"} + common).code,
+             2);
   }
   void gazeFit() {
     // 9 targets + 4 held out, 12 samples each (the first two off target: saccade landing).
@@ -261,7 +254,7 @@ class TestCliPreview : public QObject {
         for (double y : {-7.5, 7.5}) add(y, p, true);
       return writeJson(nine ? "gaze9.json" : "gaze5.json", fovea::gaze::gazeSamplesToJson(t));
     };
-    Run r = cli({"gaze-fit", "--samples", samplesFile(true), "--json"});
+    Run r = cliText({"gaze-fit", "--samples", samplesFile(true), "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     json j = r.j();
     QCOMPARE(j["model"].get<std::string>(), std::string("poly2"));
@@ -274,7 +267,7 @@ class TestCliPreview : public QObject {
     QVERIFY(acc9 > 0.1 && acc9 < 0.3);  // see tst_gaze_calibration: 0.23 deg
     QVERIFY(j["precision_deg"]["rms_s2s"].get<double>() >= 0);
 
-    r = cli({"gaze-fit", "--samples", samplesFile(false), "--json"});
+    r = cliText({"gaze-fit", "--samples", samplesFile(false), "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     j = r.j();
     QCOMPARE(j["model"].get<std::string>(), std::string("bilinear"));
@@ -282,18 +275,18 @@ class TestCliPreview : public QObject {
     QVERIFY(j["accuracy_deg"]["mean"].get<double>() > acc9);
     // Averaging all 12 samples takes in the overshoot (+25 px on calibration targets, -25 px
     // on held-out ones): a relative shift of 50 * 2/12 = 8.3 px, about 1.9 deg at 0.22 deg/px.
-    r = cli({"gaze-fit", "--samples", samplesFile(false), "--average", "12", "--json"});
+    r = cliText({"gaze-fit", "--samples", samplesFile(false), "--average", "12", "--json"});
     QVERIFY(r.j()["accuracy_deg"]["mean"].get<double>() > 1.0);
 
     // Bad input: exit 1 naming the file and the reason; bad arguments exit 2.
     json bad = fovea::gaze::gazeSamplesToJson({});
     bad["targets"] = json::array({{{"target_deg", {0, 0}}, {"pupil_px", {{1, nullptr}}}}});
     const QString badFile = writeJson("gaze_bad.json", bad);
-    r = cli({"gaze-fit", "--samples", badFile, "--json"});
+    r = cliText({"gaze-fit", "--samples", badFile, "--json"});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("gaze_bad.json") && r.err.contains("pupil_px[0]"), qPrintable(r.err));
-    QCOMPARE(cli({"gaze-fit", "--samples", "/nonexistent/gaze.json"}).code, 1);
-    QCOMPARE(cli({"gaze-fit", "--samples", badFile, "--model", "poly7"}).code, 2);
+    QCOMPARE(cliText({"gaze-fit", "--samples", "/nonexistent/gaze.json"}).code, 1);
+    QCOMPARE(cliText({"gaze-fit", "--samples", badFile, "--model", "poly7"}).code, 2);
   }
 };
 

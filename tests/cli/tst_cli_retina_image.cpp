@@ -12,24 +12,16 @@
 #include "model/image/test_target.h"
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-struct Run {
-  int code = -1;
-  QString out, err;
-  json j() const { return json::parse(out.toStdString()); }
-};
-Run cli(const QStringList& args) {
-  const auto r = fovea::testing::runFoveaCli(args);
-  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
-}
+using Run = fovea::testing::CliText;
+using fovea::testing::cliText;
 fs::path tmpDir() {
-  auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_retina_image";
-  fs::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir("cli_retina_image");
 }
 QString target() {
   const fs::path p = tmpDir() / "target.png";
@@ -55,8 +47,8 @@ class TestCliRetinaImage : public QObject {
  private slots:
   void contractKeys() {
     const QString out = outPath("retina.png");
-    const Run r = cli({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "5,2", "--accommodation-d",
-                       "2.5", "--rays", "4000", "--json"});
+    const Run r = cliText({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "5,2", "--accommodation-d",
+                           "2.5", "--rays", "4000", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json j = r.j();
     checkSpot(j["peripheral"]);
@@ -77,8 +69,8 @@ class TestCliRetinaImage : public QObject {
   }
 
   void speckleIsReported() {
-    const Run r = cli({"retina-image", "--image", target(), "--out", outPath("speckle.png"), "--speckle", "3", "--rays",
-                       "4000", "--json"});
+    const Run r = cliText({"retina-image", "--image", target(), "--out", outPath("speckle.png"), "--speckle", "3",
+                           "--rays", "4000", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const json j = r.j();
     QVERIFY(j["speckle_contrast"].is_number());
@@ -88,24 +80,24 @@ class TestCliRetinaImage : public QObject {
 
   void badInput() {
     const QString out = outPath("bad.png");
-    Run r = cli({"retina-image", "--image", outPath("missing.png"), "--out", out});
+    Run r = cliText({"retina-image", "--image", outPath("missing.png"), "--out", out});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("missing.png"), qPrintable(r.err));
-    r = cli({"retina-image", "--image", target(), "--out", out, "--accommodation-d", "nan"});
+    r = cliText({"retina-image", "--image", target(), "--out", out, "--accommodation-d", "nan"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--accommodation-d"), qPrintable(r.err));
-    r = cli({"retina-image", "--image", target(), "--out", out, "--accommodation-d", "7"});
+    r = cliText({"retina-image", "--image", target(), "--out", out, "--accommodation-d", "7"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("0..4"), qPrintable(r.err));
-    r = cli({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "1,x"});
+    r = cliText({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "1,x"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--gaze-deg"), qPrintable(r.err));
-    r = cli({"retina-image", "--image", target(), "--out", out, "--speckle", "1.5"});
+    r = cliText({"retina-image", "--image", target(), "--out", out, "--speckle", "1.5"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--speckle"), qPrintable(r.err));
     const fs::path notImage = tmpDir() / "not-an-image.png";
     std::ofstream(notImage) << "hello";
-    r = cli({"retina-image", "--image", QString::fromStdString(notImage.string()), "--out", out});
+    r = cliText({"retina-image", "--image", QString::fromStdString(notImage.string()), "--out", out});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.err.contains("not-an-image.png"), qPrintable(r.err));
   }

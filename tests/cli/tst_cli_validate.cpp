@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 
@@ -37,9 +38,7 @@ QString writeScene(const QString& name, std::string text,
     if (at == std::string::npos) qFatal("fixture text not found: %s", from.c_str());
     text.replace(at, from.size(), to);
   }
-  const auto dir = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_validate";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name.toStdString();
+  const auto path = fovea::testing::testTmpDir("cli_validate") / name.toStdString();
   std::ofstream(path) << text;
   return QString::fromStdString(path.string());
 }

@@ -13,6 +13,7 @@
 #include "devices/camera/virtual_camera.h"
 #include "devices/stage/stage.h"
 #include "devices/virtual/virtual_transport.h"
+#include "tests/test_files.h"
 
 using namespace fovea::devices;
 
@@ -97,8 +98,7 @@ class TestCameras : public QObject {
 
   void v4l2ListingFromSysfs() {
     namespace fs = std::filesystem;
-    const fs::path root = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "v4l2";
-    fs::remove_all(root);
+    const fs::path root = fovea::testing::testTmpDir("v4l2", true);
     auto node = [&](const char* name, const char* label, const char* index) {
       fs::create_directories(root / name);
       std::ofstream(root / name / "name") << label << "\n";

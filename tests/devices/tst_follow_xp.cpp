@@ -4,6 +4,7 @@
 // the sweep's x_p (to 0.01 mm) under either x_p rule.
 #include <QtTest>
 #include "tests/prototype_scene.h"
+#include "tests/sweep_at_gaze.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -29,14 +30,8 @@ class TestFollowXp : public QObject {
     QCOMPARE(scene.eye.gaze_range_deg[1], 20.0);  // 9 table samples over [-20, 20]: 20 is one
     for (const XpRule rule : {XpRule::PlateauMiddle, XpRule::FollowFocus}) {
       scene.view.xp_rule = xpRuleName(rule);
-      nlohmann::json v = analysis::defaultValues(*analysis::findAnalysisDefinition("sweep"));
-      v["gaze-from"] = 20.0;
-      v["gaze-to"] = 20.0;
-      v["gaze-step"] = 5.0;
-      v["xp-rule"] = xpRuleName(rule);
-      const auto doc = analysis::findAnalysisDefinition("sweep")->run(scene, v, {});
-      QVERIFY(doc.has_value());
-      const double sweep_xp = (*doc)["samples"][0]["hoe_shift_mm"].get<double>();
+      const nlohmann::json doc = fovea::testing::sweepAtYaw(scene, 20.0, rule);
+      const double sweep_xp = doc["samples"][0]["hoe_shift_mm"].get<double>();
       const double plan = analysedHoeShift(scene)({20.0, 0.0})[0];
       const auto table = computeFollowGazeTable(scene);
       QVERIFY(table.ok());

@@ -16,6 +16,7 @@
 #include "model/color/color_calibration.h"
 #include "model/image/geometric_calibration.h"
 #include "model/scene/scene_io.h"
+#include "tests/test_files.h"
 
 using namespace fovea;
 using namespace fovea::devices;
@@ -26,9 +27,7 @@ namespace {
 using fovea::testing::prototype;
 
 fs::path tmpDir(const std::string& name) {
-  const fs::path d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / name;
-  fs::remove_all(d);
-  return d;
+  return fovea::testing::testTmpDir(name, true);
 }
 
 std::unique_ptr<LiveBench> virtualBench(const Scene& scene) {

@@ -42,6 +42,7 @@
 #include "model/io/json_input.h"
 #include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 #include "tests/tolerance_test_spec.h"
 
 using namespace fovea;
@@ -58,9 +59,7 @@ const long kScale = envLong("FOVEA_FUZZ_SCALE", 1);
 const unsigned kSeed = unsigned(envLong("FOVEA_FUZZ_SEED", 19));
 
 fs::path tmpDir() {
-  const auto d = fs::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "fuzz";
-  fs::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir("fuzz");
 }
 
 const std::vector<std::string> kEdgeValues{"0",

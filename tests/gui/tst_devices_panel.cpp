@@ -34,6 +34,7 @@
 #include "model/analysis/hoe_travel.h"
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_io.h"
+#include "tests/test_files.h"
 #include "widgets/bench/capture_wizard.h"
 #include "widgets/bench/devices_panel.h"
 #include "widgets/message_log.h"
@@ -44,10 +45,7 @@ using widgets::DevicesPanel;
 
 namespace {
 std::filesystem::path tmpDir(const std::string& name) {
-  auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / name;
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir(name, true);
 }
 
 using fovea::testing::prototype;

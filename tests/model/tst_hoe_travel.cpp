@@ -13,6 +13,7 @@
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
+#include "tests/sweep_at_gaze.h"
 
 using namespace fovea;
 
@@ -93,15 +94,9 @@ class TestHoeTravel : public QObject {
     Scene scene = prototype();
     for (const XpRule rule : {XpRule::PlateauMiddle, XpRule::FollowFocus}) {
       scene.view.xp_rule = xpRuleName(rule);
-      nlohmann::json v = analysis::defaultValues(*analysis::findAnalysisDefinition("sweep"));
-      v["gaze-from"] = 20.0;
-      v["gaze-to"] = 20.0;
-      v["gaze-step"] = 5.0;
-      v["xp-rule"] = xpRuleName(rule);
-      const auto doc = analysis::findAnalysisDefinition("sweep")->run(scene, v, {});
-      QVERIFY(doc.has_value());
-      QCOMPARE((*doc)["xp_rule"].get<std::string>(), std::string(xpRuleName(rule)));
-      const double sweep_xp = (*doc)["samples"][0]["hoe_shift_mm"].get<double>();
+      const nlohmann::json doc = fovea::testing::sweepAtYaw(scene, 20.0, rule);
+      QCOMPARE(doc["xp_rule"].get<std::string>(), std::string(xpRuleName(rule)));
+      const double sweep_xp = doc["samples"][0]["hoe_shift_mm"].get<double>();
       const HoeTravel travel = hoeTravel(scene, {20.0, 0.0}, sceneXpRule(scene));
       const QString msg =
           QString("%1: sweep %2, hoeTravel %3").arg(xpRuleName(rule)).arg(sweep_xp).arg(travel.shift_mm[0]);
@@ -109,9 +104,9 @@ class TestHoeTravel : public QObject {
       QCOMPARE(travel.shift_mm[1], 0.0);  // zero pitch: the design position
       if (rule == XpRule::PlateauMiddle) {
         QVERIFY2(std::abs(sweep_xp - 2.96) < 0.005, qPrintable(msg));  // docs/seed-reproduction.md
-        QVERIFY((*doc)["samples"][0]["focus_axial_miss_mm"].is_null());
+        QVERIFY(doc["samples"][0]["focus_axial_miss_mm"].is_null());
       } else {
-        QVERIFY((*doc)["samples"][0]["focus_axial_miss_mm"].is_number());
+        QVERIFY(doc["samples"][0]["focus_axial_miss_mm"].is_number());
       }
     }
   }
