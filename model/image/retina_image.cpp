@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 #include <opencv2/imgproc.hpp>
 
 #include "model/image/foveation.h"
@@ -132,8 +134,25 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   const auto& lasers = scene.projector.wavelengths_nm;
   for (double wl : lasers)
     r.peripheral.push_back(peripheralSpot(scene, wl, o.accommodation_d, o.gaze_deg, o.hoe_shift_mm));
-  for (double wl : scene.foveal_display.primaries_nm)
-    r.foveal.push_back(fovealSpot(scene, wl, o.accommodation_d, o.gaze_deg));
+  // The foveal PSFs (Fourier optics, the expensive part) and the preview's two display images
+  // are independent: computed concurrently (TBB; the eye's part of each PSF is cached across
+  // gazes, retinal_psf.cpp).
+  const auto& primaries = scene.foveal_display.primaries_nm;
+  r.foveal.resize(primaries.size());
+  std::vector<cv::Mat> fkernels(primaries.size());
+  FoveatedCompositor comp(scene, o.blend);
+  tbb::task_group concurrent;
+  concurrent.run([&] {
+    tbb::parallel_for(std::size_t{0}, primaries.size(), [&](std::size_t i) {
+      r.foveal[i] = fovealSpot(scene, primaries[i], o.accommodation_d, o.gaze_deg);
+      fkernels[i] = retinaBinPsf(r.foveal[i].psf, r.foveal[i].sample_arcmin, ppx, ppy);
+    });
+  });
+  concurrent.run([&] {
+    comp.setTarget(target);
+    comp.update(o.gaze_deg);
+  });
+  concurrent.wait();
   auto nearest555 = [](auto getter, std::size_t n) {
     std::size_t best = 0;
     for (std::size_t i = 1; i < n; ++i)
@@ -156,11 +175,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     sig[i] = {0.5 * w / 60.0 * ppx, 0.5 * w / 60.0 * ppy};
     margin = std::max(margin, static_cast<int>(std::ceil(4.0 * std::max(sig[i][0], sig[i][1]))) + 2);
   }
-  std::vector<cv::Mat> fkernels;
-  for (const auto& f : r.foveal) {
-    fkernels.push_back(retinaBinPsf(f.psf, f.sample_arcmin, ppx, ppy));
-    margin = std::max(margin, std::max(fkernels.back().cols, fkernels.back().rows) / 2 + 2);
-  }
+  for (const auto& k : fkernels) margin = std::max(margin, std::max(k.cols, k.rows) / 2 + 2);
   // Cells at the field's edge spread up to 64 px beyond it; kernels need `margin` more.
   const int kernel_margin = margin;
   margin += 64;
@@ -173,10 +188,6 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
            y < canvas_size.height - 1 - kernel_margin;
   };
 
-  // The preview's two display images.
-  FoveatedCompositor comp(scene, o.blend);
-  comp.setTarget(target);
-  comp.update(o.gaze_deg);
   const cv::Mat& periph = comp.peripheralImage();
 
   // Peripheral: trace, per laser plane.
@@ -190,9 +201,57 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   const int nx = grid[0], ny = grid[1];
   std::array<int, 3> lasers_in_channel{0, 0, 0};
   for (double wl : lasers) ++lasers_in_channel[static_cast<std::size_t>(retinaChannelOf(wl))];
-  std::vector<cv::Mat> planes;
-  double deposited = 0, lost = 0;
-  for (std::size_t li = 0; li < lasers.size(); ++li) {
+  // Foveal: the micro-OLED's pixels at gaze + their equal-angle offsets, on the canvas region
+  // they reach (their field plus the widest kernel; zero elsewhere, so nothing is lost); one
+  // task per channel, run alongside the lasers' tasks.
+  const cv::Mat& fov = comp.fovealImage();
+  const double fw = ang.foveal_fov_deg[0] / fov.cols, fh = ang.foveal_fov_deg[1] / fov.rows;
+  const double parea = fw * fh * ppx * ppy;
+  int kernel_half = 0;
+  for (const auto& k : fkernels) kernel_half = std::max(kernel_half, std::max(k.cols, k.rows) / 2);
+  const int x_lo = static_cast<int>(std::floor(cx(o.gaze_deg[0] - 0.5 * ang.foveal_fov_deg[0]))) - kernel_half - 2;
+  const int x_hi = static_cast<int>(std::ceil(cx(o.gaze_deg[0] + 0.5 * ang.foveal_fov_deg[0]))) + kernel_half + 3;
+  const int y_lo = static_cast<int>(std::floor(cy(o.gaze_deg[1] + 0.5 * ang.foveal_fov_deg[1]))) - kernel_half - 2;
+  const int y_hi = static_cast<int>(std::ceil(cy(o.gaze_deg[1] - 0.5 * ang.foveal_fov_deg[1]))) + kernel_half + 3;
+  const cv::Rect froi = cv::Rect(x_lo, y_lo, x_hi - x_lo, y_hi - y_lo) & cv::Rect(cv::Point(0, 0), canvas_size);
+  // Channel k takes the PSF of the primary in its band (else the primary nearest 555 nm). The
+  // pupil PSF is centro-symmetric, so filter2D's correlation is the convolution.
+  std::array<double, 3> fdeposited{0, 0, 0};
+  std::array<cv::Mat, 3> fblurred;
+  auto foveal_work = [&] {
+    if (fkernels.empty() || froi.area() == 0) return;
+    tbb::parallel_for(0, 3, [&](int k) {
+      cv::Mat plane(froi.size(), CV_64F, cv::Scalar(0));
+      for (int v = 0; v < fov.rows; ++v) {
+        const double pitch = o.gaze_deg[1] + (0.5 - (v + 0.5) / fov.rows) * ang.foveal_fov_deg[1];
+        const auto* row = fov.ptr<cv::Vec3f>(v);
+        for (int u = 0; u < fov.cols; ++u) {
+          const double power = row[u][k] * parea;
+          if (power == 0) continue;
+          const double yaw = o.gaze_deg[0] + ((u + 0.5) / fov.cols - 0.5) * ang.foveal_fov_deg[0];
+          const double x = cx(yaw), y = cy(pitch);
+          if (!inside(x, y)) continue;
+          retinaSplat(plane, x - froi.x, y - froi.y, power);
+          fdeposited[static_cast<std::size_t>(k)] += power;
+        }
+      }
+      std::size_t kernel = r.foveal_reference;
+      for (std::size_t i = 0; i < primaries.size(); ++i)
+        if (retinaChannelOf(primaries[i]) == k) kernel = i;
+      cv::filter2D(plane, fblurred[static_cast<std::size_t>(k)], CV_64F, fkernels[kernel], cv::Point(-1, -1), 0,
+                   cv::BORDER_CONSTANT);
+    });
+  };
+
+  // Each laser's plane is splatted and blurred on its own (TBB, one task per laser).
+  std::vector<cv::Mat> planes(lasers.size()), blurred_planes(lasers.size());
+  std::vector<double> deposited_per(lasers.size(), 0.0), lost_per(lasers.size(), 0.0);
+  std::vector<int> in_pupil_per(lasers.size(), 0);
+  tbb::task_group displays;
+  displays.run(foveal_work);
+  tbb::parallel_for(std::size_t{0}, lasers.size(), [&](std::size_t li) {
+    double& deposited = deposited_per[li];
+    double& lost = lost_per[li];
     cv::Mat plane(canvas_size, CV_64F, cv::Scalar(0));
     // The rays of this laser on their grid.
     std::vector<const TracedRay*> cell(static_cast<std::size_t>(nx) * ny, nullptr);
@@ -241,7 +300,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     for (std::size_t k = 0; k < cell.size(); ++k) {
       const TracedRay* c = cell[k];
       if (!c) continue;
-      ++r.rays_in_pupil;
+      ++in_pupil_per[li];
       const double yaw = o.gaze_deg[0] + c->field_deg[0], pitch = o.gaze_deg[1] + c->field_deg[1];
       const double x = cx(yaw), y = cy(pitch);
       if (!inside(x, y)) continue;  // outside the target field: the projector shows black there
@@ -270,16 +329,23 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
           }
         }
     }
-    planes.push_back(plane);
+    blurred_planes[li] = retinaGaussianBlur(plane, sig[li][0], sig[li][1]);
+    planes[li] = std::move(plane);
+  });
+  displays.wait();
+  double deposited = 0, lost = 0;
+  for (std::size_t li = 0; li < lasers.size(); ++li) {
+    deposited += deposited_per[li];
+    lost += lost_per[li];
+    r.rays_in_pupil += in_pupil_per[li];
   }
   r.rays_traced = tr.rays;
 
   // Peripheral PSFs (and speckle), per laser, into the channels.
-  std::vector<cv::Mat> channels(3);
-  for (auto& c : channels) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
-  cv::Mat speckle_sum(canvas_size, CV_64F, cv::Scalar(0)), lit;
+  std::vector<cv::Mat> channels(3);  // a channel's first laser plane is moved in, later ones added
+  cv::Mat speckle_sum = o.speckle_patterns > 0 ? cv::Mat(canvas_size, CV_64F, cv::Scalar(0)) : cv::Mat(), lit;
   for (std::size_t li = 0; li < planes.size(); ++li) {
-    cv::Mat blurred = retinaGaussianBlur(planes[li], sig[li][0], sig[li][1]);
+    cv::Mat blurred = std::move(blurred_planes[li]);
     if (o.speckle_patterns > 0) {
       const cv::Mat s = speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
       const double before = cv::sum(blurred)[0];
@@ -289,8 +355,14 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       blurred = sp;
       speckle_sum += s;
     }
-    channels[static_cast<std::size_t>(retinaChannelOf(lasers[li]))] += blurred;
+    cv::Mat& channel = channels[static_cast<std::size_t>(retinaChannelOf(lasers[li]))];
+    if (channel.empty())
+      channel = std::move(blurred);
+    else
+      channel += blurred;
   }
+  for (auto& c : channels)
+    if (c.empty()) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
   if (o.speckle_patterns > 0 && !lasers.empty()) {
     speckle_sum /= static_cast<double>(lasers.size());
     cv::Mat any = planes[0].clone();
@@ -300,40 +372,12 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     r.speckle_expected = 1.0 / std::sqrt(static_cast<double>(o.speckle_patterns) * lasers.size());
   }
 
-  // Foveal: the micro-OLED's pixels at gaze + their equal-angle offsets.
-  const cv::Mat& fov = comp.fovealImage();
-  const double fw = ang.foveal_fov_deg[0] / fov.cols, fh = ang.foveal_fov_deg[1] / fov.rows;
-  const double parea = fw * fh * ppx * ppy;
-  std::vector<cv::Mat> fplanes(3);
-  for (auto& c : fplanes) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
-  for (int v = 0; v < fov.rows; ++v) {
-    const double pitch = o.gaze_deg[1] + (0.5 - (v + 0.5) / fov.rows) * ang.foveal_fov_deg[1];
-    const auto* row = fov.ptr<cv::Vec3f>(v);
-    for (int u = 0; u < fov.cols; ++u) {
-      const cv::Vec3f& val = row[u];
-      if (val[0] == 0 && val[1] == 0 && val[2] == 0) continue;
-      const double yaw = o.gaze_deg[0] + ((u + 0.5) / fov.cols - 0.5) * ang.foveal_fov_deg[0];
-      const double x = cx(yaw), y = cy(pitch);
-      if (!inside(x, y)) continue;
-      for (int k = 0; k < 3; ++k) {
-        const double power = val[k] * parea;
-        if (power == 0) continue;
-        retinaSplat(fplanes[static_cast<std::size_t>(k)], x, y, power);
-        deposited += power;
-      }
+  for (int k = 0; k < 3; ++k)
+    if (!fblurred[static_cast<std::size_t>(k)].empty()) {
+      cv::Mat dst = channels[static_cast<std::size_t>(k)](froi);
+      dst += fblurred[static_cast<std::size_t>(k)];
     }
-  }
-  // Channel k takes the PSF of the primary in its band (else the primary nearest 555 nm). The
-  // pupil PSF is centro-symmetric, so filter2D's correlation is the convolution.
-  for (int k = 0; k < 3 && !fkernels.empty(); ++k) {
-    std::size_t kernel = r.foveal_reference;
-    for (std::size_t i = 0; i < scene.foveal_display.primaries_nm.size(); ++i)
-      if (retinaChannelOf(scene.foveal_display.primaries_nm[i]) == k) kernel = i;
-    cv::Mat blurred;
-    cv::filter2D(fplanes[static_cast<std::size_t>(k)], blurred, CV_64F, fkernels[kernel], cv::Point(-1, -1), 0,
-                 cv::BORDER_CONSTANT);
-    channels[static_cast<std::size_t>(k)] += blurred;
-  }
+  deposited += fdeposited[0] + fdeposited[1] + fdeposited[2];
 
   cv::merge(channels, r.canvas);
   r.power_in_pupil = deposited + lost;
