@@ -83,15 +83,18 @@ cv::Mat retinaGaussianBlur(const cv::Mat& plane, double sx, double sy) {
   };
   if (k == 1) return blur(plane, sx, sy);
   const double power = cv::sum(plane)[0];
-  cv::Mat padded;
-  const int pw = (plane.cols + k - 1) / k * k, ph = (plane.rows + k - 1) / k * k;
-  cv::copyMakeBorder(plane, padded, 0, ph - plane.rows, 0, pw - plane.cols, cv::BORDER_CONSTANT, 0);
-  cv::Mat low;
-  cv::resize(padded, low, cv::Size(pw / k, ph / k), 0, 0, cv::INTER_AREA);  // block means
+  // Block sums straight from the plane (no padded copy), as block means.
+  cv::Mat low((plane.rows + k - 1) / k, (plane.cols + k - 1) / k, CV_64F, cv::Scalar(0));
+  for (int y = 0; y < plane.rows; ++y) {
+    const double* in = plane.ptr<double>(y);
+    double* lo = low.ptr<double>(y / k);
+    for (int x = 0; x < plane.cols; ++x) lo[x / k] += in[x];
+  }
+  low *= 1.0 / (static_cast<double>(k) * k);
   low = blur(low, sx / k, sy / k);
   cv::Mat up;
-  cv::resize(low, up, padded.size(), 0, 0, cv::INTER_LINEAR);
-  cv::Mat out = up(cv::Rect(0, 0, plane.cols, plane.rows)).clone();
+  cv::resize(low, up, cv::Size(low.cols * k, low.rows * k), 0, 0, cv::INTER_LINEAR);
+  cv::Mat out = up(cv::Rect(0, 0, plane.cols, plane.rows));  // a view: no copy
   const double now = cv::sum(out)[0];
   if (now > 0) out *= power / now;
   return out;
@@ -330,7 +333,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
         }
     }
     blurred_planes[li] = retinaGaussianBlur(plane, sig[li][0], sig[li][1]);
-    planes[li] = std::move(plane);
+    if (o.speckle_patterns > 0) planes[li] = std::move(plane);  // its lit mask
   });
   displays.wait();
   double deposited = 0, lost = 0;
