@@ -100,6 +100,33 @@ cv::Mat retinaGaussianBlur(const cv::Mat& plane, double sx, double sy) {
   return out;
 }
 
+// The pooling factor of a wide Gaussian: k with sigma / k >= 4 px (1 when sigma < 8 px).
+int retinaPoolFactor(double sx, double sy) {
+  return std::max(1, static_cast<int>(std::floor(std::min(sx, sy) / 4.0)));
+}
+
+// A plane splatted bilinearly on the k-times coarser grid, blurred to sigma (full-resolution
+// px) and interpolated bilinearly back to `size`, its power kept. The bilinear splat and the
+// bilinear interpolation are each a tent of one coarse pixel, variance 1/6 coarse px^2 (a
+// point at a uniform sub-pixel offset f: E[f(1-f)] = 1/6); variances of convolved kernels
+// add, so the coarse Gaussian takes sigma_c^2 = (sigma/k)^2 - 1/3 and the total is sigma^2.
+cv::Mat retinaCoarseBlur(const cv::Mat& coarse, double sx, double sy, int k, cv::Size size) {
+  const double power = cv::sum(coarse)[0];
+  const double gx = std::sqrt(std::max(0.0, sx * sx / (k * k) - 1.0 / 3.0));
+  const double gy = std::sqrt(std::max(0.0, sy * sy / (k * k) - 1.0 / 3.0));
+  cv::Mat low;
+  cv::GaussianBlur(
+      coarse, low,
+      cv::Size(2 * static_cast<int>(std::ceil(4.0 * gx)) + 1, 2 * static_cast<int>(std::ceil(4.0 * gy)) + 1), gx, gy,
+      cv::BORDER_CONSTANT);
+  cv::Mat up;
+  cv::resize(low, up, cv::Size(low.cols * k, low.rows * k), 0, 0, cv::INTER_LINEAR);
+  cv::Mat out = up(cv::Rect(0, 0, size.width, size.height));  // a view: no copy
+  const double now = cv::sum(out)[0];
+  if (now > 0) out *= power / now;
+  return out;
+}
+
 }  // namespace
 
 cv::Mat speckleField(cv::Size size, int patterns, std::uint64_t seed) {
@@ -255,7 +282,14 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   tbb::parallel_for(std::size_t{0}, lasers.size(), [&](std::size_t li) {
     double& deposited = deposited_per[li];
     double& lost = lost_per[li];
-    cv::Mat plane(canvas_size, CV_64F, cv::Scalar(0));
+    // A wide PSF (sigma >= 8 px) without speckle: the cells are splatted straight onto a
+    // k-times coarser grid (retinaPoolFactor), blurred there and brought back.
+    const int kpool = o.speckle_patterns > 0 ? 1 : retinaPoolFactor(sig[li][0], sig[li][1]);
+    const double pool_inv = 1.0 / kpool, pool_off = 0.5 * (kpool - 1);  // coarse pixel j centres at j k + (k-1)/2
+    cv::Mat plane(kpool > 1
+                      ? cv::Size((canvas_size.width + kpool - 1) / kpool, (canvas_size.height + kpool - 1) / kpool)
+                      : canvas_size,
+                  CV_64F, cv::Scalar(0));
     // The rays of this laser on their grid.
     std::vector<const TracedRay*> cell(static_cast<std::size_t>(nx) * ny, nullptr);
     for (const auto& ray : tr.ray_list)
@@ -317,22 +351,23 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       // canvas pixel), so a ray grid coarser than the PSF leaves no ripple.
       const auto& ed = edges[k];
       const double ux = ed[0] * ppx, uy = -ed[1] * ppy, vx = ed[2] * ppx, vy = -ed[3] * ppy;
-      const int kx = std::clamp(static_cast<int>(std::ceil(std::hypot(ux, uy))), 1, 64);
-      const int ky = std::clamp(static_cast<int>(std::ceil(std::hypot(vx, vy))), 1, 64);
+      const int kx = std::clamp(static_cast<int>(std::ceil(std::hypot(ux, uy) * pool_inv)), 1, 64);
+      const int ky = std::clamp(static_cast<int>(std::ceil(std::hypot(vx, vy) * pool_inv)), 1, 64);
       const double sub = power / (kx * ky);
       for (int j = 0; j < ky; ++j)
         for (int i = 0; i < kx; ++i) {
           const double fu = (i + 0.5) / kx - 0.5, fv = (j + 0.5) / ky - 0.5;
           const double sx = x + fu * ux + fv * vx, sy = y + fu * uy + fv * vy;
           if (inside(sx, sy)) {
-            retinaSplat(plane, sx, sy, sub);
+            retinaSplat(plane, (sx - pool_off) * pool_inv, (sy - pool_off) * pool_inv, sub);
             deposited += sub;
           } else {
             lost += sub;
           }
         }
     }
-    blurred_planes[li] = retinaGaussianBlur(plane, sig[li][0], sig[li][1]);
+    blurred_planes[li] = kpool > 1 ? retinaCoarseBlur(plane, sig[li][0], sig[li][1], kpool, canvas_size)
+                                   : retinaGaussianBlur(plane, sig[li][0], sig[li][1]);
     if (o.speckle_patterns > 0) planes[li] = std::move(plane);  // its lit mask
   });
   displays.wait();
