@@ -1,5 +1,5 @@
 // The retinal image of both displays (issue 29, model/image/retina_image.h): a 1920x1080 chart
-// on the default scene, wall time (target: <= 1 s on two cores; docs/physics.md section 6).
+// on the default scene, wall time (target: <= 1 s on two cores, met; docs/physics.md section 6).
 // BM_RetinaImage1080p: zero gaze twice (the first call fills the eye-PSF cache of
 // retinal_psf.cpp, the second reuses it); BM_RetinaImage1080pNewGaze: a new gaze each call at
 // one accommodation (the preview's gaze slider: only the gaze-dependent parts recomputed).
