@@ -2,7 +2,9 @@
 // on the default scene, wall time (target: <= 1 s on two cores, met; docs/physics.md section 6).
 // BM_RetinaImage1080p: zero gaze twice (the first call fills the eye-PSF cache of
 // retinal_psf.cpp, the second reuses it); BM_RetinaImage1080pNewGaze: a new gaze each call at
-// one accommodation (the preview's gaze slider: only the gaze-dependent parts recomputed).
+// one accommodation (the preview's gaze slider: only the gaze-dependent parts recomputed);
+// BM_RetinaImage1080pNewAccommodation: a new accommodation each call (the accommodation
+// slider: new eye PSFs every time).
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>
@@ -51,5 +53,21 @@ void BM_RetinaImage1080pNewGaze(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RetinaImage1080pNewGaze)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(4);
+
+void BM_RetinaImage1080pNewAccommodation(benchmark::State& state) {
+  const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
+  const cv::Mat chart = retinaBenchChart();
+  fovea::image::RetinaImageOptions o;
+  o.rays = static_cast<int>(state.range(0));
+  (void)fovea::image::renderRetinaImage(scene, chart, o);  // the process warmed up
+  double d = 0.4;
+  for (auto _ : state) {
+    d += 0.55;
+    o.accommodation_d = d;
+    const auto r = fovea::image::renderRetinaImage(scene, chart, o);
+    benchmark::DoNotOptimize(r.power_on_retina);
+  }
+}
+BENCHMARK(BM_RetinaImage1080pNewAccommodation)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(4);
 
 }  // namespace
