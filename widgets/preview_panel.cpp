@@ -1,6 +1,7 @@
 #include "widgets/preview_panel.h"
 
 #include <QCheckBox>
+#include <QComboBox>
 #include <QFileDialog>
 #include <QGridLayout>
 #include <QHBoxLayout>
@@ -20,6 +21,7 @@
 #include "model/color/srgb.h"
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
+#include "model/image/retina_image.h"
 #include "model/image/test_target.h"
 #include "model/scene/scene_compare.h"
 #include "widgets/dialog_start.h"
@@ -30,6 +32,10 @@ namespace fovea::widgets {
 namespace {
 constexpr int kStepsPerDeg = 4;  // slider resolution: 0.25 deg
 constexpr int kViewWidthPx = 640;
+constexpr int kAccommodationStepsPerD = 20;  // accommodation slider: 0.05 D
+// Retina image mode renders the target at this width (the PSFs and the ray trace cost the same
+// at any size; the canvas work scales with the pixels), shown at the view's width.
+constexpr int kRetinaWidthPx = 960;
 
 // Linear RGB -> 8-bit sRGB QImage, area-downsampled to at most `max_width` pixels wide.
 QImage toQImage(const cv::Mat& linear, int max_width) {
@@ -73,6 +79,7 @@ class PreviewWorker : public QObject {
   }
   void setTarget(const cv::Mat& target) {
     target_ = target;
+    retinaTarget_.release();
     targetImage_ = toQImage(target_, kViewWidthPx);
     if (compositor_) compositor_->setTarget(target_);
   }
@@ -83,12 +90,51 @@ class PreviewWorker : public QObject {
       error_ = QString::fromStdString(e.what());
     }
   }
-  void render(std::array<double, 2> gaze, bool seam, int generation) {
+  // The retinal image at this gaze and accommodation (model/image/retina_image.h).
+  void renderRetina(PreviewFrame& f, std::array<double, 2> gaze, double accommodation_d, bool blend) {
+    f.gaze_deg = gaze;
+    f.accommodation_d = accommodation_d;
+    if (target_.empty()) return;
+    if (retinaTarget_.empty()) {
+      const int h = std::max(1, static_cast<int>(std::lround(target_.rows * double(kRetinaWidthPx) / target_.cols)));
+      cv::resize(target_, retinaTarget_, cv::Size(kRetinaWidthPx, h), 0, 0, cv::INTER_AREA);
+    }
+    image::RetinaImageOptions o;
+    o.gaze_deg = gaze;
+    o.accommodation_d = accommodation_d;
+    o.blend = blend;
+    try {
+      const auto t0 = std::chrono::steady_clock::now();
+      const image::RetinaImageResult r = image::renderRetinaImage(scene_, retinaTarget_, o);
+      f.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      f.retina = toQImage(r.image, kViewWidthPx);
+      QString info;
+      if (!r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid) {
+        const auto& m = r.peripheral[r.peripheral_reference].metrics;
+        info += QString("peripheral spot %1′, MTF50 %2 cpd").arg(m.fwhm_arcmin, 0, 'f', 1).arg(m.mtf50_cpd, 0, 'f', 2);
+      }
+      if (!r.foveal.empty()) {
+        const auto& m = r.foveal[r.foveal_reference].metrics;
+        info += QString("%1foveal spot %2′, MTF50 %3 cpd")
+                    .arg(info.isEmpty() ? "" : " · ")
+                    .arg(m.fwhm_arcmin, 0, 'f', 2)
+                    .arg(m.mtf50_cpd, 0, 'f', 1);
+      }
+      f.retinaInfo = info;
+    } catch (const std::exception& e) {
+      f.error = QString::fromStdString(e.what());
+    }
+  }
+
+  void render(std::array<double, 2> gaze, bool seam, int generation, std::optional<double> accommodation_d,
+              bool blend) {
     PreviewFrame f;
     f.generation = generation;
     f.error = error_;
     error_.clear();
-    if (compositor_) {
+    if (accommodation_d) {
+      renderRetina(f, gaze, *accommodation_d, blend);
+    } else if (compositor_) {
       const auto t0 = std::chrono::steady_clock::now();
       compositor_->update(gaze);
       f.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -115,7 +161,7 @@ class PreviewWorker : public QObject {
  private:
   PreviewPanel* panel_;
   Scene scene_;
-  cv::Mat target_;
+  cv::Mat target_, retinaTarget_;
   QImage targetImage_;
   QString error_;
   std::unique_ptr<image::FoveatedCompositor> compositor_;
@@ -185,12 +231,23 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   blend_ = new QCheckBox(tr("Blend (B.2.3)"), this);
   blend_->setChecked(true);
   blend_->setToolTip(tr("Blur ramp and crossfade; off: a hard switch at the blend start angle"));
+  mode_ = new QComboBox(this);
+  mode_->setObjectName("PreviewMode");
+  mode_->addItem(tr("Displays"));
+  mode_->addItem(tr("Retina image"));
+  mode_->setToolTip(
+      tr("Displays: the two display images and their blend; Retina image: what the retina receives "
+         "through both displays and the accommodating eye (issue 29)"));
   status_ = new QLabel(this);
   status_->setObjectName("PreviewStatus");
   top->addWidget(open);
+  top->addWidget(mode_);
   top->addWidget(blend_);
-  top->addWidget(status_, 1);
+  top->addStretch(1);
   layout->addLayout(top);
+  // The status on its own line: a narrow dock keeps the top row's buttons whole.
+  status_->setWordWrap(true);
+  layout->addWidget(status_);
 
   auto slider = [this](const QString& name, QLabel*& label) {
     auto* row = new QHBoxLayout;
@@ -205,8 +262,16 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   };
   yaw_ = slider("GazeYaw", yawLabel_);
   pitch_ = slider("GazePitch", pitchLabel_);
+  accommodation_ = slider("Accommodation", accommodationLabel_);
+  accommodation_->setRange(0, 4 * kAccommodationStepsPerD);
+  accommodation_->setValue(static_cast<int>(std::lround(1.25 * kAccommodationStepsPerD)));
+  accommodation_->setToolTip(
+      tr("The eye's accommodation (diopters): 0.4 D = 2.5 m … 3.3 D = 30 cm; the foveal "
+         "image is at 1.25 D (0.8 m) in the prototype"));
 
-  auto* grid = new QGridLayout;
+  displaysGrid_ = new QWidget(this);
+  auto* grid = new QGridLayout(displaysGrid_);
+  grid->setContentsMargins(0, 0, 0, 0);
   targetView_ = new PreviewImageView(tr("Target"), this);
   fovealView_ = new PreviewImageView(tr("Foveal (micro-OLED)"), this);
   peripheralView_ = new PreviewImageView(tr("Peripheral (projector)"), this);
@@ -215,13 +280,22 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   grid->addWidget(fovealView_, 0, 1);
   grid->addWidget(peripheralView_, 1, 0);
   grid->addWidget(perceivedView_, 1, 1);
-  layout->addLayout(grid);
+  layout->addWidget(displaysGrid_);
+  retinaView_ = new PreviewImageView(tr("Retina image (visual angle)"), this);
+  retinaView_->setObjectName("RetinaImageView");
+  retinaInfo_ = new QLabel(this);
+  retinaInfo_->setObjectName("RetinaImageInfo");
+  retinaInfo_->setWordWrap(true);
+  layout->addWidget(retinaView_);
+  layout->addWidget(retinaInfo_);
   layout->addStretch(1);
 
   seamTimer_ = new QTimer(this);
   seamTimer_->setSingleShot(true);
   seamTimer_->setInterval(300);
-  connect(seamTimer_, &QTimer::timeout, this, [this] { requestRender(true); });
+  connect(seamTimer_, &QTimer::timeout, this, [this] {
+    if (mode() == Mode::Displays) requestRender(true);
+  });
 
   worker_ = new PreviewWorker(this);
   worker_->moveToThread(&thread_);
@@ -239,6 +313,14 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   connect(yaw_, &QSlider::valueChanged, this, gazeMoved);
   connect(pitch_, &QSlider::valueChanged, this, gazeMoved);
   connect(blend_, &QCheckBox::toggled, this, [this] { rebuild(); });
+  connect(accommodation_, &QSlider::valueChanged, this, [this] {
+    accommodationLabel_->setText(tr("accommodation %1 D").arg(accommodation(), 0, 'f', 2));
+    if (mode() == Mode::RetinaImage) requestRender(false);
+  });
+  connect(mode_, &QComboBox::currentIndexChanged, this, [this] {
+    applyMode();
+    requestRender(false);
+  });
   connect(open, &QPushButton::clicked, this, [this] {
     const QString path = QFileDialog::getOpenFileName(this, tr("Target image"), dialogStart(document_),
                                                       tr("Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr *.hdr *.bmp)"));
@@ -252,8 +334,35 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
     });
     connect(document_, &SceneDocument::sceneReplaced, this, [this] { rebuild(); });
   }
+  accommodationLabel_->setText(tr("accommodation %1 D").arg(accommodation(), 0, 'f', 2));
+  applyMode();
   rebuild();
   gazeMoved();
+}
+
+PreviewPanel::Mode PreviewPanel::mode() const {
+  return mode_->currentIndex() == 1 ? Mode::RetinaImage : Mode::Displays;
+}
+
+void PreviewPanel::setMode(Mode m) {
+  mode_->setCurrentIndex(m == Mode::RetinaImage ? 1 : 0);
+}
+
+double PreviewPanel::accommodation() const {
+  return accommodation_->value() / double(kAccommodationStepsPerD);
+}
+
+void PreviewPanel::setAccommodation(double d) {
+  accommodation_->setValue(static_cast<int>(std::lround(d * kAccommodationStepsPerD)));
+}
+
+void PreviewPanel::applyMode() {
+  const bool retina = mode() == Mode::RetinaImage;
+  displaysGrid_->setVisible(!retina);
+  retinaView_->setVisible(retina);
+  retinaInfo_->setVisible(retina);
+  accommodation_->setVisible(retina);
+  accommodationLabel_->setVisible(retina);
 }
 
 PreviewPanel::~PreviewPanel() {
@@ -306,14 +415,31 @@ void PreviewPanel::requestRender(bool seam) {
   PreviewWorker* w = worker_;
   const auto g = gaze();
   const int gen = framesShown_ + 1;
+  const std::optional<double> acc = mode() == Mode::RetinaImage ? std::optional<double>(accommodation()) : std::nullopt;
+  const bool blend = blend_->isChecked();
   QMetaObject::invokeMethod(
-      w, [w, g, seam, gen] { w->render(g, seam, gen); }, Qt::QueuedConnection);
+      w, [w, g, seam, gen, acc, blend] { w->render(g, seam && !acc, gen, acc, blend); }, Qt::QueuedConnection);
 }
 
 void PreviewPanel::showFrame(const PreviewFrame& f) {
   busy_ = false;
   last_ = f;
   ++framesShown_;
+  if (f.accommodation_d) {  // a Retina image frame
+    retinaView_->setImage(f.retina);
+    retinaInfo_->setText(f.retinaInfo);
+    status_->setText(
+        f.error.isEmpty()
+            ? tr("retina image %1 ms at %2 D").arg(f.update_ms, 0, 'f', 0).arg(*f.accommodation_d, 0, 'f', 2)
+            : f.error);
+    emit frameShown();
+    if (pending_) {
+      const bool seam = *pending_;
+      pending_.reset();
+      requestRender(seam);
+    }
+    return;
+  }
   const std::vector<double> rings{f.ring_deg[0], f.ring_deg[1], f.ring_deg[2]};
   targetView_->setImage(f.target);
   targetView_->setRings(f.target_fov_deg, f.gaze_deg, rings);

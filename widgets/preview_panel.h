@@ -5,6 +5,9 @@
 // what a gaze change touches); the GUI thread only shows finished frames. Requests made
 // while the worker is busy are coalesced to the newest gaze. The FLIP seam figure is
 // computed once the gaze has rested for a moment.
+// Retina image mode (issue 29): the same target and gaze through both displays and the
+// accommodating eye, as the retina receives it (model/image/retina_image.h), with an
+// accommodation slider; rendered on the same worker at kRetinaWidthPx, coalesced the same way.
 
 #include <QImage>
 #include <QPointer>
@@ -17,6 +20,7 @@
 #include "model/scene/scene.h"
 
 class QCheckBox;
+class QComboBox;
 class QLabel;
 class QSlider;
 class QTimer;
@@ -52,6 +56,9 @@ class PreviewImageView : public QWidget {
 
 struct PreviewFrame {
   QImage target, foveal, peripheral, perceived;
+  QImage retina;                          // Retina image mode: the retinal image (sRGB for display)
+  QString retinaInfo;                     // its line-of-sight spots and powers, one line
+  std::optional<double> accommodation_d;  // set in Retina image mode
   std::array<double, 2> gaze_deg{0, 0};
   std::array<double, 2> target_fov_deg{0, 0}, foveal_fov_deg{0, 0};
   std::array<double, 3> ring_deg{0, 0, 0};
@@ -72,6 +79,12 @@ class PreviewPanel : public QWidget {
   void loadTarget(const QString& path);
   void setGaze(double yaw_deg, double pitch_deg);
   std::array<double, 2> gaze() const;
+  enum class Mode { Displays, RetinaImage };
+  void setMode(Mode mode);
+  Mode mode() const;
+  // Retina image mode's accommodation (diopters, 0..4 in 0.05 D steps).
+  void setAccommodation(double diopters);
+  double accommodation() const;
   // Number of frames shown so far and the newest one (for tests).
   int framesShown() const { return framesShown_; }
   const PreviewFrame& lastFrame() const { return last_; }
@@ -84,13 +97,18 @@ class PreviewPanel : public QWidget {
   void rebuild();                 // scene or blending changed: new compositor (keeps the target)
   void requestRender(bool seam);  // coalesced
   void showFrame(const PreviewFrame& frame);
+  void applyMode();  // shows the views of the current mode
 
   SceneDocument* document_;
   std::optional<Scene> configured_;  // the scene the compositor was last built for
   QThread thread_;
   PreviewWorker* worker_ = nullptr;
-  QSlider *yaw_ = nullptr, *pitch_ = nullptr;
-  QLabel *yawLabel_ = nullptr, *pitchLabel_ = nullptr, *status_ = nullptr;
+  QSlider *yaw_ = nullptr, *pitch_ = nullptr, *accommodation_ = nullptr;
+  QLabel *yawLabel_ = nullptr, *pitchLabel_ = nullptr, *accommodationLabel_ = nullptr, *status_ = nullptr,
+         *retinaInfo_ = nullptr;
+  QComboBox* mode_ = nullptr;
+  QWidget* displaysGrid_ = nullptr;
+  PreviewImageView* retinaView_ = nullptr;
   QCheckBox* blend_ = nullptr;
   PreviewImageView *targetView_ = nullptr, *fovealView_ = nullptr, *peripheralView_ = nullptr,
                    *perceivedView_ = nullptr;

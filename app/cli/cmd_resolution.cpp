@@ -1,5 +1,8 @@
-// fovea-cli resolution SCENE [--gaze-deg A[,B]] --json: angular resolution vs eccentricity
-// (supplement A.5). foveal_cpd / optical_limit_cpd are null outside the micro-OLED field.
+// fovea-cli resolution SCENE [--gaze-deg A[,B]] [--accommodation-d D,...] --json: angular
+// resolution vs eccentricity (supplement A.5). foveal_cpd / optical_limit_cpd are null outside
+// the micro-OLED field. --accommodation-d adds "accommodation": the peripheral and foveal
+// retinal spot and cpd (MTF50, MTF10) at the line of sight for each accommodation (issue 29,
+// model/analysis/accommodation_resolution.h); null without the flag.
 // Options: the "resolution" analysis of the registry (model/analysis/study_analyses.cpp).
 #include <iomanip>
 #include <iostream>
@@ -7,6 +10,7 @@
 #include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/study_cli.h"
+#include "model/analysis/accommodation_resolution.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/analysis/study_analyses.h"
 
@@ -47,6 +51,20 @@ void install(CLI::App& app) {
       std::cout << std::setw(7) << s.eccentricity_deg << std::setw(8) << s.foveal_cpd.value_or(0) << std::setw(12)
                 << s.peripheral_cpd.value_or(0) << std::setw(9) << s.optical_limit_cpd.value_or(0) << std::setw(11)
                 << s.perceived_cpd << "\n";
+    }
+    if (values.contains("accommodation-d") && !values["accommodation-d"].is_null()) {
+      const AccommodationList list = parseAccommodationList(analysis::textOf(values, "accommodation-d"));
+      const AccommodationResolution a =
+          resolutionVsAccommodation(scene, {r.gaze_yaw_deg, r.gaze_pitch_deg}, list.values_d);
+      std::cout << "accommodation_d  peripheral MTF50 MTF10  foveal MTF50 MTF10 (cpd)\n";
+      for (const auto& s : a.samples) {
+        if (a.peripheral_reference >= s.peripheral.size() || a.foveal_reference >= s.foveal.size()) continue;
+        const auto& p = s.peripheral.at(a.peripheral_reference);
+        const auto& f = s.foveal.at(a.foveal_reference);
+        std::cout << std::setw(15) << s.accommodation_d << std::setw(18) << (p.valid ? p.metrics.mtf50_cpd : 0.0)
+                  << std::setw(6) << (p.valid ? p.metrics.mtf10_cpd : 0.0) << std::setw(14) << f.metrics.mtf50_cpd
+                  << std::setw(6) << f.metrics.mtf10_cpd << "\n";
+      }
     }
   });
 }

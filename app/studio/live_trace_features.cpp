@@ -19,6 +19,7 @@
 #include "widgets/handle_controller.h"
 #include "widgets/live_trace.h"
 #include "widgets/preferences.h"
+#include "widgets/preview_panel.h"
 #include "widgets/retina_view.h"
 #include "widgets/scene_document.h"
 
@@ -157,13 +158,21 @@ bool LiveTraceFeatures::applyShowList(const QStringList& names, QString* error) 
     } else if (n == "retina") {
       retinaDock_->show();
       retinaDock_->raise();
+    } else if (n == "retina-image") {  // the Foveated preview dock in its Retina image mode
+      if (QDockWidget* d = window_->previewDock()) {
+        d->show();
+        d->raise();
+      }
+      if (widgets::PreviewPanel* p = window_->previewPanel()) p->setMode(widgets::PreviewPanel::Mode::RetinaImage);
     } else if (n == "bench") {
       if (QDockWidget* d = window_->devicesDock()) {
         d->show();
         d->raise();
       }
     } else if (n != "none" && !n.isEmpty()) {
-      if (error) *error = tr("unknown view \"%1\" (expected rays, effmap, kcloud, retina, bench or none)").arg(raw);
+      if (error)
+        *error =
+            tr("unknown view \"%1\" (expected rays, effmap, kcloud, retina, retina-image, bench or none)").arg(raw);
       return false;
     }
   }

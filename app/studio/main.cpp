@@ -32,6 +32,7 @@
 #include "widgets/display_panel.h"
 #include "widgets/gaze_panel.h"
 #include "widgets/message_log.h"
+#include "widgets/preview_panel.h"
 #include "widgets/retina_view.h"
 
 namespace {
@@ -66,11 +67,13 @@ int main(int argc, char** argv) {
   parser.addOption(sizeOpt);
   parser.addOption(viewOpt);
   QCommandLineOption followOpt("follow-gaze", "HOE follows gaze: apply the travel x_p(alpha) that maximises the FOV.");
-  QCommandLineOption showOpt("show",
-                             "Views to show, comma-separated: rays (ray fans), effmap (efficiency map on the HOE), "
-                             "kcloud (grating-vector cloud dock), retina (retina dock), bench (devices dock), none. "
-                             "Default: rays,retina.",
-                             "LIST");
+  QCommandLineOption showOpt(
+      "show",
+      "Views to show, comma-separated: rays (ray fans), effmap (efficiency map on the HOE), "
+      "kcloud (grating-vector cloud dock), retina (retina dock), retina-image (the Foveated preview "
+      "dock in its Retina image mode), bench (devices dock), none. "
+      "Default: rays,retina.",
+      "LIST");
   QCommandLineOption zoomOpt("zoom", "Camera zoom factor applied after --view (0.2..20, e.g. 1.8).", "F");
   QCommandLineOption grabOpt("grab", "What --screenshot saves: window (default), view (3D view), retina, kcloud.",
                              "WHAT", "window");
@@ -215,6 +218,15 @@ int main(int argc, char** argv) {
     t.start();
     while (t.elapsed() < 10000 && !(devices->isConnected() && devices->hasCameraFrame())) settle(50);
     settle(300);
+  }
+  // The preview in its Retina image mode: wait (up to 60 s) for its first retinal image.
+  if (fovea::widgets::PreviewPanel* preview = window.previewPanel();
+      preview && preview->isVisible() && preview->mode() == fovea::widgets::PreviewPanel::Mode::RetinaImage) {
+    QElapsedTimer t;
+    t.start();
+    while (t.elapsed() < 60000 && (!preview->lastFrame().accommodation_d || preview->lastFrame().retina.isNull()))
+      settle(50);
+    settle(200);
   }
   QImage image;
   if (grab == "view")  // opaque, as on screen (the labels' boxes keep their darkness)

@@ -121,8 +121,9 @@ void MainWindow::createDocks() {
   addPanel(properties_, tr("Properties"), "PropertiesDock", Qt::RightDockWidgetArea);
   log_ = new widgets::MessageLog(this);
   addPanel(log_, tr("Messages"), "MessagesDock", Qt::BottomDockWidgetArea);
-  QDockWidget* preview = addPanel(new widgets::PreviewPanel(document_, this), tr("Foveated preview"), "PreviewDock",
-                                  Qt::RightDockWidgetArea);
+  preview_ = new widgets::PreviewPanel(document_, this);
+  QDockWidget* preview = addPanel(preview_, tr("Foveated preview"), "PreviewDock", Qt::RightDockWidgetArea);
+  previewDock_ = preview;
   // The bench: a tab behind the preview (its camera runs only while the tab is shown).
   widgets::DevicesPanelOptions bench;
   bench.auto_connect = benchAutoStart;

@@ -21,6 +21,7 @@ class SceneDocument;
 class SceneTree;
 class PropertyEditor;
 class MessageLog;
+class PreviewPanel;
 class DevicesPanel;
 }  // namespace widgets
 }  // namespace fovea
@@ -69,6 +70,9 @@ class MainWindow : public QMainWindow {
   // The live bench (devices/bench): the virtual one when no stage controller is plugged in.
   widgets::DevicesPanel* devicesPanel() const { return devices_; }
   QDockWidget* devicesDock() const { return devicesDock_; }
+  // The Foveated preview dock and its panel (Displays / Retina image modes).
+  widgets::PreviewPanel* previewPanel() const { return preview_; }
+  QDockWidget* previewDock() const { return previewDock_; }
   // Whether new main windows start the bench by themselves (default true; GUI tests that do
   // not exercise the bench and the report mode turn it off).
   static void setBenchAutoStart(bool on);
@@ -105,6 +109,8 @@ class MainWindow : public QMainWindow {
   widgets::MessageLog* log_ = nullptr;
   widgets::DevicesPanel* devices_ = nullptr;
   QDockWidget* devicesDock_ = nullptr;
+  widgets::PreviewPanel* preview_ = nullptr;
+  QDockWidget* previewDock_ = nullptr;
   QLabel* benchStatus_ = nullptr;  // permanent status-bar text: VIRTUAL BENCH / bench hardware
   QMenu* viewMenu_ = nullptr;
   QMenu* panelsMenu_ = nullptr;

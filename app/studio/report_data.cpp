@@ -6,6 +6,10 @@
 #include <cmath>
 
 #include "model/analysis/hoe_travel.h"
+#include "model/color/srgb.h"
+#include "model/image/foveation.h"
+#include "model/image/retina_image.h"
+#include "model/image/test_target.h"
 #include "model/physics/projector_rays.h"
 #include "widgets/analyses/analysis_catalog.h"
 
@@ -44,6 +48,55 @@ std::optional<nlohmann::json> step(const QString& id, const Scene& scene, Analys
     return r;
   } catch (const std::exception& e) {
     problems << QString("%1: %2").arg(id, QString::fromUtf8(e.what()));
+    return std::nullopt;
+  }
+}
+
+// The accommodations of the report's resolution sweep (0.4..3.3 D: the seed's 250..30 cm, C.3).
+constexpr const char* kReportAccommodationsD = "0.4,0.67,1,1.25,1.67,2.5,3.3";
+// The report's retinal image: the test target at 960 px (as the preview's Retina image mode),
+// the eye focused on the foveal image (1 / its distance).
+constexpr int kReportRetinaWidthPx = 960;
+
+std::optional<ReportRetinaImage> reportRetinaImage(const Scene& scene, std::array<double, 2> gaze_deg,
+                                                   QStringList& problems) {
+  try {
+    const image::DisplayAngles a = image::displayAngles(scene);
+    const cv::Size size(kReportRetinaWidthPx,
+                        std::max(1, static_cast<int>(std::lround(kReportRetinaWidthPx * a.peripheral_fov_deg[1] /
+                                                                 a.peripheral_fov_deg[0]))));
+    const cv::Mat target = image::makeTestTarget(size, a.peripheral_fov_deg, 20.0);
+    image::RetinaImageOptions o;
+    o.gaze_deg = gaze_deg;
+    const double d_f = scene.foveal_display.combiner.image_distance_mm;
+    o.accommodation_d = d_f > 250 ? std::clamp(1000.0 / d_f, 0.0, 4.0) : 1.25;
+    const image::RetinaImageResult r = image::renderRetinaImage(scene, target, o);
+    ReportRetinaImage out;
+    out.gaze_deg = gaze_deg;
+    out.accommodation_d = o.accommodation_d;
+    out.power_in_pupil = r.power_in_pupil;
+    out.power_on_retina = r.power_on_retina;
+    if (!r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid) {
+      out.peripheral_spot_arcmin = r.peripheral[r.peripheral_reference].metrics.fwhm_arcmin;
+      out.peripheral_mtf50_cpd = r.peripheral[r.peripheral_reference].metrics.mtf50_cpd;
+    }
+    if (!r.foveal.empty()) {
+      out.foveal_spot_arcmin = r.foveal[r.foveal_reference].metrics.fwhm_arcmin;
+      out.foveal_mtf50_cpd = r.foveal[r.foveal_reference].metrics.mtf50_cpd;
+    }
+    QImage img(r.image.cols, r.image.rows, QImage::Format_RGB888);
+    for (int y = 0; y < r.image.rows; ++y) {
+      const auto* in = r.image.ptr<cv::Vec3f>(y);
+      uchar* line = img.scanLine(y);
+      for (int x = 0; x < r.image.cols; ++x)
+        for (int c = 0; c < 3; ++c)
+          line[3 * x + c] =
+              static_cast<uchar>(std::lround(255.0F * color::linearToSrgb(std::clamp(in[x][c], 0.0F, 1.0F))));
+    }
+    out.image = img;
+    return out;
+  } catch (const std::exception& e) {
+    problems << QString("retina image: %1").arg(QString::fromUtf8(e.what()));
     return std::nullopt;
   }
 }
@@ -117,8 +170,11 @@ std::optional<ReportData> computeReportData(const Scene& scene, const QString& s
   AnalysisParams res = defaultParameters(*findAnalysis("resolution"));
   res["gaze-yaw"] = options.gazes_deg.front()[0];
   res["gaze-pitch"] = options.gazes_deg.front()[1];
+  res["accommodation-d"] = kReportAccommodationsD;  // the resolution-vs-accommodation plot
   if (auto j = step("resolution", scene, res, control, 0.6, 0.7, d.problems, &cancelled)) d.resolution = *j;
   if (cancelled) return std::nullopt;
+  d.retinaImage = reportRetinaImage(scene, options.gazes_deg.front(), d.problems);
+  if (control.cancelled()) return std::nullopt;
   if (!scene.hoe_layers.empty()) {
     if (auto j = step("selectivity", scene, defaultParameters(*findAnalysis("selectivity")), control, 0.7, 0.75,
                       d.problems, &cancelled))

@@ -1,11 +1,13 @@
 #pragma once
 // What a design report needs computed (any thread, cancellable): a trace at every chosen
 // gaze (with its rays, for the retina maps), the gaze sweep (FOV and HOE travel vs gaze, eye
-// box), the angular resolution at the first gaze, the HOE layers' selectivity, the
+// box), the angular resolution at the first gaze (with its accommodation sweep), the retinal
+// image there, the HOE layers' selectivity, the
 // Kogelnik-vs-RCWA error/time map and, when requested, the tolerance analysis. Every analysis goes through the studio's
 // analysis catalogue (the same numbers as fovea-cli and the analyses panel; cached studies are reused). An analysis
 // that fails is recorded in `problems` and left out of the report.
 
+#include <QImage>
 #include <QList>
 #include <QString>
 #include <QStringList>
@@ -44,6 +46,17 @@ struct GazeTrace {
   std::array<double, 2> hoe_shift_mm{0, 0};  // x_p applied (zero unless follow_gaze)
 };
 
+// The retinal image of the default test target at the first gaze (issue 29,
+// model/image/retina_image.h), sRGB for the page, with its line-of-sight numbers.
+struct ReportRetinaImage {
+  QImage image;
+  std::array<double, 2> gaze_deg{0, 0};
+  double accommodation_d = 0;
+  double peripheral_spot_arcmin = 0, peripheral_mtf50_cpd = 0;  // 0 when the line of sight misses the HOE
+  double foveal_spot_arcmin = 0, foveal_mtf50_cpd = 0;
+  double power_in_pupil = 0, power_on_retina = 0;
+};
+
 struct ReportData {
   Scene scene;
   QString scenePath;
@@ -51,6 +64,7 @@ struct ReportData {
   QList<GazeTrace> traces;
   nlohmann::json sweep, resolution, selectivity, kogelnikVsRcwa;  // null when not computed
   nlohmann::json tolerance;                                       // null unless requested or given
+  std::optional<ReportRetinaImage> retinaImage;                   // nothing when it failed
   QStringList problems;
 };
 

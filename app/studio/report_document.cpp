@@ -419,6 +419,26 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
         QString("retina-%1").arg(i + 1), p.caption, widgets::renderPlotImage(p, QSize(760, 620), 1.6), {}};
   }
   if (!retina.figures.isEmpty()) c.sections << retina;
+  if (d.retinaImage && !d.retinaImage->image.isNull()) {
+    const ReportRetinaImage& ri = *d.retinaImage;
+    ReportSection image{"Retinal image",
+                        "The test target on both displays as the retina receives it (issue 29): pixel beams through "
+                        "the HOE and the accommodating schematic eye, the foveal inset through the defocused pupil, "
+                        "efficiency shading and missing rays, in visual angle.",
+                        {}};
+    image.figures << ReportFigure{
+        "retina-image",
+        QString("The retinal image at gaze %1, accommodation %2 D (the foveal image's distance). Line of sight: "
+                "peripheral spot %3 arcmin (MTF50 %4 cpd), foveal spot %5 arcmin (MTF50 %6 cpd); power on the "
+                "retina %7 of %8 entering the pupil.")
+            .arg(gazeText(ri.gaze_deg, u), QString::number(ri.accommodation_d, 'g', 3),
+                 QString::number(ri.peripheral_spot_arcmin, 'f', 1), QString::number(ri.peripheral_mtf50_cpd, 'g', 3),
+                 QString::number(ri.foveal_spot_arcmin, 'f', 2), QString::number(ri.foveal_mtf50_cpd, 'g', 3),
+                 QString::number(ri.power_on_retina, 'g', 8), QString::number(ri.power_in_pupil, 'g', 8)),
+        ri.image,
+        {}};
+    c.sections << image;
+  }
 
   ReportSection plots{
       "Plots", "The design analyses (the same numbers as fovea-cli and the studio's analyses panel).", {}};

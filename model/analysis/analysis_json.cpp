@@ -170,6 +170,51 @@ nlohmann::json resolutionResultJson(const ResolutionResult& r, const Scene& scen
   return out;
 }
 
+namespace {
+nlohmann::json spotMetricsJson(const SpotMetrics& m) {
+  return {{"spot_fwhm_arcmin", m.fwhm_arcmin}, {"cpd_mtf50", m.mtf50_cpd}, {"cpd_mtf10", m.mtf10_cpd}};
+}
+}  // namespace
+
+nlohmann::json accommodationResolutionJson(const AccommodationResolution& r) {
+  nlohmann::json out;
+  out["gaze_deg"] = r.gaze_deg;
+  out["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
+  out["peripheral_spot_change"] = optionalNumber(r.peripheral_spot_change);
+  out["foveal_spot_change"] = optionalNumber(r.foveal_spot_change);
+  nlohmann::json arr = nlohmann::json::array();
+  for (const auto& s : r.samples) {
+    nlohmann::json e;
+    e["accommodation_d"] = s.accommodation_d;
+    e["distance_cm"] = s.accommodation_d > 0 ? nlohmann::json(100.0 / s.accommodation_d) : nlohmann::json(nullptr);
+    const bool have_p = r.peripheral_reference < s.peripheral.size() && s.peripheral[r.peripheral_reference].valid;
+    e["peripheral"] = have_p ? spotMetricsJson(s.peripheral[r.peripheral_reference].metrics) : nlohmann::json(nullptr);
+    const bool have_f = r.foveal_reference < s.foveal.size();
+    e["foveal"] = have_f ? spotMetricsJson(s.foveal[r.foveal_reference].metrics) : nlohmann::json(nullptr);
+    e["foveal_defocus_d"] = have_f ? nlohmann::json(s.foveal[r.foveal_reference].defocus_d) : nlohmann::json(nullptr);
+    nlohmann::json per = nlohmann::json::array();
+    for (const auto& p : s.peripheral) {
+      nlohmann::json x = p.valid ? spotMetricsJson(p.metrics) : nlohmann::json::object();
+      x["wavelength_nm"] = p.wavelength_nm;
+      x["valid"] = p.valid;
+      per.push_back(x);
+    }
+    e["peripheral_per_wavelength"] = per;
+    nlohmann::json fov = nlohmann::json::array();
+    for (const auto& f : s.foveal) {
+      nlohmann::json x = spotMetricsJson(f.metrics);
+      x["wavelength_nm"] = f.wavelength_nm;
+      x["defocus_d"] = f.defocus_d;
+      x["geometric_blur_arcmin"] = f.geometric_blur_arcmin;
+      fov.push_back(x);
+    }
+    e["foveal_per_primary"] = fov;
+    arr.push_back(e);
+  }
+  out["samples"] = arr;
+  return out;
+}
+
 nlohmann::json lensOptimizationJson(const LensOptimization& r) {
   nlohmann::json j;
   j["part"] = r.best.lens.part;

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/analysis/accommodation_resolution.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/gaze_studies.h"
@@ -35,6 +36,10 @@ nlohmann::json eyeBoxJson(const EyeBox& eb);
 nlohmann::json sensitivityResultJson(const std::vector<SensitivitySample>& samples, const std::string& parameter,
                                      double nominal_value);
 nlohmann::json resolutionResultJson(const ResolutionResult& r, const Scene& scene);
+// The resolution command's "accommodation" part (--accommodation-d): per accommodation the
+// reference peripheral and foveal {spot_fwhm_arcmin, cpd_mtf50, cpd_mtf10} (retina-image's
+// keys), the distance focused, the foveal defocus and every wavelength's values.
+nlohmann::json accommodationResolutionJson(const AccommodationResolution& r);
 nlohmann::json lensOptimizationJson(const LensOptimization& r);
 nlohmann::json selectivityResultJson(const SelectivityResult& r);
 // {"points":[...every grid point...], "by_rho":[...summariseByRho rows...]}

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -136,14 +140,17 @@ PupilPsf defocusedPupilPsf(double pupil_diameter_mm, double wavelength_nm, doubl
   while (np > n / 2 && n < 2048) n *= 2;
   np = std::min(np, n / 2);
   const double dx = d / np;
+  // The pupil sits in the grid's first rows (centre m, m): a shift only multiplies the
+  // spectrum by a linear phase, so |FFT|^2 is that of the centred pupil (Goodman, ch. 2, the
+  // shift theorem), and cv::dft skips the row transforms of the empty rows (nonzeroRows).
+  const int m = np / 2 + 2, rows = 2 * m + 1;
   cv::Mat field(n, n, CV_64FC2, cv::Scalar(0, 0));
   const double a = 0.5 * d;
-  const int c = n / 2;
   constexpr int kSub = 4;
-  for (int iy = c - np / 2 - 2; iy <= c + np / 2 + 2; ++iy) {
+  for (int iy = 0; iy < rows; ++iy) {
     auto* row = field.ptr<cv::Vec2d>(iy);
-    for (int ix = c - np / 2 - 2; ix <= c + np / 2 + 2; ++ix) {
-      const double x = (ix - c) * dx, y = (iy - c) * dx, r = std::hypot(x, y);
+    for (int ix = 0; ix < rows; ++ix) {
+      const double x = (ix - m) * dx, y = (iy - m) * dx, r = std::hypot(x, y);
       double cover = 0;
       if (r < a - dx) {
         cover = 1;
@@ -159,14 +166,14 @@ PupilPsf defocusedPupilPsf(double pupil_diameter_mm, double wavelength_nm, doubl
       row[ix] = cv::Vec2d(cover * std::cos(phase), cover * std::sin(phase));
     }
   }
-  psfFftShift(field);  // pupil centre to (0, 0) so the PSF comes out real-centred after the shift
-  cv::dft(field, field);
-  psfFftShift(field);
-  std::vector<cv::Mat> parts;
-  cv::split(field, parts);
-  cv::Mat psf;
-  cv::magnitude(parts[0], parts[1], psf);
-  psf = psf.mul(psf);
+  cv::dft(field, field, 0, rows);
+  cv::Mat psf(n, n, CV_64F);
+  for (int y = 0; y < n; ++y) {
+    const auto* in = field.ptr<cv::Vec2d>(y);
+    double* out = psf.ptr<double>(y);
+    for (int x = 0; x < n; ++x) out[x] = in[x][0] * in[x][0] + in[x][1] * in[x][1];
+  }
+  psfFftShift(psf);  // zero angle to the grid centre
   psf /= cv::sum(psf)[0];
   PupilPsf out;
   out.psf = psf;
@@ -253,43 +260,101 @@ double MtfCurve::frequencyAt(double level) const {
 
 namespace {
 
-// OTF of a centred PSF grid (complex, zero frequency at (0,0)), times the pixel box and Gaussian factors.
-cv::Mat psfOtfWithFactors(const cv::Mat& psf, double sample_arcmin, double pixel_deg, double sigma_arcmin) {
-  cv::Mat f = psf.clone();
+// OTF of a centred real PSF grid (complex, zero frequency at (0,0)): a real-input DFT.
+cv::Mat psfOtf(const cv::Mat& psf) {
+  cv::Mat f = psf.clone(), otf;
   psfFftShift(f);
-  cv::Mat planes[] = {f, cv::Mat::zeros(f.size(), CV_64F)}, otf;
-  cv::merge(planes, 2, otf);
-  cv::dft(otf, otf);
-  const int n = psf.cols;
-  const double df_cpd = 60.0 / (n * sample_arcmin);  // cycles per degree per frequency bin
+  cv::dft(f, otf, cv::DFT_COMPLEX_OUTPUT);
+  return otf;
+}
+
+// Multiplies an OTF by the pixel box sinc(p fx) sinc(p fy) and the Gaussian blur
+// exp(-2 pi^2 sigma^2 (fx^2 + fy^2)); both separable, so one 1-D factor per axis.
+void psfApplyFactors(cv::Mat& otf, double df_cpd, double pixel_deg, double sigma_arcmin) {
+  if (pixel_deg == 0 && sigma_arcmin == 0) return;
+  const int n = otf.cols;
   const double sigma_deg = sigma_arcmin / 60.0;
-  for (int y = 0; y < n; ++y) {
+  std::vector<double> g(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double f = (k <= n / 2 ? k : k - n) * df_cpd;
+    g[static_cast<std::size_t>(k)] =
+        psfSincPi(pixel_deg * f) * std::exp(-2.0 * kPi * kPi * sigma_deg * sigma_deg * f * f);
+  }
+  for (int y = 0; y < otf.rows; ++y) {
     auto* row = otf.ptr<cv::Vec2d>(y);
-    const double fy = (y <= n / 2 ? y : y - n) * df_cpd;
-    for (int x = 0; x < n; ++x) {
-      const double fx = (x <= n / 2 ? x : x - n) * df_cpd;
-      const double g = psfSincPi(pixel_deg * fx) * psfSincPi(pixel_deg * fy) *
-                       std::exp(-2.0 * kPi * kPi * sigma_deg * sigma_deg * (fx * fx + fy * fy));
-      row[x] *= g;
+    const double gy = g[static_cast<std::size_t>(y)];
+    for (int x = 0; x < n; ++x) row[x] *= gy * g[static_cast<std::size_t>(x)];
+  }
+}
+
+// |OTF| along +fx, normalised at zero frequency.
+MtfCurve psfMtfRow(const cv::Mat& otf, double df_cpd) {
+  const cv::Vec2d* row = otf.ptr<cv::Vec2d>(0);
+  const double dc = std::hypot(row[0][0], row[0][1]);
+  MtfCurve m;
+  for (int k = 0; k <= otf.cols / 2; ++k) {
+    m.cpd.push_back(k * df_cpd);
+    m.mtf.push_back(std::hypot(row[k][0], row[k][1]) / dc);
+  }
+  return m;
+}
+
+// The eye's part of a foveal spot, which depends on the pupil, the wavelength and the defocus
+// only (not on the gaze): its OTF and metrics, kept for the last few requests (about 16 MB
+// each at the 1024 grid; at most kPsfCacheBytes in all) so that a new gaze recomputes only the
+// combiner's blur factor.
+struct EyePsfEntry {
+  double pupil_mm = 0, wavelength_nm = 0, defocus_d = 0;
+  cv::Mat otf;
+  double sample_arcmin = 0;
+  SpotMetrics eye_only;
+  double eye_profile_fwhm_arcmin = 0;
+};
+constexpr std::size_t kPsfCacheBytes = 160u << 20;
+
+std::shared_ptr<const EyePsfEntry> eyePsf(double pupil_mm, double wavelength_nm, double defocus_d) {
+  static std::mutex mutex;
+  static std::deque<std::shared_ptr<const EyePsfEntry>> cache;  // most recent first
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = cache.begin(); it != cache.end(); ++it)
+      if ((*it)->pupil_mm == pupil_mm && (*it)->wavelength_nm == wavelength_nm && (*it)->defocus_d == defocus_d) {
+        auto hit = *it;
+        cache.erase(it);
+        cache.push_front(hit);
+        return hit;
+      }
+  }
+  auto e = std::make_shared<EyePsfEntry>();
+  e->pupil_mm = pupil_mm;
+  e->wavelength_nm = wavelength_nm;
+  e->defocus_d = defocus_d;
+  const PupilPsf p = defocusedPupilPsf(pupil_mm, wavelength_nm, defocus_d);
+  e->sample_arcmin = p.sample_arcmin;
+  e->otf = psfOtf(p.psf);
+  const MtfCurve eye_mtf = psfMtfRow(e->otf, 60.0 / (p.psf.cols * p.sample_arcmin));
+  e->eye_only = {spotWidthArcmin(p.psf, p.sample_arcmin), eye_mtf.frequencyAt(0.5), eye_mtf.frequencyAt(0.1)};
+  e->eye_profile_fwhm_arcmin = psfFwhmArcmin(p.psf, p.sample_arcmin);
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.push_front(e);
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < cache.size(); ++i) {
+    bytes += cache[i]->otf.total() * cache[i]->otf.elemSize();
+    if (bytes > kPsfCacheBytes && i >= 3) {  // keep at least one accommodation's three primaries
+      cache.resize(i);
+      break;
     }
   }
-  return otf;
+  return e;
 }
 
 }  // namespace
 
 MtfCurve mtfFromPsf(const cv::Mat& psf, double sample_arcmin, double pixel_deg, double sigma_arcmin) {
-  const cv::Mat otf = psfOtfWithFactors(psf, sample_arcmin, pixel_deg, sigma_arcmin);
-  const int n = psf.cols;
-  const double df_cpd = 60.0 / (n * sample_arcmin);
-  const double dc = std::hypot(otf.at<cv::Vec2d>(0, 0)[0], otf.at<cv::Vec2d>(0, 0)[1]);
-  MtfCurve m;
-  for (int k = 0; k <= n / 2; ++k) {
-    const cv::Vec2d& v = otf.at<cv::Vec2d>(0, k);
-    m.cpd.push_back(k * df_cpd);
-    m.mtf.push_back(std::hypot(v[0], v[1]) / dc);
-  }
-  return m;
+  cv::Mat otf = psfOtf(psf);
+  const double df_cpd = 60.0 / (psf.cols * sample_arcmin);
+  psfApplyFactors(otf, df_cpd, pixel_deg, sigma_arcmin);
+  return psfMtfRow(otf, df_cpd);
 }
 
 FovealSpot fovealSpot(const Scene& scene, double wavelength_nm, double accommodation_d, std::array<double, 2> gaze_deg,
@@ -303,21 +368,21 @@ FovealSpot fovealSpot(const Scene& scene, double wavelength_nm, double accommoda
   s.geometric_blur_arcmin = std::abs(s.defocus_d) / 1000.0 * pupil * kPsfArcminPerRad;
   s.pixel_arcmin = fovealFovDeg(scene)[0] / scene.foveal_display.pixels[0] * 60.0;
   s.combiner_rms_arcmin = tracedCombinerMtf30(scene, gaze_deg[0], gaze_deg[0]).rms_blur_arcmin;
-  const PupilPsf p = defocusedPupilPsf(pupil, wavelength_nm, s.defocus_d);
-  s.sample_arcmin = p.sample_arcmin;
-  const MtfCurve eye_mtf = mtfFromPsf(p.psf, p.sample_arcmin);
-  s.eye_only = {spotWidthArcmin(p.psf, p.sample_arcmin), eye_mtf.frequencyAt(0.5), eye_mtf.frequencyAt(0.1)};
-  s.eye_profile_fwhm_arcmin = psfFwhmArcmin(p.psf, p.sample_arcmin);
-  const double pixel_deg = s.pixel_arcmin / 60.0;
-  const MtfCurve total = mtfFromPsf(p.psf, p.sample_arcmin, pixel_deg, s.combiner_rms_arcmin);
-  cv::Mat otf = psfOtfWithFactors(p.psf, p.sample_arcmin, pixel_deg, s.combiner_rms_arcmin), back;
+  const auto eye_psf = eyePsf(pupil, wavelength_nm, s.defocus_d);
+  s.sample_arcmin = eye_psf->sample_arcmin;
+  s.eye_only = eye_psf->eye_only;
+  s.eye_profile_fwhm_arcmin = eye_psf->eye_profile_fwhm_arcmin;
+  const double df_cpd = 60.0 / (eye_psf->otf.cols * s.sample_arcmin);
+  cv::Mat otf = eye_psf->otf.clone(), back;
+  psfApplyFactors(otf, df_cpd, s.pixel_arcmin / 60.0, s.combiner_rms_arcmin);
+  const MtfCurve total = psfMtfRow(otf, df_cpd);
   cv::dft(otf, back, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
   psfFftShift(back);
   back = cv::max(back, 0.0);
   back /= cv::sum(back)[0];
   s.psf = back;
-  s.metrics = {spotWidthArcmin(back, p.sample_arcmin), total.frequencyAt(0.5), total.frequencyAt(0.1)};
-  s.profile_fwhm_arcmin = psfFwhmArcmin(back, p.sample_arcmin);
+  s.metrics = {spotWidthArcmin(back, s.sample_arcmin), total.frequencyAt(0.5), total.frequencyAt(0.1)};
+  s.profile_fwhm_arcmin = psfFwhmArcmin(back, s.sample_arcmin);
   return s;
 }
 

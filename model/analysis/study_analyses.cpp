@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "model/analysis/accommodation_resolution.h"
 #include "model/analysis/analysis_json.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/analysis/beam_shaping.h"
@@ -292,10 +293,23 @@ AnalysisDefinition resolutionAnalysis() {
   ParameterSpec yaw = gazeAngle("gaze-yaw", "Gaze yaw", nullptr, "gaze yaw");
   ParameterSpec pitch = gazeAngle("gaze-pitch", "Gaze pitch", nullptr, "gaze pitch");
   yaw.unset_meaning = pitch.unset_meaning = "the scene's gaze";
+  ParameterSpec accommodation =
+      text("accommodation-d", "Accommodation (D)", {"0.4,0.5,0.67,0.8,1,1.25,1.5,2,2.5,3,3.3"}, "",
+           "comma list of accommodations in diopters, each in [0, 4] (0.4..3.3 D: the seed's 250..30 cm, C.3): "
+           "peripheral and foveal cpd (MTF50, MTF10) of the retinal PSFs at the line of sight for each");
+  accommodation.default_value = nullptr;
+  accommodation.unset_meaning = "no accommodation sweep (\"accommodation\": null)";
   d.parameters = {yaw, pitch,
-                  integer("samples", "Samples", 241, 3, 100000, "eccentricity samples over the peripheral field")};
+                  integer("samples", "Samples", 241, 3, 100000, "eccentricity samples over the peripheral field"),
+                  accommodation};
   d.option_groups = {gazeGroup(false)};
-  d.plots = {"resolution-vs-eccentricity"};
+  d.plots = {"resolution-vs-eccentricity", "resolution-vs-accommodation"};
+  d.check = [](const nlohmann::json& v) -> std::optional<ParameterProblem> {
+    if (!v.contains("accommodation-d") || v["accommodation-d"].is_null()) return std::nullopt;
+    const AccommodationList list = parseAccommodationList(textOf(v, "accommodation-d"));
+    if (list.problem) return ParameterProblem{"accommodation-d", *list.problem};
+    return std::nullopt;
+  };
   d.run = [](const Scene& scene, const nlohmann::json& v, const StudyControl&) -> std::optional<nlohmann::json> {
     ResolutionOptions o;
     o.samples = integerOf(v, "samples");
@@ -303,7 +317,14 @@ AnalysisDefinition resolutionAnalysis() {
     const ResolutionResult r = analyzeResolution(scene, o);
     if (r.samples.empty())
       throw std::runtime_error("no line of sight reaches the HOE or the foveal image for this gaze");
-    return resolutionResultJson(r, scene);
+    nlohmann::json out = resolutionResultJson(r, scene);
+    out["accommodation"] = nullptr;
+    if (v.contains("accommodation-d") && !v["accommodation-d"].is_null()) {
+      const AccommodationList list = parseAccommodationList(textOf(v, "accommodation-d"));
+      out["accommodation"] = accommodationResolutionJson(
+          resolutionVsAccommodation(scene, {r.gaze_yaw_deg, r.gaze_pitch_deg}, list.values_d));
+    }
+    return out;
   };
   return d;
 }

@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 #include <opencv2/imgproc.hpp>
 
 #include "model/image/foveation.h"
@@ -81,15 +83,45 @@ cv::Mat retinaGaussianBlur(const cv::Mat& plane, double sx, double sy) {
   };
   if (k == 1) return blur(plane, sx, sy);
   const double power = cv::sum(plane)[0];
-  cv::Mat padded;
-  const int pw = (plane.cols + k - 1) / k * k, ph = (plane.rows + k - 1) / k * k;
-  cv::copyMakeBorder(plane, padded, 0, ph - plane.rows, 0, pw - plane.cols, cv::BORDER_CONSTANT, 0);
-  cv::Mat low;
-  cv::resize(padded, low, cv::Size(pw / k, ph / k), 0, 0, cv::INTER_AREA);  // block means
+  // Block sums straight from the plane (no padded copy), as block means.
+  cv::Mat low((plane.rows + k - 1) / k, (plane.cols + k - 1) / k, CV_64F, cv::Scalar(0));
+  for (int y = 0; y < plane.rows; ++y) {
+    const double* in = plane.ptr<double>(y);
+    double* lo = low.ptr<double>(y / k);
+    for (int x = 0; x < plane.cols; ++x) lo[x / k] += in[x];
+  }
+  low *= 1.0 / (static_cast<double>(k) * k);
   low = blur(low, sx / k, sy / k);
   cv::Mat up;
-  cv::resize(low, up, padded.size(), 0, 0, cv::INTER_LINEAR);
-  cv::Mat out = up(cv::Rect(0, 0, plane.cols, plane.rows)).clone();
+  cv::resize(low, up, cv::Size(low.cols * k, low.rows * k), 0, 0, cv::INTER_LINEAR);
+  cv::Mat out = up(cv::Rect(0, 0, plane.cols, plane.rows));  // a view: no copy
+  const double now = cv::sum(out)[0];
+  if (now > 0) out *= power / now;
+  return out;
+}
+
+// The pooling factor of a wide Gaussian: k with sigma / k >= 4 px (1 when sigma < 8 px).
+int retinaPoolFactor(double sx, double sy) {
+  return std::max(1, static_cast<int>(std::floor(std::min(sx, sy) / 4.0)));
+}
+
+// A plane splatted bilinearly on the k-times coarser grid, blurred to sigma (full-resolution
+// px) and interpolated bilinearly back to `size`, its power kept. The bilinear splat and the
+// bilinear interpolation are each a tent of one coarse pixel, variance 1/6 coarse px^2 (a
+// point at a uniform sub-pixel offset f: E[f(1-f)] = 1/6); variances of convolved kernels
+// add, so the coarse Gaussian takes sigma_c^2 = (sigma/k)^2 - 1/3 and the total is sigma^2.
+cv::Mat retinaCoarseBlur(const cv::Mat& coarse, double sx, double sy, int k, cv::Size size) {
+  const double power = cv::sum(coarse)[0];
+  const double gx = std::sqrt(std::max(0.0, sx * sx / (k * k) - 1.0 / 3.0));
+  const double gy = std::sqrt(std::max(0.0, sy * sy / (k * k) - 1.0 / 3.0));
+  cv::Mat low;
+  cv::GaussianBlur(
+      coarse, low,
+      cv::Size(2 * static_cast<int>(std::ceil(4.0 * gx)) + 1, 2 * static_cast<int>(std::ceil(4.0 * gy)) + 1), gx, gy,
+      cv::BORDER_CONSTANT);
+  cv::Mat up;
+  cv::resize(low, up, cv::Size(low.cols * k, low.rows * k), 0, 0, cv::INTER_LINEAR);
+  cv::Mat out = up(cv::Rect(0, 0, size.width, size.height));  // a view: no copy
   const double now = cv::sum(out)[0];
   if (now > 0) out *= power / now;
   return out;
@@ -132,8 +164,25 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   const auto& lasers = scene.projector.wavelengths_nm;
   for (double wl : lasers)
     r.peripheral.push_back(peripheralSpot(scene, wl, o.accommodation_d, o.gaze_deg, o.hoe_shift_mm));
-  for (double wl : scene.foveal_display.primaries_nm)
-    r.foveal.push_back(fovealSpot(scene, wl, o.accommodation_d, o.gaze_deg));
+  // The foveal PSFs (Fourier optics, the expensive part) and the preview's two display images
+  // are independent: computed concurrently (TBB; the eye's part of each PSF is cached across
+  // gazes, retinal_psf.cpp).
+  const auto& primaries = scene.foveal_display.primaries_nm;
+  r.foveal.resize(primaries.size());
+  std::vector<cv::Mat> fkernels(primaries.size());
+  FoveatedCompositor comp(scene, o.blend);
+  tbb::task_group concurrent;
+  concurrent.run([&] {
+    tbb::parallel_for(std::size_t{0}, primaries.size(), [&](std::size_t i) {
+      r.foveal[i] = fovealSpot(scene, primaries[i], o.accommodation_d, o.gaze_deg);
+      fkernels[i] = retinaBinPsf(r.foveal[i].psf, r.foveal[i].sample_arcmin, ppx, ppy);
+    });
+  });
+  concurrent.run([&] {
+    comp.setTarget(target);
+    comp.update(o.gaze_deg);
+  });
+  concurrent.wait();
   auto nearest555 = [](auto getter, std::size_t n) {
     std::size_t best = 0;
     for (std::size_t i = 1; i < n; ++i)
@@ -156,11 +205,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     sig[i] = {0.5 * w / 60.0 * ppx, 0.5 * w / 60.0 * ppy};
     margin = std::max(margin, static_cast<int>(std::ceil(4.0 * std::max(sig[i][0], sig[i][1]))) + 2);
   }
-  std::vector<cv::Mat> fkernels;
-  for (const auto& f : r.foveal) {
-    fkernels.push_back(retinaBinPsf(f.psf, f.sample_arcmin, ppx, ppy));
-    margin = std::max(margin, std::max(fkernels.back().cols, fkernels.back().rows) / 2 + 2);
-  }
+  for (const auto& k : fkernels) margin = std::max(margin, std::max(k.cols, k.rows) / 2 + 2);
   // Cells at the field's edge spread up to 64 px beyond it; kernels need `margin` more.
   const int kernel_margin = margin;
   margin += 64;
@@ -173,10 +218,6 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
            y < canvas_size.height - 1 - kernel_margin;
   };
 
-  // The preview's two display images.
-  FoveatedCompositor comp(scene, o.blend);
-  comp.setTarget(target);
-  comp.update(o.gaze_deg);
   const cv::Mat& periph = comp.peripheralImage();
 
   // Peripheral: trace, per laser plane.
@@ -190,10 +231,65 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   const int nx = grid[0], ny = grid[1];
   std::array<int, 3> lasers_in_channel{0, 0, 0};
   for (double wl : lasers) ++lasers_in_channel[static_cast<std::size_t>(retinaChannelOf(wl))];
-  std::vector<cv::Mat> planes;
-  double deposited = 0, lost = 0;
-  for (std::size_t li = 0; li < lasers.size(); ++li) {
-    cv::Mat plane(canvas_size, CV_64F, cv::Scalar(0));
+  // Foveal: the micro-OLED's pixels at gaze + their equal-angle offsets, on the canvas region
+  // they reach (their field plus the widest kernel; zero elsewhere, so nothing is lost); one
+  // task per channel, run alongside the lasers' tasks.
+  const cv::Mat& fov = comp.fovealImage();
+  const double fw = ang.foveal_fov_deg[0] / fov.cols, fh = ang.foveal_fov_deg[1] / fov.rows;
+  const double parea = fw * fh * ppx * ppy;
+  int kernel_half = 0;
+  for (const auto& k : fkernels) kernel_half = std::max(kernel_half, std::max(k.cols, k.rows) / 2);
+  const int x_lo = static_cast<int>(std::floor(cx(o.gaze_deg[0] - 0.5 * ang.foveal_fov_deg[0]))) - kernel_half - 2;
+  const int x_hi = static_cast<int>(std::ceil(cx(o.gaze_deg[0] + 0.5 * ang.foveal_fov_deg[0]))) + kernel_half + 3;
+  const int y_lo = static_cast<int>(std::floor(cy(o.gaze_deg[1] + 0.5 * ang.foveal_fov_deg[1]))) - kernel_half - 2;
+  const int y_hi = static_cast<int>(std::ceil(cy(o.gaze_deg[1] - 0.5 * ang.foveal_fov_deg[1]))) + kernel_half + 3;
+  const cv::Rect froi = cv::Rect(x_lo, y_lo, x_hi - x_lo, y_hi - y_lo) & cv::Rect(cv::Point(0, 0), canvas_size);
+  // Channel k takes the PSF of the primary in its band (else the primary nearest 555 nm). The
+  // pupil PSF is centro-symmetric, so filter2D's correlation is the convolution.
+  std::array<double, 3> fdeposited{0, 0, 0};
+  std::array<cv::Mat, 3> fblurred;
+  auto foveal_work = [&] {
+    if (fkernels.empty() || froi.area() == 0) return;
+    tbb::parallel_for(0, 3, [&](int k) {
+      cv::Mat plane(froi.size(), CV_64F, cv::Scalar(0));
+      for (int v = 0; v < fov.rows; ++v) {
+        const double pitch = o.gaze_deg[1] + (0.5 - (v + 0.5) / fov.rows) * ang.foveal_fov_deg[1];
+        const auto* row = fov.ptr<cv::Vec3f>(v);
+        for (int u = 0; u < fov.cols; ++u) {
+          const double power = row[u][k] * parea;
+          if (power == 0) continue;
+          const double yaw = o.gaze_deg[0] + ((u + 0.5) / fov.cols - 0.5) * ang.foveal_fov_deg[0];
+          const double x = cx(yaw), y = cy(pitch);
+          if (!inside(x, y)) continue;
+          retinaSplat(plane, x - froi.x, y - froi.y, power);
+          fdeposited[static_cast<std::size_t>(k)] += power;
+        }
+      }
+      std::size_t kernel = r.foveal_reference;
+      for (std::size_t i = 0; i < primaries.size(); ++i)
+        if (retinaChannelOf(primaries[i]) == k) kernel = i;
+      cv::filter2D(plane, fblurred[static_cast<std::size_t>(k)], CV_64F, fkernels[kernel], cv::Point(-1, -1), 0,
+                   cv::BORDER_CONSTANT);
+    });
+  };
+
+  // Each laser's plane is splatted and blurred on its own (TBB, one task per laser).
+  std::vector<cv::Mat> planes(lasers.size()), blurred_planes(lasers.size());
+  std::vector<double> deposited_per(lasers.size(), 0.0), lost_per(lasers.size(), 0.0);
+  std::vector<int> in_pupil_per(lasers.size(), 0);
+  tbb::task_group displays;
+  displays.run(foveal_work);
+  tbb::parallel_for(std::size_t{0}, lasers.size(), [&](std::size_t li) {
+    double& deposited = deposited_per[li];
+    double& lost = lost_per[li];
+    // A wide PSF (sigma >= 8 px) without speckle: the cells are splatted straight onto a
+    // k-times coarser grid (retinaPoolFactor), blurred there and brought back.
+    const int kpool = o.speckle_patterns > 0 ? 1 : retinaPoolFactor(sig[li][0], sig[li][1]);
+    const double pool_inv = 1.0 / kpool, pool_off = 0.5 * (kpool - 1);  // coarse pixel j centres at j k + (k-1)/2
+    cv::Mat plane(kpool > 1
+                      ? cv::Size((canvas_size.width + kpool - 1) / kpool, (canvas_size.height + kpool - 1) / kpool)
+                      : canvas_size,
+                  CV_64F, cv::Scalar(0));
     // The rays of this laser on their grid.
     std::vector<const TracedRay*> cell(static_cast<std::size_t>(nx) * ny, nullptr);
     for (const auto& ray : tr.ray_list)
@@ -241,7 +337,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     for (std::size_t k = 0; k < cell.size(); ++k) {
       const TracedRay* c = cell[k];
       if (!c) continue;
-      ++r.rays_in_pupil;
+      ++in_pupil_per[li];
       const double yaw = o.gaze_deg[0] + c->field_deg[0], pitch = o.gaze_deg[1] + c->field_deg[1];
       const double x = cx(yaw), y = cy(pitch);
       if (!inside(x, y)) continue;  // outside the target field: the projector shows black there
@@ -255,31 +351,39 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       // canvas pixel), so a ray grid coarser than the PSF leaves no ripple.
       const auto& ed = edges[k];
       const double ux = ed[0] * ppx, uy = -ed[1] * ppy, vx = ed[2] * ppx, vy = -ed[3] * ppy;
-      const int kx = std::clamp(static_cast<int>(std::ceil(std::hypot(ux, uy))), 1, 64);
-      const int ky = std::clamp(static_cast<int>(std::ceil(std::hypot(vx, vy))), 1, 64);
+      const int kx = std::clamp(static_cast<int>(std::ceil(std::hypot(ux, uy) * pool_inv)), 1, 64);
+      const int ky = std::clamp(static_cast<int>(std::ceil(std::hypot(vx, vy) * pool_inv)), 1, 64);
       const double sub = power / (kx * ky);
       for (int j = 0; j < ky; ++j)
         for (int i = 0; i < kx; ++i) {
           const double fu = (i + 0.5) / kx - 0.5, fv = (j + 0.5) / ky - 0.5;
           const double sx = x + fu * ux + fv * vx, sy = y + fu * uy + fv * vy;
           if (inside(sx, sy)) {
-            retinaSplat(plane, sx, sy, sub);
+            retinaSplat(plane, (sx - pool_off) * pool_inv, (sy - pool_off) * pool_inv, sub);
             deposited += sub;
           } else {
             lost += sub;
           }
         }
     }
-    planes.push_back(plane);
+    blurred_planes[li] = kpool > 1 ? retinaCoarseBlur(plane, sig[li][0], sig[li][1], kpool, canvas_size)
+                                   : retinaGaussianBlur(plane, sig[li][0], sig[li][1]);
+    if (o.speckle_patterns > 0) planes[li] = std::move(plane);  // its lit mask
+  });
+  displays.wait();
+  double deposited = 0, lost = 0;
+  for (std::size_t li = 0; li < lasers.size(); ++li) {
+    deposited += deposited_per[li];
+    lost += lost_per[li];
+    r.rays_in_pupil += in_pupil_per[li];
   }
   r.rays_traced = tr.rays;
 
   // Peripheral PSFs (and speckle), per laser, into the channels.
-  std::vector<cv::Mat> channels(3);
-  for (auto& c : channels) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
-  cv::Mat speckle_sum(canvas_size, CV_64F, cv::Scalar(0)), lit;
+  std::vector<cv::Mat> channels(3);  // a channel's first laser plane is moved in, later ones added
+  cv::Mat speckle_sum = o.speckle_patterns > 0 ? cv::Mat(canvas_size, CV_64F, cv::Scalar(0)) : cv::Mat(), lit;
   for (std::size_t li = 0; li < planes.size(); ++li) {
-    cv::Mat blurred = retinaGaussianBlur(planes[li], sig[li][0], sig[li][1]);
+    cv::Mat blurred = std::move(blurred_planes[li]);
     if (o.speckle_patterns > 0) {
       const cv::Mat s = speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
       const double before = cv::sum(blurred)[0];
@@ -289,8 +393,14 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       blurred = sp;
       speckle_sum += s;
     }
-    channels[static_cast<std::size_t>(retinaChannelOf(lasers[li]))] += blurred;
+    cv::Mat& channel = channels[static_cast<std::size_t>(retinaChannelOf(lasers[li]))];
+    if (channel.empty())
+      channel = std::move(blurred);
+    else
+      channel += blurred;
   }
+  for (auto& c : channels)
+    if (c.empty()) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
   if (o.speckle_patterns > 0 && !lasers.empty()) {
     speckle_sum /= static_cast<double>(lasers.size());
     cv::Mat any = planes[0].clone();
@@ -300,40 +410,12 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     r.speckle_expected = 1.0 / std::sqrt(static_cast<double>(o.speckle_patterns) * lasers.size());
   }
 
-  // Foveal: the micro-OLED's pixels at gaze + their equal-angle offsets.
-  const cv::Mat& fov = comp.fovealImage();
-  const double fw = ang.foveal_fov_deg[0] / fov.cols, fh = ang.foveal_fov_deg[1] / fov.rows;
-  const double parea = fw * fh * ppx * ppy;
-  std::vector<cv::Mat> fplanes(3);
-  for (auto& c : fplanes) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
-  for (int v = 0; v < fov.rows; ++v) {
-    const double pitch = o.gaze_deg[1] + (0.5 - (v + 0.5) / fov.rows) * ang.foveal_fov_deg[1];
-    const auto* row = fov.ptr<cv::Vec3f>(v);
-    for (int u = 0; u < fov.cols; ++u) {
-      const cv::Vec3f& val = row[u];
-      if (val[0] == 0 && val[1] == 0 && val[2] == 0) continue;
-      const double yaw = o.gaze_deg[0] + ((u + 0.5) / fov.cols - 0.5) * ang.foveal_fov_deg[0];
-      const double x = cx(yaw), y = cy(pitch);
-      if (!inside(x, y)) continue;
-      for (int k = 0; k < 3; ++k) {
-        const double power = val[k] * parea;
-        if (power == 0) continue;
-        retinaSplat(fplanes[static_cast<std::size_t>(k)], x, y, power);
-        deposited += power;
-      }
+  for (int k = 0; k < 3; ++k)
+    if (!fblurred[static_cast<std::size_t>(k)].empty()) {
+      cv::Mat dst = channels[static_cast<std::size_t>(k)](froi);
+      dst += fblurred[static_cast<std::size_t>(k)];
     }
-  }
-  // Channel k takes the PSF of the primary in its band (else the primary nearest 555 nm). The
-  // pupil PSF is centro-symmetric, so filter2D's correlation is the convolution.
-  for (int k = 0; k < 3 && !fkernels.empty(); ++k) {
-    std::size_t kernel = r.foveal_reference;
-    for (std::size_t i = 0; i < scene.foveal_display.primaries_nm.size(); ++i)
-      if (retinaChannelOf(scene.foveal_display.primaries_nm[i]) == k) kernel = i;
-    cv::Mat blurred;
-    cv::filter2D(fplanes[static_cast<std::size_t>(k)], blurred, CV_64F, fkernels[kernel], cv::Point(-1, -1), 0,
-                 cv::BORDER_CONSTANT);
-    channels[static_cast<std::size_t>(k)] += blurred;
-  }
+  deposited += fdeposited[0] + fdeposited[1] + fdeposited[2];
 
   cv::merge(channels, r.canvas);
   r.power_in_pupil = deposited + lost;

@@ -209,6 +209,42 @@ class TestAnalysesPanel : public QObject {
     }
   }
 
+  void accommodationPlotCarriesTheSweep() {
+    // resolution with accommodation-d (issue 29) fills "resolution-vs-accommodation" too: one
+    // CSV row per accommodation, the peripheral and foveal MTF50 of the result's document.
+    const Scene scene = prototypeScene();
+    AnalysisParams p = defaultParameters(*findAnalysis("resolution"));
+    p["samples"] = 11;
+    p["accommodation-d"] = "0.4,1.25,3.3";
+    const auto r = runAnalysis("resolution", scene, p);
+    QVERIFY(r.has_value() && (*r)["accommodation"].is_object());
+    PlotsPanel plots;
+    plots.showResult("resolution", *r);
+    QVERIFY(plots.filledPlots().contains("resolution-vs-eccentricity"));
+    QVERIFY(plots.filledPlots().contains("resolution-vs-accommodation"));
+    QCOMPARE(plots.chartView("resolution-vs-accommodation")->chart()->series().size(), 5);
+    const QString base = tmpDir() + "/resolution-accommodation";
+    QString error;
+    QVERIFY2(plots.exportPlot("resolution-vs-accommodation", base + ".csv", &error), qPrintable(error));
+    QVERIFY2(plots.exportPlot("resolution-vs-accommodation", base + ".png", &error), qPrintable(error));
+    qInfo("plot: %s.png", qPrintable(base));
+    QFile csv(base + ".csv");
+    QVERIFY(csv.open(QIODevice::ReadOnly));
+    const QStringList lines = QString::fromUtf8(csv.readAll()).split("\r\n", Qt::SkipEmptyParts);
+    QCOMPARE(lines.size(), 4);
+    const QStringList header = csvCells(lines[0]);
+    const int pc = header.indexOf("peripheral MTF50 (cpd)"), fc = header.indexOf("foveal MTF50 (cpd)");
+    QVERIFY(pc > 0 && fc > 0);
+    for (int i = 1; i < lines.size(); ++i) {
+      const QStringList c = csvCells(lines[i]);
+      const auto& s = (*r)["accommodation"]["samples"][i - 1];
+      QVERIFY(std::abs(c[0].toDouble() - s["accommodation_d"].get<double>()) < 1e-9);
+      const double pm = s["peripheral"]["cpd_mtf50"], fm = s["foveal"]["cpd_mtf50"];
+      QVERIFY(std::abs(c[pc].toDouble() - pm) < 1e-7 * pm);
+      QVERIFY(std::abs(c[fc].toDouble() - fm) < 1e-7 * fm);
+    }
+  }
+
   void analysisFeaturesFeedThePlots() {
     studio::MainWindow window;
     window.resize(1600, 1000);

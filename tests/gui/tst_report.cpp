@@ -57,10 +57,11 @@ QString tool(const char* name) {
 }
 
 // Figures the report makes for `gazes` chosen gazes: 4 standard 3-D views, per gaze the bench
-// with its ray fans, the retina view and the retina map, and the 6 plots (FOV and travel vs
-// gaze, efficiency vs angle and vs wavelength, resolution, Kogelnik vs RCWA).
+// with its ray fans, the retina view and the retina map, the retinal image (issue 29) and the 7
+// plots (FOV and travel vs gaze, efficiency vs angle and vs wavelength, resolution vs eccentricity
+// and vs accommodation, Kogelnik vs RCWA).
 int expectedFigures(int gazes) {
-  return 4 + gazes * 3 + 6;
+  return 4 + gazes * 3 + 1 + 7;
 }
 
 // Pixels of `withRays` that differ from `plain` and carry an efficiency colour of the ramp
@@ -181,6 +182,7 @@ class TestReport : public QObject {
     QCOMPARE(n, expectedFigures(2));
     // Gaze 0 is the scene's own gaze: its figure is the plain top view plus the ray fans.
     QVERIFY(byId.contains("view-top") && byId.contains("gaze-1") && byId.contains("retina-view-1"));
+    QVERIFY(byId.contains("retina-image") && byId.contains("plot:resolution-vs-accommodation"));
     const int added = efficiencyPixelsAdded(byId["view-top"], byId["gaze-1"]);
     const int drawn = m["gaze_figures"][0]["rays_drawn"].get<int>();
     QVERIFY2(added > 10 * drawn, qPrintable(QString("%1 efficiency pixels for %2 rays").arg(added).arg(drawn)));

@@ -197,6 +197,43 @@ class TestRetinalPsf : public QObject {
     QVERIFY(worst < 0.01);
   }
 
+  void peripheralEdgeHasThePsfWidth() {
+    // A vertical edge (white left of yaw -12 deg) seen at gaze +10 deg, 22 deg out, where only
+    // the projector shows it: the blurred edge of a Gaussian PSF of standard deviation sigma
+    // rises from 10 % to 90 % over 2 x 1.2816 sigma (the normal quantiles). The wide PSF runs on
+    // the coarse grid (retina_image.cpp, retinaCoarseBlur); the ray cells add a box of about
+    // a third of a degree (variance under 1 % of sigma^2), so within 3 %.
+    const Scene s = prototype();
+    const cv::Size size(960, 540);
+    cv::Mat target(size, CV_32FC3, cv::Scalar(0, 0, 0));
+    const double fov_x = s.projector.fov_deg[0], ppd = size.width / fov_x;
+    const int edge_px = static_cast<int>(std::lround((-12.0 / fov_x + 0.5) * size.width));
+    target(cv::Rect(0, 0, edge_px, size.height)).setTo(cv::Scalar(1, 1, 1));
+    image::RetinaImageOptions o;
+    o.gaze_deg = {10.0, 0.0};
+    o.rays = 20000;
+    const auto r = image::renderRetinaImage(s, target, o);
+    const auto& spot = r.peripheral[r.peripheral_reference];
+    QVERIFY(spot.valid);
+    const double sigma_px = 0.5 * spot.radius_1e2_arcmin / 60.0 * ppd;
+    // Green channel (532 nm), averaged over rows around the horizon.
+    std::vector<double> profile(static_cast<std::size_t>(size.width), 0.0);
+    for (int y = size.height / 2 - 20; y <= size.height / 2 + 20; ++y)
+      for (int x = 0; x < size.width; ++x) profile[static_cast<std::size_t>(x)] += r.image.at<cv::Vec3f>(y, x)[1];
+    const double plateau = profile[static_cast<std::size_t>(edge_px - static_cast<int>(4 * sigma_px))];
+    auto crossing = [&](double level) {
+      for (int x = edge_px - static_cast<int>(4 * sigma_px); x + 1 < size.width; ++x) {
+        const double a = profile[static_cast<std::size_t>(x)], b = profile[static_cast<std::size_t>(x + 1)];
+        if (a >= level * plateau && b < level * plateau) return x + (a - level * plateau) / (a - b);
+      }
+      return -1.0;
+    };
+    const double width = crossing(0.1) - crossing(0.9), expected = 2 * 1.2815515655 * sigma_px;
+    qInfo("edge 10-90 %% width %.2f px, Gaussian PSF %.2f px (sigma %.2f px)", width, expected, sigma_px);
+    QVERIFY(plateau > 0);
+    QVERIFY2(std::abs(width / expected - 1) < 0.03, qPrintable(QString::number(width / expected)));
+  }
+
   void retinalImageConservesPupilPower() {
     const Scene s = prototype();
     const cv::Mat target = image::makeTestTarget(cv::Size(640, 370), s.projector.fov_deg, 20.0);

@@ -15,6 +15,7 @@ QStringList plotIds() {
           "efficiency-vs-angle",
           "efficiency-vs-wavelength",
           "resolution-vs-eccentricity",
+          "resolution-vs-accommodation",
           "time-vs-error",
           "sensitivity",
           "lens-candidates",
@@ -34,6 +35,7 @@ QString plotTitle(const QString& id) {
                                              {"efficiency-vs-angle", "Efficiency vs detuning"},
                                              {"efficiency-vs-wavelength", "Efficiency vs wavelength"},
                                              {"resolution-vs-eccentricity", "Resolution vs eccentricity"},
+                                             {"resolution-vs-accommodation", "Resolution vs accommodation"},
                                              {"time-vs-error", "Kogelnik vs RCWA: error and time"},
                                              {"sensitivity", "Sensitivity"},
                                              {"lens-candidates", "Beam-shaping lens candidates"},
@@ -52,7 +54,7 @@ QStringList plotSources(const QString& id) {
   if (id == "fov-vs-gaze" || id == "travel-vs-gaze") return {"sweep"};
   if (id == "efficiency-vs-angle") return {"selectivity", "grating"};
   if (id == "efficiency-vs-wavelength") return {"selectivity"};
-  if (id == "resolution-vs-eccentricity") return {"resolution"};
+  if (id == "resolution-vs-eccentricity" || id == "resolution-vs-accommodation") return {"resolution"};
   if (id == "time-vs-error") return {"kogelnik-vs-rcwa"};
   if (id == "sensitivity") return {"sensitivity"};
   if (id == "lens-candidates") return {"optimize-lens"};

@@ -4,6 +4,7 @@
 //   efficiency-vs-angle                    <- selectivity (every layer) or grating (Kogelnik, RCWA)
 //   efficiency-vs-wavelength               <- selectivity
 //   resolution-vs-eccentricity             <- resolution
+//   resolution-vs-accommodation            <- resolution (with accommodation-d)
 //   time-vs-error                          <- kogelnik-vs-rcwa
 //   sensitivity                            <- sensitivity
 //   lens-candidates                        <- optimize-lens

@@ -63,6 +63,8 @@ QList<PlotData> fromSelectivity(const nlohmann::json& r, const DisplayUnits& u, 
 QList<PlotData> fromGrating(const nlohmann::json& r, const DisplayUnits& u, const QString& source);
 QList<PlotData> fromKogelnikVsRcwa(const nlohmann::json& r, const DisplayUnits& u, const QString& source);
 QList<PlotData> fromResolution(const nlohmann::json& r, const DisplayUnits& u, const QString& source);
+// The resolution result's "accommodation" part (--accommodation-d).
+PlotData fromResolutionAccommodation(const nlohmann::json& accommodation, const QString& source);
 QList<PlotData> fromLens(const nlohmann::json& r, const DisplayUnits& u, const QString& source);
 QList<PlotData> fromTolerance(const nlohmann::json& r, const DisplayUnits& u, const QString& source);
 QList<PlotData> fromFit(const nlohmann::json& r, const QString& source);

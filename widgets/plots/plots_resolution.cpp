@@ -60,6 +60,8 @@ QList<PlotData> fromResolution(const nlohmann::json& r, const DisplayUnits& u, c
                   .arg(fmt(jsonNumber(r, {"peripheral_pixel_integral"}), 4))
                   .arg(fmt(jsonNumber(r, {"pixels_horizontal"}), 5));
   p.source = source;
+  if (r.contains("accommodation") && r["accommodation"].is_object())
+    return {p, fromResolutionAccommodation(r["accommodation"], source)};
   return {p};
 }
 
