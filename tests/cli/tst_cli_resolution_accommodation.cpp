@@ -15,22 +15,15 @@ using nlohmann::json;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-struct Run {
-  int code = -1;
-  QString out, err;
-  json j() const { return json::parse(out.toStdString()); }
-};
-Run cli(const QStringList& args) {
-  const auto r = fovea::testing::runFoveaCli(args);
-  return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
-}
+using Run = fovea::testing::CliText;
+using fovea::testing::cliText;
 }  // namespace
 
 class TestCliResolutionAccommodation : public QObject {
   Q_OBJECT
  private slots:
   void withoutTheFlagTheDocumentIsUnchanged() {
-    const auto r = cli({"resolution", "--gaze-deg", "0", "--samples", "11", "--json"});
+    const auto r = cliText({"resolution", "--gaze-deg", "0", "--samples", "11", "--json"});
     QCOMPARE(r.code, 0);
     const json j = r.j();
     QVERIFY(j.contains("accommodation") && j["accommodation"].is_null());
@@ -41,7 +34,7 @@ class TestCliResolutionAccommodation : public QObject {
 
   void accommodationSweep() {
     const auto r =
-        cli({"resolution", "--gaze-deg", "0", "--samples", "11", "--accommodation-d", "0.4,1.25,3.3", "--json"});
+        cliText({"resolution", "--gaze-deg", "0", "--samples", "11", "--accommodation-d", "0.4,1.25,3.3", "--json"});
     QCOMPARE(r.code, 0);
     const json j = r.j();
     QVERIFY(j["samples"].size() == 11);  // the eccentricity part is still there
@@ -93,7 +86,7 @@ class TestCliResolutionAccommodation : public QObject {
   }
 
   void textTable() {
-    const auto r = cli({"resolution", "--gaze-deg", "0", "--samples", "11", "--accommodation-d", "1.25"});
+    const auto r = cliText({"resolution", "--gaze-deg", "0", "--samples", "11", "--accommodation-d", "1.25"});
     QCOMPARE(r.code, 0);
     QVERIFY2(r.out.contains("accommodation_d  peripheral MTF50 MTF10  foveal MTF50 MTF10"), qPrintable(r.out));
     QVERIFY(r.out.contains("1.25"));
@@ -118,7 +111,7 @@ class TestCliResolutionAccommodation : public QObject {
   void refusesBadLists() {
     QFETCH(QString, list);
     QFETCH(QString, message);
-    const auto r = cli({"resolution", "--accommodation-d", list, "--json"});
+    const auto r = cliText({"resolution", "--accommodation-d", list, "--json"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--accommodation-d") && r.err.contains(message), qPrintable(r.err));
     QVERIFY(r.out.isEmpty());
