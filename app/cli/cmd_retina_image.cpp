@@ -9,16 +9,13 @@
 #include <sstream>
 
 #include "app/cli/cli_common.h"
+#include "model/analysis/analysis_json.h"
 #include "model/image/image_io.h"
 #include "model/image/retina_image.h"
 
 namespace fovea::cli {
 namespace cmd_retina_image {  // one per command file: fovea-cli compiles in unity batches
 namespace {
-
-nlohmann::json spotJson(const SpotMetrics& m) {
-  return {{"spot_fwhm_arcmin", m.fwhm_arcmin}, {"cpd_mtf50", m.mtf50_cpd}, {"cpd_mtf10", m.mtf10_cpd}};
-}
 
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("retina-image",
@@ -86,8 +83,8 @@ void install(CLI::App& app) {
     }
     nlohmann::json j;
     const bool have_p = !r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid;
-    j["peripheral"] = have_p ? spotJson(r.peripheral[r.peripheral_reference].metrics) : nlohmann::json(nullptr);
-    j["foveal"] = r.foveal.empty() ? nlohmann::json(nullptr) : spotJson(r.foveal[r.foveal_reference].metrics);
+    j["peripheral"] = have_p ? spotMetricsJson(r.peripheral[r.peripheral_reference].metrics) : nlohmann::json(nullptr);
+    j["foveal"] = r.foveal.empty() ? nlohmann::json(nullptr) : spotMetricsJson(r.foveal[r.foveal_reference].metrics);
     j["speckle_contrast"] = r.speckle_contrast ? nlohmann::json(*r.speckle_contrast) : nlohmann::json(nullptr);
     j["power_in_pupil"] = r.power_in_pupil;
     j["power_on_retina"] = r.power_on_retina;
@@ -101,32 +98,10 @@ void install(CLI::App& app) {
     j["power_off_canvas"] = r.power_off_canvas;
     j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
     nlohmann::json per = nlohmann::json::array();
-    for (const auto& p : r.peripheral) {
-      nlohmann::json e = spotJson(p.metrics);
-      e["wavelength_nm"] = p.wavelength_nm;
-      e["valid"] = p.valid;
-      e["layer"] = p.layer;
-      e["throw_mm"] = p.throw_mm;
-      e["hoe_to_pupil_mm"] = p.hoe_to_pupil_mm;
-      e["hoe_power_d"] = p.hoe_power_d;
-      e["lambda_eff_nm"] = p.lambda_eff_nm;
-      e["beam_radius_hoe_mm"] = p.beam_radius_hoe_mm;
-      e["beam_radius_pupil_mm"] = p.beam_radius_pupil_mm;
-      e["pupil_transmission"] = p.pupil_transmission;
-      per.push_back(e);
-    }
+    for (const auto& p : r.peripheral) per.push_back(peripheralSpotJson(p));
     j["peripheral_per_wavelength"] = per;
     nlohmann::json fov = nlohmann::json::array();
-    for (const auto& f : r.foveal) {
-      nlohmann::json e = spotJson(f.metrics);
-      e["wavelength_nm"] = f.wavelength_nm;
-      e["defocus_d"] = f.defocus_d;
-      e["geometric_blur_arcmin"] = f.geometric_blur_arcmin;
-      e["pixel_arcmin"] = f.pixel_arcmin;
-      e["combiner_rms_arcmin"] = f.combiner_rms_arcmin;
-      e["eye_only"] = spotJson(f.eye_only);
-      fov.push_back(e);
-    }
+    for (const auto& f : r.foveal) fov.push_back(fovealSpotJson(f));
     j["foveal_per_primary"] = fov;
     j["rays_in_pupil"] = r.rays_in_pupil;
     j["pixels_per_degree"] = r.pixels_per_degree;

@@ -170,11 +170,35 @@ nlohmann::json resolutionResultJson(const ResolutionResult& r, const Scene& scen
   return out;
 }
 
-namespace {
 nlohmann::json spotMetricsJson(const SpotMetrics& m) {
   return {{"spot_fwhm_arcmin", m.fwhm_arcmin}, {"cpd_mtf50", m.mtf50_cpd}, {"cpd_mtf10", m.mtf10_cpd}};
 }
-}  // namespace
+
+nlohmann::json peripheralSpotJson(const PeripheralSpot& p) {
+  nlohmann::json e = spotMetricsJson(p.metrics);
+  e["wavelength_nm"] = p.wavelength_nm;
+  e["valid"] = p.valid;
+  e["layer"] = p.layer;
+  e["throw_mm"] = p.throw_mm;
+  e["hoe_to_pupil_mm"] = p.hoe_to_pupil_mm;
+  e["hoe_power_d"] = p.hoe_power_d;
+  e["lambda_eff_nm"] = p.lambda_eff_nm;
+  e["beam_radius_hoe_mm"] = p.beam_radius_hoe_mm;
+  e["beam_radius_pupil_mm"] = p.beam_radius_pupil_mm;
+  e["pupil_transmission"] = p.pupil_transmission;
+  return e;
+}
+
+nlohmann::json fovealSpotJson(const FovealSpot& f) {
+  nlohmann::json e = spotMetricsJson(f.metrics);
+  e["wavelength_nm"] = f.wavelength_nm;
+  e["defocus_d"] = f.defocus_d;
+  e["geometric_blur_arcmin"] = f.geometric_blur_arcmin;
+  e["pixel_arcmin"] = f.pixel_arcmin;
+  e["combiner_rms_arcmin"] = f.combiner_rms_arcmin;
+  e["eye_only"] = spotMetricsJson(f.eye_only);
+  return e;
+}
 
 nlohmann::json accommodationResolutionJson(const AccommodationResolution& r) {
   nlohmann::json out;
@@ -193,21 +217,10 @@ nlohmann::json accommodationResolutionJson(const AccommodationResolution& r) {
     e["foveal"] = have_f ? spotMetricsJson(s.foveal[r.foveal_reference].metrics) : nlohmann::json(nullptr);
     e["foveal_defocus_d"] = have_f ? nlohmann::json(s.foveal[r.foveal_reference].defocus_d) : nlohmann::json(nullptr);
     nlohmann::json per = nlohmann::json::array();
-    for (const auto& p : s.peripheral) {
-      nlohmann::json x = p.valid ? spotMetricsJson(p.metrics) : nlohmann::json::object();
-      x["wavelength_nm"] = p.wavelength_nm;
-      x["valid"] = p.valid;
-      per.push_back(x);
-    }
+    for (const auto& p : s.peripheral) per.push_back(peripheralSpotJson(p));
     e["peripheral_per_wavelength"] = per;
     nlohmann::json fov = nlohmann::json::array();
-    for (const auto& f : s.foveal) {
-      nlohmann::json x = spotMetricsJson(f.metrics);
-      x["wavelength_nm"] = f.wavelength_nm;
-      x["defocus_d"] = f.defocus_d;
-      x["geometric_blur_arcmin"] = f.geometric_blur_arcmin;
-      fov.push_back(x);
-    }
+    for (const auto& f : s.foveal) fov.push_back(fovealSpotJson(f));
     e["foveal_per_primary"] = fov;
     arr.push_back(e);
   }

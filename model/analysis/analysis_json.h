@@ -14,6 +14,7 @@
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/hoe_selectivity.h"
+#include "model/analysis/retinal_psf.h"
 #include "model/analysis/trace_fov.h"
 #include "model/physics/trace.h"
 #include "model/rigorous/kogelnik_vs_rcwa.h"
@@ -40,6 +41,13 @@ nlohmann::json resolutionResultJson(const ResolutionResult& r, const Scene& scen
 // reference peripheral and foveal {spot_fwhm_arcmin, cpd_mtf50, cpd_mtf10} (retina-image's
 // keys), the distance focused, the foveal defocus and every wavelength's values.
 nlohmann::json accommodationResolutionJson(const AccommodationResolution& r);
+// A retinal spot as {spot_fwhm_arcmin, cpd_mtf50, cpd_mtf10} (the keys of issue 29's contract:
+// retina-image's "peripheral"/"foveal" and resolution's "accommodation").
+nlohmann::json spotMetricsJson(const SpotMetrics& m);
+// One laser's peripheral spot / one primary's foveal spot: the metrics and how they arose
+// (retina-image's peripheral_per_wavelength / foveal_per_primary, resolution's per sample).
+nlohmann::json peripheralSpotJson(const PeripheralSpot& p);
+nlohmann::json fovealSpotJson(const FovealSpot& f);
 nlohmann::json lensOptimizationJson(const LensOptimization& r);
 nlohmann::json selectivityResultJson(const SelectivityResult& r);
 // {"points":[...every grid point...], "by_rho":[...summariseByRho rows...]}
