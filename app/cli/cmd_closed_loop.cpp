@@ -107,6 +107,8 @@ std::vector<devices::BinocularFixation> fixationsFrom(const std::string& text, u
       out.push_back(b);
     }
     if (out.empty()) top.fail("fixations", "must hold at least one fixation");
+    top.known({"notes"});
+    top.rejectUnknownKeys();
   } catch (const std::exception& e) {
     inputError(std::string("closed-loop: ") + e.what());
   }

@@ -109,6 +109,7 @@ ToleranceSpec parseToleranceSpec(const nlohmann::json& j, const std::string& sou
   s.source = j;
   const JsonFields doc(j, source);  // every field typed and range-checked (model/io/json_fields.h)
   doc.text("format", {"fovea-tolerance"});
+  doc.known({"version", "notes"});  // free text and the format's version, not read
   const std::vector<JsonFields> params = doc.objects("parameters", true, kMaxToleranceParameters);
   if (params.empty()) doc.fail("parameters", "must be a non-empty array");
   const Range positive = Range::positive();
@@ -177,7 +178,7 @@ ToleranceSpec parseToleranceSpec(const nlohmann::json& j, const std::string& sou
     for (const auto& [name, b] : j["pass"].items()) {
       const std::string at = pass->at(name);
       if (std::find(names.begin(), names.end(), name) == names.end()) pass->fail(at, "unknown figure");
-      const JsonFields bound(b, source, at);
+      const JsonFields bound = *pass->object(name, true);
       if (!bound.has("min") && !bound.has("max")) bound.fail(at, "must be an object with \"min\" and/or \"max\"");
       FigureBound fb;
       if (bound.has("min")) fb.min = bound.number("min", Range::any());
@@ -194,6 +195,7 @@ ToleranceSpec parseToleranceSpec(const nlohmann::json& j, const std::string& sou
     s.optimiser.edge_bisections = static_cast<int>(opt->integer("edge_bisections", 0, 20, 4));
     s.optimiser.plateau_tolerance_deg = opt->number("plateau_tolerance_deg", positive, 2.0);
   }
+  doc.rejectUnknownKeys();
   return s;
 }
 

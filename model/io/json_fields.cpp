@@ -64,8 +64,37 @@ long long jsonInteger(const nlohmann::json& v, long long lo, long long hi, const
 }
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string source, std::string path)
-    : obj_(object), source_(std::move(source)), path_(std::move(path)) {
+    : JsonFields(object, std::move(source), std::move(path), std::make_shared<Ledger>()) {}
+
+JsonFields::JsonFields(const nlohmann::json& object, std::string source, std::string path,
+                       std::shared_ptr<Ledger> ledger)
+    : obj_(object), source_(std::move(source)), path_(std::move(path)), ledger_(std::move(ledger)) {
   if (!obj_.is_object()) raise(source_, path_, "must be an object, got " + jsonTypeName(obj_));
+  entry_ = ledger_->objects.size();
+  ledger_->objects.emplace_back(&obj_, path_);
+  ledger_->asked.emplace_back();
+}
+
+void JsonFields::ask(const std::string& key) const {
+  ledger_->asked[entry_].insert(key);
+}
+
+void JsonFields::known(const std::vector<std::string>& keys) const {
+  for (const auto& k : keys) ask(k);
+}
+
+void JsonFields::rejectUnknownKeys() const {
+  for (std::size_t e = 0; e < ledger_->objects.size(); ++e) {
+    const auto& [object, path] = ledger_->objects[e];
+    const std::set<std::string>& asked = ledger_->asked[e];
+    for (const auto& item : object->items()) {
+      if (asked.count(item.key())) continue;
+      std::string list;
+      for (const auto& k : asked) list += (list.empty() ? "" : ", ") + k;
+      raise(source_, path.empty() ? item.key() : path + "." + item.key(),
+            "not a field of this entry" + (list.empty() ? std::string() : " (it reads " + list + ")"));
+    }
+  }
 }
 
 std::string JsonFields::at(const std::string& key) const {
@@ -79,6 +108,7 @@ void JsonFields::fail(const std::string& path, const std::string& problem) const
 }
 
 const nlohmann::json* JsonFields::get(const std::string& key, bool required) const {
+  ask(key);
   const auto it = obj_.find(key);
   if (it == obj_.end()) {
     if (required) raise(source_, at(key), "missing required field");
@@ -148,7 +178,7 @@ std::vector<double> JsonFields::numbers(const std::string& key, const Range& ran
 std::optional<JsonFields> JsonFields::object(const std::string& key, bool required) const {
   const nlohmann::json* v = get(key, required);
   if (!v) return std::nullopt;
-  return JsonFields(*v, source_, at(key));
+  return JsonFields(*v, source_, at(key), ledger_);
 }
 
 std::vector<JsonFields> JsonFields::objects(const std::string& key, bool required, std::size_t max_size) const {
@@ -161,7 +191,7 @@ std::vector<JsonFields> JsonFields::objects(const std::string& key, bool require
           "must hold at most " + std::to_string(max_size) + " elements, got " + std::to_string(v->size()));
   out.reserve(v->size());
   for (std::size_t i = 0; i < v->size(); ++i)
-    out.emplace_back((*v)[i], source_, at(key) + "[" + std::to_string(i) + "]");
+    out.push_back(JsonFields((*v)[i], source_, at(key) + "[" + std::to_string(i) + "]", ledger_));
   return out;
 }
 

@@ -21,6 +21,7 @@
 #include "model/io/json_fields.h"
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
+#include "tests/test_files.h"
 
 using namespace fovea;
 using nlohmann::json;
@@ -191,6 +192,28 @@ class TestInputHardening : public QObject {
     QCOMPARE(typed, QString("s.json: target_yield: must be a number, got a string"));
     QVERIFY(!typed.contains("json.exception"));
     QVERIFY(refusal([&] { parseToleranceSpec(spec({{"shift", 3}})); }).contains("shift: must be a string"));
+  }
+
+  // A key no reader asks for is refused with its path and the keys its entry reads: a typo
+  // would otherwise fall back to the default silently and the study answer another question.
+  void specUnknownKeysAreRefused() {
+    const QString typo = refusal([&] { parseToleranceSpec(spec({{"gaze", {{"from", -20}}}}), "s.json"); });
+    QVERIFY2(typo == "s.json: gaze.from: not a field of this entry (it reads axis, from_deg, step_deg, to_deg)",
+             qPrintable(typo));
+    json unused = spec();
+    unused["parameters"][0]["half_width"] = 2.0;  // a normal distribution reads sigma
+    const QString mode = refusal([&] { parseToleranceSpec(unused, "s.json"); });
+    QVERIFY2(mode.startsWith("s.json: parameters[0].half_width: not a field of this entry (it reads "),
+             qPrintable(mode));
+    QVERIFY(mode.contains("sigma"));
+    QVERIFY(refusal([&] {
+              parseToleranceSpec(spec({{"pass", {{"inset_error_deg", {{"maximum", 1.0}}}}}}));
+            }).contains("pass.inset_error_deg.maximum: not a field of this entry (it reads max, min)"));
+    QVERIFY(refusal([&] { parseToleranceSpec(spec({{"target_yeild", 0.5}})); }).contains("target_yeild: not a field"));
+    // The shipped spec, with its free-text "notes" and "version", reads.
+    const json shipped = json::parse(
+        fovea::testing::readFileText(std::string(FOVEA_SOURCE_DIR) + "/resources/tolerance/prototype-tolerance.json"));
+    QCOMPARE(parseToleranceSpec(shipped, "prototype-tolerance.json").parameters.size(), shipped["parameters"].size());
   }
 
   // Gazes within +-80 deg; the list is built by count, so from = to = 1e300 or a step of
