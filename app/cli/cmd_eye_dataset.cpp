@@ -1,4 +1,4 @@
-// fovea-cli eye-dataset --out DIR --frames N [--seed S] [--domain wide|classic]
+// fovea-cli eye-dataset --out DIR --frames N [--start I] [--seed S] [--domain wide|classic]
 //                       [--subset NAME] [--size PX] [--no-png] [--json]
 // Writes synthetic IR eye-camera frames with their ground truth, from the same renderer the
 // tests and `track --virtual` use, for training the learned pupil detector
@@ -31,13 +31,15 @@ void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("eye-dataset", "Write synthetic IR eye frames with ground truth (training data)");
   struct Args {
     std::string out, domain = "wide", subset = "train";
-    int frames = 0, size_px = 0;
+    int frames = 0, size_px = 0, start = 0;
     unsigned seed = 1;
     bool no_png = false, json = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--out", a->out, "output directory (created)")->required();
   cmd->add_option("--frames", a->frames, "number of frames")->required()->check(CLI::Range(1, 1000000));
+  cmd->add_option("--start", a->start, "index of the first frame (default 0: shards of one set)")
+      ->check(CLI::Range(0, 100000000));
   addSeedOption(cmd, a->seed, "seed of the frames (default 1)");
   cmd->add_option("--domain", a->domain, "wide (randomised, default) or classic (the pupil benchmark's)");
   cmd->add_option("--subset", a->subset, "wide domain: train (default) or a held-out subset name");
@@ -63,7 +65,7 @@ void install(CLI::App& app) {
     cv::Size frame_size;
     int visible = 0;
     const auto classic = gaze::allSubsets();
-    for (int i = 0; i < a->frames; ++i) {
+    for (int i = a->start; i < a->start + a->frames; ++i) {
       std::string subset_name;
       gaze::EyeFrame f;
       if (a->domain == "wide") {
