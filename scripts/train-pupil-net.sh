@@ -27,7 +27,7 @@ CLI=${FOVEA_CLI:-build/default/app/fovea-cli}
 if [[ ! -x $CLI ]]; then cmake --preset default && cmake --build --preset default --target fovea-cli; fi
 mkdir -p "$WORK"
 render() {  # DIR START COUNT SEED
-  if [[ -f $1/dataset.json ]] && grep -q "\"frames\": $3," "$1/dataset.json" && grep -q "\"start\": $2," "$1/dataset.json"; then return; fi
+  if [[ -f $1/dataset.json ]] && grep -q "\"frames\": $3," "$1/dataset.json" && grep -q "\"start\": $2," "$1/dataset.json" && grep -q "\"seed\": $4," "$1/dataset.json"; then return; fi
   nice -n 10 "$CLI" eye-dataset --out "$1" --start "$2" --frames "$3" --seed "$4" --size 96 --no-png
 }
 half=$((FRAMES / 2))

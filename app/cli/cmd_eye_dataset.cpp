@@ -98,6 +98,7 @@ void install(CLI::App& app) {
         {"domain", a->domain},
         {"subset", a->domain == "wide" ? a->subset : std::string("cycle")},
         {"seed", a->seed},
+        {"start", a->start},
         {"frames", a->frames},
         {"with_pupil", visible},
         {"frame_size_px", {frame_size.width, frame_size.height}},

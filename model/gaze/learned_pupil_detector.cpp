@@ -21,7 +21,7 @@ struct LearnedPupilDetector::Net {
 std::vector<std::string> pupilModelCandidates() {
   namespace fs = std::filesystem;
   std::vector<std::string> out;
-  if (const char* env = std::getenv("FOVEA_PUPIL_MODEL"); env && *env) out.emplace_back(env);
+  if (const char* env = std::getenv("FOVEA_PUPIL_MODEL"); env && *env) return {env};  // an explicit choice only
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) out.push_back((exe.parent_path().parent_path() / FOVEA_PUPIL_MODEL_INSTALL_REL).string());

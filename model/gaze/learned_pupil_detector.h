@@ -7,8 +7,8 @@
 // pupil is visible; its probability is the confidence. It returns the classical detector's
 // PupilDetection (no glints: the network does not locate them).
 //
-// The model file is read at run time, never compiled in (build time, issue 25). Looked for,
-// in order: $FOVEA_PUPIL_MODEL; the install tree (<exe>/../share/fovea-studio/pupil/
+// The model file is read at run time, never compiled in (build time, issue 25). Looked for:
+// $FOVEA_PUPIL_MODEL when set (then only there); else, in order, the install tree (<exe>/../share/fovea-studio/pupil/
 // pupil-net.onnx, then the configured install prefix); the source tree's
 // resources/pupil/pupil-net.onnx (build-tree runs).
 
