@@ -32,7 +32,8 @@ cv::Point2d project(const IrCameraPose& c, const CameraFrame& f, const Eigen::Ve
   const Eigen::Vector3d v = p - f.position;
   const double z = v.dot(f.forward);
   if (!(z > 1e-6)) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
-  return {c.size.width / 2.0 + c.focal_px * v.dot(f.right) / z, c.size.height / 2.0 + c.focal_px * v.dot(f.down) / z};
+  return {c.size.width / 2.0 + c.principal_offset_px[0] + c.focal_px * v.dot(f.right) / z,
+          c.size.height / 2.0 + c.principal_offset_px[1] + c.focal_px * v.dot(f.down) / z};
 }
 
 // A circle of radius r in the plane normal to `axis` through `centre`, as image points.
@@ -92,23 +93,22 @@ Eigen::Vector3d glintPoint(const Eigen::Vector3d& cornea_centre, double radius, 
   return cornea_centre + radius * n;
 }
 
-// The image through the corneal sphere (centre c, radius r, inside index n, air outside) of
-// a point p behind it: paraxial refraction at a single spherical surface, n/s + 1/s' =
-// (n - 1)/r with the object distance s measured from the vertex along the ray through the
-// centre of curvature (the surface's nodal point: that ray is undeviated; Atchison & Smith,
-// "Optics of the Human Eye" 2000, ch. 3). The virtual image lies on the same line through c.
-// For the Le Grand pupil (s = 3.6 mm, r = 7.8 mm) it gives the textbook entrance pupil:
-// 3.05 mm behind the apex, magnified 1.13x. Off the paraxial zone (views beyond ~30 deg)
-// it is an approximation; the ground truth uses the same map, so truth and image agree.
-Eigen::Vector3d throughCornea(const Eigen::Vector3d& p, const Eigen::Vector3d& c, double r, double n) {
-  const Eigen::Vector3d d = p - c;
-  const double dist = d.norm();
-  if (dist < 1e-9 || dist >= r) return p;
-  const double s = r - dist;
-  const double inv_image = (n - 1) / r - n / s;  // 1/s' (negative: virtual, behind the vertex)
-  if (std::abs(inv_image) < 1e-12) return p;
-  const double image_dist = r + 1.0 / inv_image;  // from the centre of curvature
-  return c + d * (image_dist / dist);
+// The paraxial image through the cornea (one refracting sphere of radius r, index n inside,
+// air outside) of a point p of the pupil plane: n/s + 1/s' = (n - 1)/r for the axial point
+// at s = anterior chamber depth behind the vertex, lateral magnification m = n s' / -s
+// (Atchison & Smith, "Optics of the Human Eye" 2000, ch. 3 and 5). The Le Grand pupil
+// (s = 3.6 mm, r = 7.8 mm, n = 1.3375) gives the textbook entrance pupil: 3.05 mm behind the
+// apex, magnified 1.13x. Paraxial: views far off the axis see a less foreshortened pupil
+// than this (Mathur, Gehrmann, Atchison 2013); the ground truth uses the same map, so truth
+// and image agree.
+Eigen::Vector3d throughCornea(const Eigen::Vector3d& p, const Eigen::Vector3d& axis, const EyeAppearance& e) {
+  const double s = e.anterior_chamber_mm, r = e.cornea_radius_mm, n = e.aqueous_index;
+  const double inv_image = (n - 1) / r - n / s;  // 1/s' (negative: a virtual image behind the vertex)
+  if (!(s > 0) || std::abs(inv_image) < 1e-12) return p;
+  const double s_image = 1 / inv_image, m = n * s_image / -s;
+  const Eigen::Vector3d plane_centre = e.pupil_distance_mm * axis;
+  const Eigen::Vector3d lateral = (p - plane_centre) - (p - plane_centre).dot(axis) * axis;
+  return (e.pupil_distance_mm + e.anterior_chamber_mm + s_image) * axis + m * lateral;
 }
 
 struct Layers {
@@ -130,13 +130,13 @@ Layers eyeLayers(const IrCameraPose& c, const CameraFrame& f, const EyeAppearanc
       for (int i = 0; i < kOutlinePoints; ++i) {
         const double t = 2 * kPi * i / kOutlinePoints;
         const Eigen::Vector3d p = pupil_centre + r * (std::cos(t) * u + std::sin(t) * w);
-        pts.push_back(project(c, f, throughCornea(p, cornea_centre, e.cornea_radius_mm, e.aqueous_index)));
+        pts.push_back(project(c, f, throughCornea(p, g, e)));
       }
       return pts;
     };
     l.pupil = refracted(e.pupil_diameter_mm / 2);
-    l.iris = refracted(std::min(e.iris_radius_mm, 0.95 * e.cornea_radius_mm));
-    l.pupil_centre = project(c, f, throughCornea(pupil_centre, cornea_centre, e.cornea_radius_mm, e.aqueous_index));
+    l.iris = refracted(e.iris_radius_mm);
+    l.pupil_centre = project(c, f, throughCornea(pupil_centre, g, e));
   } else {
     l.pupil = projectedCircle(c, f, pupil_centre, g, e.pupil_diameter_mm / 2);
     l.iris = projectedCircle(c, f, pupil_centre, g, e.iris_radius_mm);

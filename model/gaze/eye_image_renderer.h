@@ -11,7 +11,7 @@
 // Refraction at the cornea is ignored by default (it magnifies the pupil by ~1.13 and
 // shifts it a little, a smooth map the gaze calibration absorbs); with corneal_refraction
 // the pupil and iris are drawn as their images through the corneal sphere (the entrance
-// pupil; see eye_image_renderer.cpp). The pinhole camera sits
+// pupil, paraxial; see eye_image_renderer.cpp). The pinhole camera sits
 // `distance_mm` from the rotation centre in the direction (yaw, pitch) of the camera pose
 // and looks at the rotation centre; image x follows bench +x, image y bench -y.
 //
@@ -41,6 +41,7 @@ struct IrCameraPose {
   cv::Size size{400, 400};
   double distance_mm = 35;               // rotation centre to pinhole
   std::array<double, 2> pose_deg{0, 0};  // camera direction seen from the eye (yaw, pitch); headsets: ~(15, -25)
+  std::array<double, 2> principal_offset_px{0, 0};  // principal point from the image centre (a shifted sensor window)
 };
 
 struct EyeAppearance {

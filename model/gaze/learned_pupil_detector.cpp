@@ -80,6 +80,11 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
                        cv::BORDER_REPLICATE);
   cv::Mat small;
   cv::resize(square, small, {kLearnedPupilInputPx, kLearnedPupilInputPx}, 0, 0, cv::INTER_AREA);
+  // A frame without contrast (lens cap, saturated, uniform) has no pupil, whatever the
+  // network says of it (trained only on eyes): 4 DN of standard deviation at 96 px.
+  cv::Scalar mean, sd;
+  cv::meanStdDev(small, mean, sd);
+  if (sd[0] < 4) return refused("no contrast in the frame (lens cap, saturated or uniform)");
   // x / 255 - 0.5, as scripts/train_pupil_net.py feeds it.
   const cv::Mat blob = cv::dnn::blobFromImage(small, 1.0 / 255, {}, cv::Scalar(127.5), false, false, CV_32F);
   net_->dnn.setInput(blob);

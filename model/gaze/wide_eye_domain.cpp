@@ -180,45 +180,35 @@ void applyPostFx(cv::Mat& grey8, const EyeFrameTruth& truth, const PostFx& fx, s
   img.convertTo(grey8, CV_8U, 255.0);
 }
 
-// A partial frame: the scene rendered on a larger sensor and a frame-sized window cut so that
-// the pupil lies at (or across) one of the window's edges.
+// A partial frame: the sensor window shifted (the principal point moved) so that the pupil's
+// centre lies within a pupil radius of one of the frame's edges; the visible fraction also
+// leaves out the part of the pupil outside the frame.
 EyeFrame renderPartial(const WideScene& s, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   const cv::Size frame = s.camera.size;
-  const int margin = 160;
-  IrCameraPose big = s.camera;
-  big.size = {frame.width + 2 * margin, frame.height + 2 * margin};
-  EyeFrame f = renderEyeFrame(big, s.eye, s.frame);
-  const cv::Point2d c = f.truth.pupil.centre;
-  const double r = f.truth.pupil.major_px / 2;
+  const EyeFrameTruth centred = eyeFrameTruth(s.camera, s.eye, s.frame);
+  const cv::Point2d c = centred.pupil.centre;
+  const double r = centred.pupil.major_px / 2;
   const int edge = static_cast<int>(u(rng) * 4) % 4;
-  const double along = 60 + u(rng) * (frame.width - 120), inset = 2 + u(rng) * r;  // centre inside the frame
-  cv::Point2d target;  // where the centre lands in the window
+  const double along = 60 + u(rng) * (frame.width - 120), inset = 2 + u(rng) * r;
+  cv::Point2d target;  // where the centre lands in the frame
   if (edge == 0) target = {inset, along};
   if (edge == 1) target = {frame.width - inset, along};
   if (edge == 2) target = {along, inset};
   if (edge == 3) target = {along, frame.height - inset};
-  const int x0 = std::clamp(cvRound(c.x - target.x), 0, big.size.width - frame.width);
-  const int y0 = std::clamp(cvRound(c.y - target.y), 0, big.size.height - frame.height);
-  const cv::Rect window(x0, y0, frame.width, frame.height);
-  cv::Mat outline = cv::Mat::zeros(big.size, CV_8U);
-  cv::ellipse(outline,
-              cv::RotatedRect(
-                  cv::Point2f(c),
-                  cv::Size2f(static_cast<float>(f.truth.pupil.major_px), static_cast<float>(f.truth.pupil.minor_px)),
-                  static_cast<float>(f.truth.pupil.angle_deg)),
-              cv::Scalar(255), -1);
-  const double all = cv::countNonZero(outline), in = cv::countNonZero(outline(window));
-  f.image = f.image(window).clone();
-  f.truth.pupil.centre -= cv::Point2d(x0, y0);
-  f.truth.visible_fraction *= all > 0 ? in / all : 0;
+  IrCameraPose shifted = s.camera;
+  shifted.principal_offset_px = {target.x - c.x, target.y - c.y};
+  EyeFrame f = renderEyeFrame(shifted, s.eye, s.frame);
+  cv::Mat inside = cv::Mat::zeros(frame, CV_8U);
+  const auto& p = f.truth.pupil;
+  cv::ellipse(
+      inside,
+      cv::RotatedRect(cv::Point2f(p.centre), cv::Size2f(static_cast<float>(p.major_px), static_cast<float>(p.minor_px)),
+                      static_cast<float>(p.angle_deg)),
+      cv::Scalar(255), -1);
+  const double area = std::numbers::pi / 4 * p.major_px * p.minor_px;  // of the whole ellipse
+  f.truth.visible_fraction *= area > 0 ? std::min(1.0, cv::countNonZero(inside) / area) : 0;
   f.truth.pupil_visible = f.truth.visible_fraction > 0.05;
-  std::vector<cv::Point2d> glints;
-  for (cv::Point2d g : f.truth.glints_px) {
-    g -= cv::Point2d(x0, y0);
-    if (g.x >= 0 && g.y >= 0 && g.x < frame.width && g.y < frame.height) glints.push_back(g);
-  }
-  f.truth.glints_px = glints;
   return f;
 }
 
