@@ -2,14 +2,14 @@
 # Trains the learned pupil detector and writes resources/pupil/pupil-net.onnx (+ .json with
 # its validation figures). Not part of the test command: the shipped model is what the tests
 # check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch
-# seed 31). The shipped model: 4000 frames, 16 epochs, the trainer stopping at 20
+# seed 31). The shipped model: 4000 frames, 30 epochs, the trainer stopping at 20
 # minutes whatever the epoch (--max-minutes; on a loaded two-core machine) - see
 # resources/pupil/pupil-net.onnx.json for the epochs it ran and its validation figures..
 #   scripts/train-pupil-net.sh [--frames N] [--epochs E] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FRAMES=4000 EPOCHS=16 WORK=/tmp/fovea-pupil-train
+FRAMES=4000 EPOCHS=30 WORK=/tmp/fovea-pupil-train
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --frames) FRAMES=$2; shift 2 ;;

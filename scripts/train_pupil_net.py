@@ -107,7 +107,7 @@ def main():
     ap.add_argument("--data", action="append", required=True)
     ap.add_argument("--val", required=True)
     ap.add_argument("--out", required=True)
-    ap.add_argument("--epochs", type=int, default=16)
+    ap.add_argument("--epochs", type=int, default=30)
     ap.add_argument("--seed", type=int, default=31)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--max-minutes", type=float, default=20)
