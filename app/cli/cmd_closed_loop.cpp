@@ -243,6 +243,7 @@ void install(CLI::App& app) {
     unsigned seed = 1;
     double fps = 120;
     bool json = false;
+    std::string detector = "classical";
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("SCENE", a->scene, "scene file")->required();
@@ -253,6 +254,8 @@ void install(CLI::App& app) {
   cmd->add_option("--fps", a->fps, "eye-camera frame rate (default 120)")->check(CLI::Range(1.0, 2000.0));
   cmd->add_option("--latency-sweep", a->sweep, "extra latencies (ms), comma-separated, e.g. 0,10,20,50");
   cmd->add_flag("--json", a->json, "print the result as JSON");
+  cmd->add_option("--detector", a->detector,
+                  "pupil detector of the calibration and the loop: classical (default), learned or auto");
   cmd->add_flag("--binocular", a->binocular, "both eyes (the left on the mirrored train), vergence and focus stages");
   cmd->add_option("--fixations", a->fixations, "with --binocular: a fixation file (JSON) or a count of random ones");
   cmd->add_option("--ipd", a->ipd_mm, "with --binocular: interpupillary distance in mm (default 63)")
@@ -261,6 +264,17 @@ void install(CLI::App& app) {
                   "with --binocular: the focus stages' model (default: the micro-OLED's)")
       ->check(CLI::IsMember({"MTS25-Z8", "Z825B", "DDSM50"}));
   cmd->callback([a] {
+    const auto kind = gaze::parseDetectorKind(a->detector);
+    if (!kind) usageError("--detector: '" + a->detector + "' is not one of " + gaze::kDetectorChoices);
+    if (a->binocular && *kind != gaze::PupilDetectorKind::Classical)
+      usageError("closed-loop: --detector is not available with --binocular (classical only)");
+    if (*kind != gaze::PupilDetectorKind::Classical) {
+      try {
+        gaze::requireLearnedModel();
+      } catch (const std::exception& e) {
+        inputError(std::string("--detector ") + a->detector + ": " + e.what());
+      }
+    }
     if (!a->binocular && (!a->fixations.empty() || !a->focus_stage_model.empty()))
       usageError("closed-loop: --fixations and --focus-stage-model need --binocular");
     if (a->binocular && a->fixations.empty()) usageError("closed-loop: --binocular needs --fixations FILE|N");
@@ -302,6 +316,7 @@ void install(CLI::App& app) {
     o.saccades = a->saccades;
     o.seed = a->seed;
     o.camera_fps = a->fps;
+    o.detector = *kind;
     if (o.exposure_s + o.readout_s > 1.0 / o.camera_fps)
       o.exposure_s = 0.5 / o.camera_fps, o.readout_s = 0.4 / o.camera_fps;
     if (!a->stage_model.empty()) o.stage_model = a->stage_model;
@@ -321,6 +336,7 @@ void install(CLI::App& app) {
     nlohmann::json out = resultJson(r);
     out["scene"] = scene.name;
     out["saccades"] = a->saccades;
+    out["detector"] = gaze::detectorName(*kind);
     out["seed"] = a->seed;
     out["camera"] = {{"fps", o.camera_fps}, {"exposure_ms", o.exposure_s * 1000}};
     nlohmann::json rows = nlohmann::json::array();

@@ -1,13 +1,21 @@
-// fovea-cli track IMAGE... | --virtual N [--seed S] [--json]
-// Pupil detection on IR eye-camera frames (model/gaze/pupil_detector.h): per frame the
-// pupil centre, ellipse, glints, confidence and the detector's time. Images are read by the
+// fovea-cli track IMAGE... | --virtual N [--domain classic|wide] [--seed S]
+//                 [--detector classical|learned|auto] [--json]
+// Pupil detection on IR eye-camera frames (model/gaze/pupil_detector_choice.h: the classical
+// detector by default, the learned one or both fused): per frame the pupil centre, ellipse,
+// glints, confidence and the detector's time. Images are read by the
 // project's image I/O (PNG, JPEG, TIFF, ...) and taken as the camera's 8-bit grey levels.
 // --virtual N renders N synthetic frames by seed (model/gaze/pupil_benchmark.h, cycling
 // through the easy, glints, occlusion, motion-blur, off-axis and closed-eye subsets) and
-// adds the ground truth and the errors. An unreadable image gives a frame with zero
-// confidence and its error, the others are still tracked; the exit code is then 1.
+// adds the ground truth and the errors; --domain wide draws them from the wide randomised
+// domain's held-out subsets instead (model/gaze/wide_eye_domain.h: easy, glints, occlusion,
+// motion_blur, off_axis, partial, hard, closed). Per subset the centre error's percentiles
+// count a missed pupil as an infinite error (null when more than that share is missed). An unreadable image gives a
+// frame with zero confidence and its error, the others are still tracked; the exit code is then 1.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include <opencv2/imgproc.hpp>
@@ -16,6 +24,8 @@
 #include "model/color/srgb.h"
 #include "model/gaze/pupil_benchmark.h"
 #include "model/gaze/pupil_detector.h"
+#include "model/gaze/pupil_detector_choice.h"
+#include "model/gaze/wide_eye_domain.h"
 #include "model/image/image_io.h"
 
 namespace fovea::cli {
@@ -47,6 +57,15 @@ cv::Mat readGrey8(const std::string& path) {
   return grey;
 }
 
+// The q-quantile (nearest rank) of the errors; NaN (JSON null) when it is a missed frame.
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1;
+  const double x = v[std::min(k, v.size() - 1)];
+  return std::isfinite(x) ? x : std::numeric_limits<double>::quiet_NaN();
+}
+
 nlohmann::json detectionJson(const gaze::PupilDetection& d, double ms) {
   nlohmann::json glints = nlohmann::json::array();
   for (const auto& g : d.glints_px) glints.push_back(point(g));
@@ -67,6 +86,7 @@ void install(CLI::App& app) {
     int virtual_frames = 0;
     unsigned seed = 1;
     bool json = false;
+    std::string detector = "classical", domain = "classic";
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("IMAGE", a->images, "eye-camera images (PNG, JPEG, ...)");
@@ -74,9 +94,24 @@ void install(CLI::App& app) {
                 ->check(CLI::Range(1, 100000));
   addSeedOption(cmd, a->seed, "seed of the synthetic frames (default 1)");
   cmd->add_flag("--json", a->json, "print the result as JSON");
+  cmd->add_option("--detector", a->detector, "classical (default), learned or auto (learned refined by classical)");
+  cmd->add_option("--domain", a->domain, "--virtual frames: classic (default, the pupil benchmark) or wide");
   cmd->callback([a, v] {
     const bool virt = v->count() > 0;
     if (virt == !a->images.empty()) usageError("track: give either IMAGE files or --virtual N");
+    const auto kind = gaze::parseDetectorKind(a->detector);
+    if (!kind) usageError("--detector: '" + a->detector + "' is not one of " + gaze::kDetectorChoices);
+    if (a->domain != "classic" && a->domain != "wide")
+      usageError("--domain: '" + a->domain + "' is not one of classic, wide");
+    if (!virt && a->domain != "classic") usageError("--domain: only with --virtual");
+    const bool wide = a->domain == "wide";
+    if (*kind != gaze::PupilDetectorKind::Classical) {
+      try {
+        gaze::requireLearnedModel();
+      } catch (const std::exception& e) {
+        inputError(std::string("--detector ") + a->detector + ": " + e.what());
+      }
+    }
     const gaze::PupilDetectorOptions options;
     nlohmann::json frames = nlohmann::json::array();
     double total_ms = 0, max_ms = 0;
@@ -84,10 +119,12 @@ void install(CLI::App& app) {
     gaze::SubsetScore score;
     score.subset = "all";
     std::map<std::string, gaze::SubsetScore> per_subset;
+    std::map<std::string, double> subset_ms;
+    std::map<std::string, std::vector<double>> errors;  // per subset, frames with a pupil (missed: inf)
     std::string first_error;
     const auto timed = [&](const cv::Mat& img, gaze::PupilDetection& d) {
       const auto t0 = std::chrono::steady_clock::now();
-      d = gaze::detectPupil(img, options);
+      d = gaze::detectPupilWith(*kind, img, options);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       total_ms += ms;
       max_ms = std::max(max_ms, ms);
@@ -99,15 +136,28 @@ void install(CLI::App& app) {
       gaze::PupilDetection d;
       nlohmann::json f;
       if (virt) {
-        const auto subsets = gaze::allSubsets();
-        const gaze::EyeSubset subset = subsets[i % subsets.size()];
-        const gaze::EyeFrame frame = gaze::renderBenchmarkFrame(subset, i / static_cast<int>(subsets.size()), a->seed);
+        std::string subset_name;
+        gaze::EyeFrame frame;
+        if (wide) {
+          const auto subsets = gaze::heldOutWideSubsets();
+          const gaze::WideSubset subset = subsets[static_cast<std::size_t>(i) % subsets.size()];
+          frame = gaze::renderWideFrame(subset, i / static_cast<int>(subsets.size()), a->seed);
+          subset_name = gaze::wideSubsetName(subset);
+        } else {
+          const auto subsets = gaze::allSubsets();
+          const gaze::EyeSubset subset = subsets[i % subsets.size()];
+          frame = gaze::renderBenchmarkFrame(subset, i / static_cast<int>(subsets.size()), a->seed);
+          subset_name = gaze::subsetName(subset);
+        }
         const double ms = timed(frame.image, d);
+        subset_ms[subset_name] += ms;
         f = detectionJson(d, ms);
         const gaze::FrameScore s = gaze::scoreDetection(frame.truth, d);
         score.add(s);
-        per_subset[gaze::subsetName(subset)].add(s);
-        f["subset"] = gaze::subsetName(subset);
+        per_subset[subset_name].add(s);
+        if (s.truth_visible)
+          errors[subset_name].push_back(s.found ? s.centre_error_px : std::numeric_limits<double>::infinity());
+        f["subset"] = subset_name;
         f["truth"] = {{"pupil_visible", frame.truth.pupil_visible},
                       {"visible_fraction", frame.truth.visible_fraction},
                       {"centre_px", point(frame.truth.pupil.centre)},
@@ -160,13 +210,20 @@ void install(CLI::App& app) {
                            {"detection_rate", sc.detection_rate},
                            {"mean_centre_error_px", sc.mean_centre_error_px},
                            {"mean_axis_error_px", sc.mean_axis_error_px},
-                           {"false_positives", sc.false_positives}});
+                           {"false_positives", sc.false_positives},
+                           {"false_positive_rate", sc.false_positive_rate},
+                           {"centre_error_px_p50", percentile(errors[name], 0.50)},
+                           {"centre_error_px_p90", percentile(errors[name], 0.90)},
+                           {"centre_error_px_p95", percentile(errors[name], 0.95)},
+                           {"mean_time_ms", sc.frames ? subset_ms[name] / sc.frames : 0.0}});
       }
       summary["subsets"] = subsets;
     } else {
       summary["unreadable"] = unreadable;
     }
     const nlohmann::json out{{"source", virt ? "virtual" : "images"},
+                             {"detector", gaze::detectorName(*kind)},
+                             {"domain", virt ? nlohmann::json(a->domain) : nlohmann::json(nullptr)},
                              {"seed", virt ? nlohmann::json(a->seed) : nlohmann::json(nullptr)},
                              {"frames", frames},
                              {"summary", summary}};

@@ -127,6 +127,7 @@ TrackedRun trackEyeTrajectory(const Scene& scene, const ClosedLoopOptions& o, Ey
   co.eye = eye;
   co.leds = o.leds;
   co.seed = o.seed;
+  co.detector_kind = o.detector;
   const gaze::TrackedCalibration cal = gaze::calibrateWithTracker(co);
   run.calibration_accuracy_deg = cal.result.accuracy_mean_deg;
   run.calibration_precision_deg = cal.result.precision_rms_s2s_deg;
@@ -143,7 +144,7 @@ TrackedRun trackEyeTrajectory(const Scene& scene, const ClosedLoopOptions& o, Ey
     spec.seed = o.seed * 7919u + static_cast<std::uint32_t>(k);
     const gaze::EyeFrame f = gaze::renderEyeFrame(o.camera, eye, spec);
     const auto w0 = std::chrono::steady_clock::now();
-    const gaze::PupilDetection d = gaze::detectPupil(f.image);
+    const gaze::PupilDetection d = gaze::detectPupilWith(o.detector, f.image);
     const auto w1 = std::chrono::steady_clock::now();
     TrackedFrame tf;
     tf.exposure_start_s = t0;

@@ -32,6 +32,7 @@
 #include "devices/apt/stage_models.h"
 #include "model/gaze/eye_image_renderer.h"
 #include "model/gaze/gaze_calibration.h"
+#include "model/gaze/pupil_detector_choice.h"
 #include "model/scene/scene.h"
 
 namespace fovea::devices {
@@ -53,6 +54,7 @@ struct ClosedLoopOptions {
   double eval_step_s = 0.0005;
   gaze::IrCameraPose camera;
   int leds = 6;
+  gaze::PupilDetectorKind detector = gaze::PupilDetectorKind::Classical;  // of the calibration and the loop
 };
 
 // The measured side of the loop: one entry per camera frame.

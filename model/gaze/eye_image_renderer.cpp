@@ -32,7 +32,8 @@ cv::Point2d project(const IrCameraPose& c, const CameraFrame& f, const Eigen::Ve
   const Eigen::Vector3d v = p - f.position;
   const double z = v.dot(f.forward);
   if (!(z > 1e-6)) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
-  return {c.size.width / 2.0 + c.focal_px * v.dot(f.right) / z, c.size.height / 2.0 + c.focal_px * v.dot(f.down) / z};
+  return {c.size.width / 2.0 + c.principal_offset_px[0] + c.focal_px * v.dot(f.right) / z,
+          c.size.height / 2.0 + c.principal_offset_px[1] + c.focal_px * v.dot(f.down) / z};
 }
 
 // A circle of radius r in the plane normal to `axis` through `centre`, as image points.
@@ -92,6 +93,24 @@ Eigen::Vector3d glintPoint(const Eigen::Vector3d& cornea_centre, double radius, 
   return cornea_centre + radius * n;
 }
 
+// The paraxial image through the cornea (one refracting sphere of radius r, index n inside,
+// air outside) of a point p of the pupil plane: n/s + 1/s' = (n - 1)/r for the axial point
+// at s = anterior chamber depth behind the vertex, lateral magnification m = n s' / -s
+// (Atchison & Smith, "Optics of the Human Eye" 2000, ch. 3 and 5). The Le Grand pupil
+// (s = 3.6 mm, r = 7.8 mm, n = 1.3375) gives the textbook entrance pupil: 3.05 mm behind the
+// apex, magnified 1.13x. Paraxial: views far off the axis see a less foreshortened pupil
+// than this (Mathur, Gehrmann, Atchison 2013); the ground truth uses the same map, so truth
+// and image agree.
+Eigen::Vector3d throughCornea(const Eigen::Vector3d& p, const Eigen::Vector3d& axis, const EyeAppearance& e) {
+  const double s = e.anterior_chamber_mm, r = e.cornea_radius_mm, n = e.aqueous_index;
+  const double inv_image = (n - 1) / r - n / s;  // 1/s' (negative: a virtual image behind the vertex)
+  if (!(s > 0) || std::abs(inv_image) < 1e-12) return p;
+  const double s_image = 1 / inv_image, m = n * s_image / -s;
+  const Eigen::Vector3d plane_centre = e.pupil_distance_mm * axis;
+  const Eigen::Vector3d lateral = (p - plane_centre) - (p - plane_centre).dot(axis) * axis;
+  return (e.pupil_distance_mm + e.anterior_chamber_mm + s_image) * axis + m * lateral;
+}
+
 struct Layers {
   std::vector<cv::Point2d> pupil, iris, opening;
   cv::Point2d pupil_centre;
@@ -103,13 +122,29 @@ Layers eyeLayers(const IrCameraPose& c, const CameraFrame& f, const EyeAppearanc
   Layers l;
   const Eigen::Vector3d g = gazeDirection(gaze[0], gaze[1]);
   const Eigen::Vector3d pupil_centre = e.pupil_distance_mm * g;
-  l.pupil = projectedCircle(c, f, pupil_centre, g, e.pupil_diameter_mm / 2);
-  l.iris = projectedCircle(c, f, pupil_centre, g, e.iris_radius_mm);
-  l.pupil_centre = project(c, f, pupil_centre);
+  const Eigen::Vector3d cornea_centre = (e.pupil_distance_mm + e.anterior_chamber_mm - e.cornea_radius_mm) * g;
+  if (e.corneal_refraction) {
+    const auto refracted = [&](double r) {
+      const Eigen::Vector3d u = g.cross(Eigen::Vector3d::UnitY()).normalized(), w = g.cross(u);
+      std::vector<cv::Point2d> pts;
+      for (int i = 0; i < kOutlinePoints; ++i) {
+        const double t = 2 * kPi * i / kOutlinePoints;
+        const Eigen::Vector3d p = pupil_centre + r * (std::cos(t) * u + std::sin(t) * w);
+        pts.push_back(project(c, f, throughCornea(p, g, e)));
+      }
+      return pts;
+    };
+    l.pupil = refracted(e.pupil_diameter_mm / 2);
+    l.iris = refracted(e.iris_radius_mm);
+    l.pupil_centre = project(c, f, throughCornea(pupil_centre, g, e));
+  } else {
+    l.pupil = projectedCircle(c, f, pupil_centre, g, e.pupil_diameter_mm / 2);
+    l.iris = projectedCircle(c, f, pupil_centre, g, e.iris_radius_mm);
+    l.pupil_centre = project(c, f, pupil_centre);
+  }
   // The upper lid follows the gaze's pitch a little (lid-eye coordination).
   const double upper_shift = 0.4 * e.pupil_distance_mm * std::sin(gaze[1] * kPi / 180);
   l.opening = lidOpening(c, f, e, e.pupil_distance_mm + 1.5, upper_shift);
-  const Eigen::Vector3d cornea_centre = (e.pupil_distance_mm + e.anterior_chamber_mm - e.cornea_radius_mm) * g;
   const double cap = std::asin(std::min(1.0, e.iris_radius_mm / e.cornea_radius_mm));
   for (const auto& led : spec.leds_mm) {
     const Eigen::Vector3d p = glintPoint(cornea_centre, e.cornea_radius_mm, led, f.position);
@@ -245,6 +280,39 @@ std::array<double, 2> projectToCamera(const IrCameraPose& camera, const Eigen::V
   return {p.x, p.y};
 }
 
+EyeFrameTruth eyeFrameTruth(const IrCameraPose& c, const EyeAppearance& e, const EyeFrameSpec& spec) {
+  const CameraFrame f = cameraFrame(c);
+  const auto gazeAt = [&](double s) -> std::array<double, 2> {
+    if (!spec.moving) return spec.gaze_deg;
+    return {spec.gaze_deg[0] + s * (spec.gaze_end_deg[0] - spec.gaze_deg[0]),
+            spec.gaze_deg[1] + s * (spec.gaze_end_deg[1] - spec.gaze_deg[1])};
+  };
+  EyeFrameTruth truth;
+
+  // Ground truth at mid-exposure.
+  const Layers mid = eyeLayers(c, f, e, spec, gazeAt(0.5));
+  truth.gaze_deg = gazeAt(0.5);
+  const std::vector<cv::Point2f> outline(mid.pupil.begin(), mid.pupil.end());
+  const cv::RotatedRect r = cv::fitEllipse(outline);
+  truth.pupil.centre = r.center;
+  truth.pupil.major_px = std::max(r.size.width, r.size.height);
+  truth.pupil.minor_px = std::min(r.size.width, r.size.height);
+  truth.pupil.angle_deg = r.size.width >= r.size.height ? r.angle : r.angle + 90;
+  cv::Mat pupil_mask = cv::Mat::zeros(c.size, CV_8U), open_mask = cv::Mat::zeros(c.size, CV_8U);
+  fillPolygon(pupil_mask, mid.pupil, 255);
+  if (polygonArea(mid.opening) > 1) fillPolygon(open_mask, mid.opening, 255);
+  cv::threshold(pupil_mask, pupil_mask, 127, 255, cv::THRESH_BINARY);
+  cv::threshold(open_mask, open_mask, 127, 255, cv::THRESH_BINARY);
+  const double pupil_px = cv::countNonZero(pupil_mask);
+  const double visible_px = cv::countNonZero(pupil_mask & open_mask);
+  truth.visible_fraction = pupil_px > 0 ? visible_px / pupil_px : 0;
+  truth.pupil_visible = truth.visible_fraction > 0.05;
+  for (const auto& g : mid.glints)
+    if (inside(mid.opening, g) && g.x >= 0 && g.y >= 0 && g.x < c.size.width && g.y < c.size.height)
+      truth.glints_px.push_back(g);
+  return truth;
+}
+
 EyeFrame renderEyeFrame(const IrCameraPose& c, const EyeAppearance& e, const EyeFrameSpec& spec) {
   const CameraFrame f = cameraFrame(c);
   const Texture t = makeTexture(c, e, spec.seed);
@@ -270,29 +338,7 @@ EyeFrame renderEyeFrame(const IrCameraPose& c, const EyeAppearance& e, const Eye
   }
   EyeFrame out;
   acc.convertTo(out.image, CV_8U, 255.0);
-
-  // Ground truth at mid-exposure.
-  const Layers mid = eyeLayers(c, f, e, spec, gazeAt(0.5));
-  EyeFrameTruth& truth = out.truth;
-  truth.gaze_deg = gazeAt(0.5);
-  const std::vector<cv::Point2f> outline(mid.pupil.begin(), mid.pupil.end());
-  const cv::RotatedRect r = cv::fitEllipse(outline);
-  truth.pupil.centre = r.center;
-  truth.pupil.major_px = std::max(r.size.width, r.size.height);
-  truth.pupil.minor_px = std::min(r.size.width, r.size.height);
-  truth.pupil.angle_deg = r.size.width >= r.size.height ? r.angle : r.angle + 90;
-  cv::Mat pupil_mask = cv::Mat::zeros(c.size, CV_8U), open_mask = cv::Mat::zeros(c.size, CV_8U);
-  fillPolygon(pupil_mask, mid.pupil, 255);
-  if (polygonArea(mid.opening) > 1) fillPolygon(open_mask, mid.opening, 255);
-  cv::threshold(pupil_mask, pupil_mask, 127, 255, cv::THRESH_BINARY);
-  cv::threshold(open_mask, open_mask, 127, 255, cv::THRESH_BINARY);
-  const double pupil_px = cv::countNonZero(pupil_mask);
-  const double visible_px = cv::countNonZero(pupil_mask & open_mask);
-  truth.visible_fraction = pupil_px > 0 ? visible_px / pupil_px : 0;
-  truth.pupil_visible = truth.visible_fraction > 0.05;
-  for (const auto& g : mid.glints)
-    if (inside(mid.opening, g) && g.x >= 0 && g.y >= 0 && g.x < c.size.width && g.y < c.size.height)
-      truth.glints_px.push_back(g);
+  out.truth = eyeFrameTruth(c, e, spec);
   return out;
 }
 

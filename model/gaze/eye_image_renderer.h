@@ -8,8 +8,10 @@
 // the gaze, `pupil_distance_mm` from the rotation centre; the iris a coplanar annulus out
 // to `iris_radius_mm`; the cornea a sphere of radius `cornea_radius_mm` whose apex lies
 // `anterior_chamber_mm` in front of the pupil plane (Le Grand eye: r = 7.8 mm, 3.6 mm).
-// Refraction at the cornea is ignored (it magnifies the pupil by ~1.13 and shifts it a
-// little, a smooth map the gaze calibration absorbs). The pinhole camera sits
+// Refraction at the cornea is ignored by default (it magnifies the pupil by ~1.13 and
+// shifts it a little, a smooth map the gaze calibration absorbs); with corneal_refraction
+// the pupil and iris are drawn as their images through the corneal sphere (the entrance
+// pupil, paraxial; see eye_image_renderer.cpp). The pinhole camera sits
 // `distance_mm` from the rotation centre in the direction (yaw, pitch) of the camera pose
 // and looks at the rotation centre; image x follows bench +x, image y bench -y.
 //
@@ -39,6 +41,7 @@ struct IrCameraPose {
   cv::Size size{400, 400};
   double distance_mm = 35;               // rotation centre to pinhole
   std::array<double, 2> pose_deg{0, 0};  // camera direction seen from the eye (yaw, pitch); headsets: ~(15, -25)
+  std::array<double, 2> principal_offset_px{0, 0};  // principal point from the image centre (a shifted sensor window)
 };
 
 struct EyeAppearance {
@@ -52,6 +55,8 @@ struct EyeAppearance {
   double openness = 1.0;          // 1 open, 0 closed (the upper lid drops to the lower one)
   double pupil_level = 0.08, iris_level = 0.42, sclera_level = 0.78, skin_level = 0.62;
   int eyelashes = 40;
+  bool corneal_refraction = false;  // draw the entrance pupil (image through the cornea)
+  double aqueous_index = 1.3375;    // Le Grand eye: aqueous and cornea as one medium
 };
 
 struct EyeFrameSpec {
@@ -92,5 +97,7 @@ std::vector<Eigen::Vector3d> ledRing(const IrCameraPose& camera, int count, doub
 std::array<double, 2> projectToCamera(const IrCameraPose& camera, const Eigen::Vector3d& point_mm);
 
 EyeFrame renderEyeFrame(const IrCameraPose& camera, const EyeAppearance& eye, const EyeFrameSpec& spec);
+// The ground truth alone (what renderEyeFrame returns in .truth), without drawing the image.
+EyeFrameTruth eyeFrameTruth(const IrCameraPose& camera, const EyeAppearance& eye, const EyeFrameSpec& spec);
 
 }  // namespace fovea::gaze

@@ -32,7 +32,7 @@ TrackedCalibration calibrateWithTracker(const TrackedCalibrationOptions& o) {
       spec.gaze_deg = {s.yaw + jitter(rng), s.pitch + jitter(rng)};
       spec.seed = static_cast<std::uint32_t>(rng());
       const EyeFrame f = renderEyeFrame(o.camera, o.eye, spec);
-      const PupilDetection d = detectPupil(f.image, o.detector);
+      const PupilDetection d = detectPupilWith(o.detector_kind, f.image, o.detector);
       ++out.frames;
       if (!d.found || d.confidence < o.min_confidence) {
         ++out.rejected;
@@ -63,6 +63,7 @@ nlohmann::json trackedCalibrationJson(const TrackedCalibration& c, const Tracked
   return {{"method",
            "pupil detector on rendered IR eye-camera frames; each target the average of its accepted samples, "
            "frames below min_confidence rejected; accuracy and precision on the held-out grid (seed C.4)"},
+          {"detector", detectorName(o.detector_kind)},
           {"targets", r.calibration_targets},
           {"samples_per_target", o.samples_per_target},
           {"min_confidence", o.min_confidence},

@@ -16,6 +16,7 @@
 #include "model/gaze/eye_image_renderer.h"
 #include "model/gaze/gaze_calibration.h"
 #include "model/gaze/pupil_detector.h"
+#include "model/gaze/pupil_detector_choice.h"
 
 namespace fovea::gaze {
 
@@ -29,6 +30,7 @@ struct TrackedCalibrationOptions {
   double min_confidence = 0.6;  // outlier rejection
   double fixation_jitter_deg = 0.05;
   PupilDetectorOptions detector;
+  PupilDetectorKind detector_kind = PupilDetectorKind::Classical;  // learned/auto: pupil_detector_choice.h
   std::uint32_t seed = 1;
 };
 
@@ -42,7 +44,7 @@ struct TrackedCalibration {
 TrackedCalibration calibrateWithTracker(const TrackedCalibrationOptions& options);
 
 // The result as the capture session's manifest keeps it ("gaze_calibration"): method, targets,
-// samples_per_target, min_confidence, accuracy_mean_deg / _max_deg, precision_rms_s2s_deg,
+// detector, samples_per_target, min_confidence, accuracy_mean_deg / _max_deg, precision_rms_s2s_deg,
 // precision_sd_deg, held_out_targets, validation, fit_rms_deg, frames, rejected, seed and the
 // per-target errors.
 nlohmann::json trackedCalibrationJson(const TrackedCalibration& calibration, const TrackedCalibrationOptions& options);

@@ -1,7 +1,9 @@
 // fovea-cli track and closed-loop contracts: per-frame centre, ellipse, confidence, time
 // (and with --virtual the ground truth and errors); PNG files through the image I/O; an
 // unreadable file and a closed eye give zero confidence, never a pupil; the closed loop's
-// latency budget, inset error and FOV-loss keys and its latency sweep.
+// latency budget, inset error and FOV-loss keys and its latency sweep; the detector choice
+// (--detector classical|learned|auto, --domain wide): its keys, a bad value's and a missing
+// model's errors.
 #include <QtTest>
 #include "tests/test_paths.h"
 
@@ -129,6 +131,91 @@ class TestCliTrack : public QObject {
     QCOMPARE(cli({"closed-loop", kScene.c_str(), "--saccades", "0"}).code, 2);
     QCOMPARE(cli({"closed-loop", kScene.c_str(), "--latency-sweep", "5,-1"}).code, 2);
     QCOMPARE(cli({"closed-loop", "/nonexistent/scene.json", "--saccades", "1"}).code, 1);
+  }
+
+  void detectorChoice() {
+    for (const char* det : {"classical", "learned", "auto"}) {
+      const Run r = cli({"track", "--virtual", "8", "--domain", "wide", "--seed", "4", "--detector", det, "--json"});
+      QVERIFY2(r.code == 0, r.err.constData());
+      const auto j = nlohmann::json::parse(r.out.toStdString());
+      QCOMPARE(j["detector"].get<std::string>(), std::string(det));
+      QCOMPARE(j["domain"].get<std::string>(), std::string("wide"));
+      QCOMPARE(j["frames"].size(), std::size_t{8});
+      for (const auto& f : j["frames"])
+        for (const char* k : {"index", "found", "confidence", "centre_px", "ellipse", "glints_px", "time_ms", "subset",
+                              "truth", "error"})
+          QVERIFY2(f.contains(k), k);
+      QCOMPARE(j["frames"][7]["subset"].get<std::string>(), std::string("closed"));
+      QCOMPARE(j["frames"][6]["subset"].get<std::string>(), std::string("hard"));
+      const auto& s = j["summary"];
+      QCOMPARE(s["with_pupil"].get<int>(), 7);
+      QCOMPARE(s["subsets"].size(), std::size_t{8});
+      for (const auto& sub : s["subsets"])
+        for (const char* k :
+             {"subset", "frames", "with_pupil", "found", "detection_rate", "false_positives", "false_positive_rate",
+              "centre_error_px_p50", "centre_error_px_p90", "centre_error_px_p95", "mean_time_ms"})
+          QVERIFY2(sub.contains(k), k);
+    }
+    // The default stays the classical detector on the classic frames.
+    const auto j = nlohmann::json::parse(cli({"track", "--virtual", "2", "--json"}).out.toStdString());
+    QCOMPARE(j["detector"].get<std::string>(), std::string("classical"));
+    QCOMPARE(j["domain"].get<std::string>(), std::string("classic"));
+    // Image files with the learned detector.
+    fovea::gaze::IrCameraPose cam;
+    fovea::gaze::EyeAppearance eye;
+    fovea::gaze::EyeFrameSpec spec;
+    spec.gaze_deg = {-6, 4};
+    const auto frame = fovea::gaze::renderEyeFrame(cam, eye, spec);
+    const std::string eye_png = (tmpDir() / "eye_learned.png").string();
+    writeGreyPng(eye_png, frame.image);
+    const Run r = cli({"track", QString::fromStdString(eye_png), "--detector", "auto", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto ji = nlohmann::json::parse(r.out.toStdString());
+    QCOMPARE(ji["detector"].get<std::string>(), std::string("auto"));
+    QVERIFY(ji["frames"][0]["found"].get<bool>());
+    QVERIFY(std::hypot(ji["frames"][0]["centre_px"][0].get<double>() - frame.truth.pupil.centre.x,
+                       ji["frames"][0]["centre_px"][1].get<double>() - frame.truth.pupil.centre.y) < 2.0);
+  }
+
+  void detectorErrors() {
+    Run r = cli({"track", "--virtual", "2", "--detector", "neural"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--detector: 'neural' is not one of classical, learned, auto"), r.err.constData());
+    r = cli({"track", "--virtual", "2", "--domain", "wild"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--domain"), r.err.constData());
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--saccades", "1", "--detector", "neural"}).code, 2);
+    // A missing model: exit 1 naming the path, for the learned and auto detectors alike.
+    fovea::testing::CliCall call;
+    call.env.insert("FOVEA_PUPIL_MODEL", "/nonexistent/models/pupil-net.onnx");
+    for (const char* det : {"learned", "auto"}) {
+      r = fovea::testing::runFoveaCli({"track", "--virtual", "2", "--detector", det}, call);
+      QCOMPARE(r.code, 1);
+      QVERIFY2(r.err.contains("/nonexistent/models/pupil-net.onnx"), r.err.constData());
+    }
+    r = fovea::testing::runFoveaCli({"closed-loop", kScene.c_str(), "--saccades", "1", "--detector", "learned"}, call);
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("/nonexistent/models/pupil-net.onnx"), r.err.constData());
+    // The classical detector needs no model.
+    QCOMPARE(fovea::testing::runFoveaCli({"track", "--virtual", "2"}, call).code, 0);
+  }
+
+  void closedLoopWithLearnedDetector() {
+    const auto run = [](const char* det) {
+      const Run r = cli({"closed-loop", kScene.c_str(), "--saccades", "2", "--seed", "5", "--stage-model", "DDSM50",
+                         "--fps", "60", "--detector", det, "--json"});
+      if (r.code != 0) qWarning("%s", r.err.constData());
+      return r.code == 0 ? nlohmann::json::parse(r.out.toStdString()) : nlohmann::json();
+    };
+    const auto classical = run("classical"), automatic = run("auto");
+    QVERIFY(automatic.is_object() && classical.is_object());
+    QCOMPARE(classical["detector"].get<std::string>(), std::string("classical"));
+    QCOMPARE(automatic["detector"].get<std::string>(), std::string("auto"));
+    QVERIFY(automatic["calibration"]["accuracy_deg"].get<double>() < 1.0);
+    // On the classic renderer's frames the auto detector takes the classical fit: the loop's
+    // error is the classical one's within a tenth of a degree.
+    QVERIFY(std::abs(automatic["inset_error_deg"]["mean"].get<double>() -
+                     classical["inset_error_deg"]["mean"].get<double>()) < 0.1);
   }
 
   void closedLoopBudget() {

@@ -1,6 +1,8 @@
 #include "widgets/bench/pupil_tracker_view.h"
 
 #include <QCheckBox>
+#include <QComboBox>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QPainter>
 #include <QVBoxLayout>
@@ -59,10 +61,34 @@ PupilTrackerView::PupilTrackerView(const Scene& scene, QWidget* parent) : QWidge
   info_ = new QLabel(tr("Tracking off"), this);
   info_->setObjectName("trackInfo");
   info_->setWordWrap(true);
-  l->addWidget(track_);
+  detector_ = new QComboBox(this);
+  detector_->setObjectName("pupilDetector");
+  for (auto k : {gaze::PupilDetectorKind::Classical, gaze::PupilDetectorKind::Learned, gaze::PupilDetectorKind::Auto})
+    detector_->addItem(QString::fromLatin1(gaze::detectorName(k)), static_cast<int>(k));
+  detector_->setToolTip(
+      tr("Pupil detector: classical (ellipse fit), learned (CNN, resources/pupil/pupil-net.onnx) "
+         "or auto (learned proposal refined by the classical fit)"));
+  auto* row = new QHBoxLayout;
+  row->addWidget(track_, 1);
+  row->addWidget(new QLabel(tr("Detector:"), this));
+  row->addWidget(detector_);
+  l->addLayout(row);
   l->addWidget(view_, 1);
   l->addWidget(info_);
   connect(track_, &QCheckBox::toggled, this, [this](bool on) { on ? start() : stop(); });
+  connect(detector_, &QComboBox::currentIndexChanged, this, [this] {
+    if (!tracking()) return;
+    stop();
+    start();
+  });
+}
+
+void PupilTrackerView::setDetector(gaze::PupilDetectorKind kind) {
+  detector_->setCurrentIndex(detector_->findData(static_cast<int>(kind)));
+}
+
+gaze::PupilDetectorKind PupilTrackerView::detector() const {
+  return static_cast<gaze::PupilDetectorKind>(detector_->currentData().toInt());
 }
 
 PupilTrackerView::~PupilTrackerView() {
@@ -86,8 +112,10 @@ void PupilTrackerView::start() {
   if (worker_.joinable()) return;
   stop_ = false;
   info_->setText(tr("Calibrating (5 targets x 10 samples)…"));
-  worker_ = std::thread([this] {
+  const gaze::PupilDetectorKind kind = detector();
+  worker_ = std::thread([this, kind] {
     gaze::TrackedCalibrationOptions co;
+    co.detector_kind = kind;
     co.eye.pupil_diameter_mm = scene_.eye.pupil_diameter_mm;
     gaze::GazeCalibrationResult cal;
     try {
@@ -114,7 +142,14 @@ void PupilTrackerView::start() {
       if (!frame_pending_) {
         const devices::Frame f = cam.grab();
         const auto d0 = steady::now();
-        const gaze::PupilDetection d = gaze::detectPupil(f.image);
+        gaze::PupilDetection d;
+        try {
+          d = gaze::detectPupilWith(kind, f.image);
+        } catch (const std::exception& e) {  // the learned model went missing after the calibration
+          const QString msg = QString::fromStdString(e.what());
+          QMetaObject::invokeMethod(this, [this, msg] { info_->setText(tr("Detector failed: %1").arg(msg)); });
+          return;
+        }
         const double ms = std::chrono::duration<double, std::milli>(steady::now() - d0).count();
         std::optional<std::array<double, 2>> g;
         if (d.found && d.confidence >= co.min_confidence) g = cal.map.gazeDeg({d.ellipse.centre.x, d.ellipse.centre.y});

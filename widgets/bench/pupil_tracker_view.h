@@ -4,7 +4,10 @@
 // calibration fed by it (model/gaze/tracked_calibration.h), run on a worker thread while
 // "Track gaze" is on. The view overlays the detected ellipse (green; amber below the
 // calibration's confidence), the glints and the confidence; each tracked gaze is emitted so
-// the panel's follow-gaze drives the stages from the tracker instead of the slider.
+// the panel's follow-gaze drives the stages from the tracker instead of the slider. The
+// detector combo chooses the classical, learned or auto detector (model/gaze/
+// pupil_detector_choice.h) for the calibration and the tracking; changing it while tracking
+// recalibrates with the new one.
 #include <array>
 #include <atomic>
 #include <mutex>
@@ -14,10 +17,12 @@
 #include <QWidget>
 
 #include "model/gaze/pupil_detector.h"
+#include "model/gaze/pupil_detector_choice.h"
 #include "model/scene/scene.h"
 #include "widgets/bench/camera_view.h"
 
 class QCheckBox;
+class QComboBox;
 class QLabel;
 
 namespace fovea::widgets {
@@ -48,6 +53,8 @@ class PupilTrackerView : public QWidget {
   void setEyeGaze(double yaw_deg, double pitch_deg);  // the virtual eye's true gaze
   void setTracking(bool on);
   bool tracking() const;
+  void setDetector(gaze::PupilDetectorKind kind);
+  gaze::PupilDetectorKind detector() const;
   std::optional<std::array<double, 2>> trackedGaze() const { return tracked_; }
   std::optional<double> calibrationAccuracyDeg() const { return accuracy_; }
   const gaze::PupilDetection& lastDetection() const { return view_->detection(); }
@@ -60,6 +67,7 @@ class PupilTrackerView : public QWidget {
   void stop();
   Scene scene_;
   QCheckBox* track_ = nullptr;
+  QComboBox* detector_ = nullptr;
   PupilOverlayView* view_ = nullptr;
   QLabel* info_ = nullptr;
   std::thread worker_;

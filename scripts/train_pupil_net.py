@@ -1,0 +1,169 @@
+#!/usr/bin/python3
+"""Trains the learned pupil detector (model/gaze/learned_pupil_detector.h) on frames that
+fovea-cli eye-dataset wrote, and exports it to ONNX for OpenCV's DNN module.
+
+Input: one 96 x 96 grey frame (the 400 x 400 eye-camera frame downscaled with INTER_AREA),
+scaled to x / 255 - 0.5. Output: 7 numbers, the pupil ellipse regressed directly
+(cx, cy, major, minor in units of the frame's width; cos 2a, sin 2a of the major axis'
+angle, the doubled angle because an ellipse is symmetric under a half turn) and a logit
+whether a pupil is visible. Why a regression head (not a heatmap or segmentation): the
+ellipse of an occluded or partly out-of-frame pupil is the *full* outline, which a
+segmentation of the visible pixels does not give without a second fit that the lid edge
+biases; a flattened (not pooled) feature map keeps where things are, and the C++ side then
+needs nothing beyond a forward pass (no argmax, contour or fit), so the model stays within
+the ops OpenCV 4.6's ONNX importer reads (Conv, BatchNormalization folded, Relu, Flatten,
+Gemm). The classical fit refines the centre in `--detector auto`.
+
+Usage: train_pupil_net.py --data DIR [--data DIR...] --val DIR --out model.onnx
+       [--epochs N] [--seed S] [--threads T]
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+import torch
+import torch.nn as nn
+
+SIZE = 96
+
+
+def load(dirs):
+    images, targets = [], []
+    for d in dirs:
+        meta = json.load(open(os.path.join(d, "dataset.json")))
+        w, h = meta["frame_size_px"]
+        s = meta["stored_size_px"][0]
+        if s != SIZE:
+            sys.exit(f"{d}: frames stored at {s} px, the network reads {SIZE}")
+        n = meta["frames"]
+        img = np.fromfile(os.path.join(d, "images.u8"), dtype=np.uint8)
+        if img.size != n * s * s:
+            sys.exit(f"{d}/images.u8: {img.size} bytes, expected {n * s * s}")
+        images.append(img.reshape(n, 1, s, s))
+        rows = list(csv.DictReader(open(os.path.join(d, "labels.csv"))))
+        t = np.zeros((n, 7), dtype=np.float32)
+        for i, r in enumerate(rows):
+            a = math.radians(float(r["angle_deg"]))
+            t[i] = [float(r["cx_px"]) / w, float(r["cy_px"]) / h, float(r["major_px"]) / w,
+                    float(r["minor_px"]) / w, math.cos(2 * a), math.sin(2 * a), float(r["visible"])]
+        targets.append(t)
+    return np.concatenate(images), np.concatenate(targets)
+
+
+def block(cin, cout, stride):
+    return [nn.Conv2d(cin, cout, 3, stride, 1, bias=False), nn.BatchNorm2d(cout), nn.ReLU(inplace=True)]
+
+
+class PupilNet(nn.Module):
+    def __init__(self):
+        super().__init__()
+        self.features = nn.Sequential(*block(1, 16, 2), *block(16, 32, 2), *block(32, 48, 2),
+                                      *block(48, 64, 2))  # 96 -> 6; ~6 M multiply-adds a frame
+        self.head = nn.Sequential(nn.Flatten(), nn.Linear(64 * 6 * 6, 128), nn.ReLU(inplace=True), nn.Linear(128, 7))
+
+    def forward(self, x):
+        return self.head(self.features(x))
+
+
+def loss_fn(out, t):
+    vis = t[:, 6]
+    bce = nn.functional.binary_cross_entropy_with_logits(out[:, 6], vis)
+    m = vis > 0.5
+    if m.sum() == 0:
+        return bce, bce
+    o, g = out[m], t[m]
+    # Centre in frame widths: 1 px of a 400 px frame is 0.0025; weight it most.
+    centre = nn.functional.smooth_l1_loss(o[:, :2] * 100, g[:, :2] * 100, beta=0.25)
+    axes = nn.functional.smooth_l1_loss(o[:, 2:4] * 100, g[:, 2:4] * 100, beta=0.5)
+    ecc = (1 - g[:, 3] / g[:, 2].clamp(min=1e-6)).clamp(0, 1)  # the angle of a circle is moot
+    angle = (ecc * ((o[:, 4] - g[:, 4]) ** 2 + (o[:, 5] - g[:, 5]) ** 2)).mean()
+    return centre + 0.3 * axes + 0.5 * angle + 0.5 * bce, centre
+
+
+def evaluate(model, x, t, bs=512):
+    model.eval()
+    errs, vis_ok, n_vis = [], 0, 0
+    with torch.no_grad():
+        for i in range(0, len(x), bs):
+            xb = torch.from_numpy(x[i:i + bs]).float() / 255 - 0.5
+            o = model(xb).numpy()
+            tb = t[i:i + bs]
+            pred_vis = o[:, 6] > 0
+            vis_ok += int((pred_vis == (tb[:, 6] > 0.5)).sum())
+            m = tb[:, 6] > 0.5
+            errs.append(np.hypot(o[m, 0] - tb[m, 0], o[m, 1] - tb[m, 1]) * 400)
+    e = np.concatenate(errs)
+    return {"centre_err_px_median": float(np.median(e)), "within_5px": float((e <= 5).mean()),
+            "visibility_accuracy": vis_ok / len(x)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--data", action="append", required=True)
+    ap.add_argument("--val", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--epochs", type=int, default=30)
+    ap.add_argument("--seed", type=int, default=31)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--max-minutes", type=float, default=20)
+    a = ap.parse_args()
+    torch.manual_seed(a.seed)
+    np.random.seed(a.seed)
+    torch.set_num_threads(a.threads)
+    x, t = load(a.data)
+    xv, tv = load([a.val])
+    print(f"train {len(x)} frames ({int(t[:, 6].sum())} with a pupil), validation {len(xv)}", flush=True)
+    model = PupilNet()
+    opt = torch.optim.AdamW(model.parameters(), lr=2e-3, weight_decay=1e-4)
+    bs = 64
+    steps = a.epochs * (len(x) // bs)
+    sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=3e-3, total_steps=steps, pct_start=0.15)
+    start = time.time()
+    gen = np.random.default_rng(a.seed)
+    step = 0
+    for epoch in range(a.epochs):
+        model.train()
+        order = gen.permutation(len(x))
+        total = 0.0
+        for i in range(0, len(order) - bs + 1, bs):
+            idx = order[i:i + bs]
+            xb = torch.from_numpy(x[idx]).float() / 255 - 0.5
+            if gen.random() < 0.5:  # horizontal flip: a mirrored eye is an eye (x -> 1 - x, angle -> -angle)
+                xb = torch.flip(xb, dims=[3])
+                tb = t[idx].copy()
+                tb[:, 0] = 1 - tb[:, 0]
+                tb[:, 5] = -tb[:, 5]
+            else:
+                tb = t[idx]
+            out = model(xb)
+            loss, _ = loss_fn(out, torch.from_numpy(tb))
+            opt.zero_grad()
+            loss.backward()
+            opt.step()
+            if step < steps - 1:
+                sched.step()
+            step += 1
+            total += float(loss)
+        ev = evaluate(model, xv, tv)
+        mins = (time.time() - start) / 60
+        print(f"epoch {epoch + 1}/{a.epochs}: loss {total / (len(order) // bs):.4f} val {ev} ({mins:.1f} min)",
+              flush=True)
+        if mins > a.max_minutes:
+            print("time budget reached: stopping early", flush=True)
+            break
+    model.eval()
+    torch.onnx.export(model, torch.zeros(1, 1, SIZE, SIZE), a.out, opset_version=11, input_names=["frame"],
+                      output_names=["ellipse"], do_constant_folding=True)
+    ev = evaluate(model, xv, tv)
+    json.dump({"validation": ev, "train_minutes": (time.time() - start) / 60, "frames": len(x),
+               "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE}, open(a.out + ".json", "w"), indent=2)
+    print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
+
+
+if __name__ == "__main__":
+    main()
