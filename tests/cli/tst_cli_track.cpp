@@ -16,6 +16,7 @@
 #include "model/gaze/eye_image_renderer.h"
 #include "model/image/image_io.h"
 #include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
 
 namespace {
 using Run = fovea::testing::CliOutput;
@@ -23,9 +24,7 @@ Run cli(const QStringList& args) {
   return fovea::testing::runFoveaCli(args, 300000);
 }
 std::filesystem::path tmpDir() {
-  const auto d = std::filesystem::path(qEnvironmentVariable("FOVEA_TEST_TMP", "/tmp").toStdString()) / "cli_track";
-  std::filesystem::create_directories(d);
-  return d;
+  return fovea::testing::testTmpDir("cli_track");
 }
 void writeGreyPng(const std::string& path, const cv::Mat& grey8) {
   cv::Mat rgb(grey8.size(), CV_32FC3);
