@@ -129,8 +129,11 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
     p.drawText(QRectF(at(-yaw_half, d) + QPointF(-40, -7), QSizeF(36, 14)), Qt::AlignRight | Qt::AlignVCenter,
                QString::number(d));
   p.drawText(QRectF(frame.left(), frame.bottom() + 14, frame.width(), 14), Qt::AlignCenter, tr("yaw (deg)"));
-  p.save();  // the pitch axis's title, upwards along the left edge
-  p.translate(frame.left() - 34, frame.center().y());
+  // The pitch axis's title, upwards along the left edge: its 14 px line spans frame.left - 40
+  // .. - 26, clear of the right-aligned tick numbers (frame.left - 4 back to ~ - 22) and inside
+  // the 44 px margin (it started 4 px left of the dock at - 48 .. - 34: clipped at 1920x1080).
+  p.save();
+  p.translate(frame.left() - 26, frame.center().y());
   p.rotate(-90);
   p.drawText(QRectF(-60, -14, 120, 14), Qt::AlignCenter, tr("pitch (deg)"));
   p.restore();
@@ -202,7 +205,8 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
     p.drawText(QRectF(area.left() + 8, area.top() + 20 + 15 * i, area.width() - 16, 16),
                Qt::AlignLeft | Qt::AlignVCenter, lines[i]);
   // Colour scale at the right.
-  const QRectF bar(area.right() - 40, plot.top() + 22, 12, plot.height() * 0.55);
+  // 12 px bar, labels to its right up to 2 px from the edge ("< 0.1" is ~27 px at 11 px).
+  const QRectF bar(area.right() - 46, plot.top() + 22, 12, plot.height() * 0.55);
   for (int i = 0; i < 64; ++i) {
     const double e = viz::kLowEfficiency + (1 - viz::kLowEfficiency) * (i + 0.5) / 64;
     p.fillRect(QRectF(bar.left(), bar.bottom() - bar.height() * (i + 1) / 64, bar.width(), bar.height() / 64 + 0.5),
@@ -213,7 +217,7 @@ void RetinaView::paint(QPainter& p, const QRect& area) {
   p.drawText(QRectF(bar.left() - 6, bar.top() - 16, 30, 14), Qt::AlignCenter, "η");
   p.drawText(QRectF(bar.right() + 2, bar.top() - 6, 30, 12), Qt::AlignLeft | Qt::AlignVCenter, "1");
   p.drawText(QRectF(bar.right() + 2, bar.bottom() - 6, 30, 12), Qt::AlignLeft | Qt::AlignVCenter, "0.1");
-  p.drawText(QRectF(bar.right() + 2, bar.bottom() + 3, 30, 12), Qt::AlignLeft | Qt::AlignVCenter, "<");
+  p.drawText(QRectF(bar.right() + 2, bar.bottom() + 3, 32, 12), Qt::AlignLeft | Qt::AlignVCenter, "< 0.1");
 }
 
 }  // namespace fovea::widgets
