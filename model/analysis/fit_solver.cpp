@@ -160,33 +160,35 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
   }
   const std::vector<double> p = out.starts[best].to;
 
-  // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a bound).
+  // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a
+  // bound): its 2n points and the optimum itself, all independent, evaluated in parallel.
   struct Column {
     std::optional<std::vector<double>> plus, minus;
   };
-  auto columns = runSamples<Column>(
-      n,
-      [&](std::size_t j) {
-        Column c;
+  auto points = runSamples<std::optional<std::vector<double>>>(
+      2 * n + 1,
+      [&](std::size_t k) {
+        if (k == 2 * n) return residualsAt(scene, targets, free, p, options.observables);
+        const std::size_t j = k / 2;
         const double h = options.jacobian_step * (free[j].upper - free[j].lower);
-        std::vector<double> a = p, b = p;
-        a[j] = std::min(p[j] + h, free[j].upper);
-        b[j] = std::max(p[j] - h, free[j].lower);
-        c.plus = residualsAt(scene, targets, free, a, options.observables);
-        c.minus = residualsAt(scene, targets, free, b, options.observables);
-        progress.add(2);
-        return c;
+        std::vector<double> x = p;
+        x[j] = k % 2 == 0 ? std::min(p[j] + h, free[j].upper) : std::max(p[j] - h, free[j].lower);
+        auto r = residualsAt(scene, targets, free, x, options.observables);
+        progress.add();
+        return r;
       },
       StudyControl{nullptr, control.cancel});
-  if (!columns.ok()) return {};
-  const auto rp = residualsAt(scene, targets, free, p, options.observables);
+  if (!points.ok()) return {};
+  std::vector<Column> columns(n);
+  for (std::size_t j = 0; j < n; ++j) columns[j] = {(*points.value)[2 * j], (*points.value)[2 * j + 1]};
+  const auto& rp = (*points.value)[2 * n];
   progress.add();
   if (!rp) throw std::runtime_error("fit: the best point gives no value for a target");
   UncertaintyInput ui;
   ui.jacobian = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(targets.size()), static_cast<Eigen::Index>(n));
   ui.rcond = options.rcond;
   for (std::size_t j = 0; j < n; ++j) {
-    const Column& c = (*columns.value)[j];
+    const Column& c = columns[j];
     const double window = free[j].upper - free[j].lower;
     ui.windows.push_back(window);
     ui.at_bound.push_back(p[j] - free[j].lower < 1e-6 * window || free[j].upper - p[j] < 1e-6 * window);
