@@ -84,7 +84,10 @@ FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
     const Problem* pb;
     int evals = 0;
     nlopt::opt* opt = nullptr;
-  } data{&pb, 0, nullptr};
+    double best_chi2 = std::numeric_limits<double>::infinity();  // the best evaluated point and its residuals
+    std::vector<double> best_p;
+    std::vector<double> best_r;
+  } data{&pb, 0, nullptr, std::numeric_limits<double>::infinity(), {}, {}};
   nlopt::opt opt(n >= 2 ? nlopt::LN_BOBYQA : nlopt::LN_COBYLA, static_cast<unsigned>(n));
   data.opt = &opt;
   opt.set_lower_bounds(std::vector<double>(n, 0.0));
@@ -101,9 +104,11 @@ FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
         ++d->evals;
         d->pb->progress->add();
         const std::vector<double> point(x, x + d->pb->free->size());
-        const auto r = residualsAt(*d->pb->scene, *d->pb->targets, *d->pb->free, fromUnit(*d->pb->free, point),
-                                   d->pb->options->observables);
-        return r ? chi2Of(*r) : kFitPenaltyChi2;
+        const std::vector<double> p = fromUnit(*d->pb->free, point);
+        const auto r = residualsAt(*d->pb->scene, *d->pb->targets, *d->pb->free, p, d->pb->options->observables);
+        const double chi2 = r ? chi2Of(*r) : kFitPenaltyChi2;
+        if (r && chi2 < d->best_chi2) d->best_chi2 = chi2, d->best_p = p, d->best_r = *r;
+        return chi2;
       },
       &data);
   double f = 0;
@@ -120,6 +125,7 @@ FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
   s.chi2 = f;
   s.evaluations = data.evals;
   s.status = statusText(res);
+  if (!data.best_p.empty() && data.best_p == s.to) s.residuals_at_to = std::move(data.best_r);
   return s;
 }
 
@@ -161,12 +167,14 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
   const std::vector<double> p = out.starts[best].to;
 
   // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a
-  // bound): its 2n points and the optimum itself, all independent, evaluated in parallel.
+  // bound): its 2n points and the optimum itself (unless its start kept its residuals), all
+  // independent, evaluated in parallel.
   struct Column {
     std::optional<std::vector<double>> plus, minus;
   };
+  const std::optional<std::vector<double>>& known = out.starts[best].residuals_at_to;
   auto points = runSamples<std::optional<std::vector<double>>>(
-      2 * n + 1,
+      known ? 2 * n : 2 * n + 1,
       [&](std::size_t k) {
         if (k == 2 * n) return residualsAt(scene, targets, free, p, options.observables);
         const std::size_t j = k / 2;
@@ -181,7 +189,7 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
   if (!points.ok()) return {};
   std::vector<Column> columns(n);
   for (std::size_t j = 0; j < n; ++j) columns[j] = {(*points.value)[2 * j], (*points.value)[2 * j + 1]};
-  const auto& rp = (*points.value)[2 * n];
+  const std::optional<std::vector<double>> rp = known ? known : (*points.value)[2 * n];
   progress.add();
   if (!rp) throw std::runtime_error("fit: the best point gives no value for a target");
   UncertaintyInput ui;
