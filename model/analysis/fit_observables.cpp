@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <tbb/task_arena.h>
+
 #include "model/analysis/analysis_parameters.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/analysis/beam_shaping.h"
@@ -41,19 +43,32 @@ const FovEvaluator& ObservableContext::evaluator(std::optional<double> wavelengt
   return it->second;
 }
 
+// The slot of a key, created under the lock; its value computed once (std::call_once: a
+// concurrent caller waits for it, a throw leaves it for the next caller). Isolated, so that
+// while it waits on nested parallel work this thread never picks up a task that would wait
+// on this very slot (oneTBB's this_task_arena::isolate).
+template <class T, class Compute>
+const T& ObservableContext::once(std::map<std::string, std::unique_ptr<Once<T>>>& memo, const std::string& key,
+                                 Compute&& compute) {
+  Once<T>* slot = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    auto& p = memo[key];
+    if (!p) p = std::make_unique<Once<T>>();
+    slot = p.get();
+  }
+  std::call_once(slot->flag, [&] { tbb::this_task_arena::isolate([&] { slot->value.emplace(compute()); }); });
+  return *slot->value;
+}
+
 const GazeSample& ObservableContext::optimalShift(double gaze_deg, GazeAxis axis, ShiftMethod method,
                                                   std::optional<double> wavelength_nm,
                                                   const GazeStudyOptions& options) {
   const std::string k =
       keyOf({gaze_deg, double(axis), double(method), options.plateau_tolerance_deg, double(options.xp_rule)},
             laserKey(wavelength_nm));
-  {
-    std::lock_guard lock(mutex_);
-    if (const auto it = shifts_.find(k); it != shifts_.end()) return it->second;
-  }
-  GazeSample s = optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options);
-  std::lock_guard lock(mutex_);
-  return shifts_.emplace(k, std::move(s)).first->second;  // a concurrent twin keeps the first (same value)
+  return once(shifts_, k,
+              [&] { return optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options); });
 }
 
 const EyeBox& ObservableContext::eyeBox(double from_deg, double to_deg, double step_deg, GazeAxis axis,
@@ -62,14 +77,10 @@ const EyeBox& ObservableContext::eyeBox(double from_deg, double to_deg, double s
   const std::string k = keyOf(
       {from_deg, to_deg, step_deg, double(axis), double(method), options.tolerance_deg, double(options.criterion)},
       laserKey(wavelength_nm));
-  {
-    std::lock_guard lock(mutex_);
-    if (const auto it = eyeboxes_.find(k); it != eyeboxes_.end()) return it->second;
-  }
-  EyeBox eb = walkEyeBox(sweepGazes(from_deg, to_deg, step_deg), axis, options,
-                         [&](double gaze_deg) { return optimalShift(gaze_deg, axis, method, wavelength_nm, options); });
-  std::lock_guard lock(mutex_);
-  return eyeboxes_.emplace(k, eb).first->second;
+  return once(eyeboxes_, k, [&] {
+    return walkEyeBox(sweepGazes(from_deg, to_deg, step_deg), axis, options,
+                      [&](double gaze_deg) { return optimalShift(gaze_deg, axis, method, wavelength_nm, options); });
+  });
 }
 
 namespace {
