@@ -5,9 +5,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <tbb/task_arena.h>
+
 #include "model/analysis/analysis_parameters.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/analysis/beam_shaping.h"
+#include "model/analysis/eyebox_walk.h"
 #include "model/analysis/trace_evaluator.h"
 
 namespace fovea {
@@ -28,6 +31,7 @@ std::string laserKey(std::optional<double> wavelength_nm) {
 
 const FovEvaluator& ObservableContext::evaluator(std::optional<double> wavelength_nm) {
   const std::string k = laserKey(wavelength_nm);
+  std::lock_guard lock(mutex_);
   auto it = evaluators_.find(k);
   if (it == evaluators_.end()) {
     TraceEvaluatorOptions o;
@@ -39,30 +43,44 @@ const FovEvaluator& ObservableContext::evaluator(std::optional<double> wavelengt
   return it->second;
 }
 
+// The slot of a key, created under the lock; its value computed once (std::call_once: a
+// concurrent caller waits for it, a throw leaves it for the next caller). Isolated, so that
+// while it waits on nested parallel work this thread never picks up a task that would wait
+// on this very slot (oneTBB's this_task_arena::isolate).
+template <class T, class Compute>
+const T& ObservableContext::once(std::map<std::string, std::unique_ptr<Once<T>>>& memo, const std::string& key,
+                                 Compute&& compute) {
+  Once<T>* slot = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    auto& p = memo[key];
+    if (!p) p = std::make_unique<Once<T>>();
+    slot = p.get();
+  }
+  std::call_once(slot->flag, [&] { tbb::this_task_arena::isolate([&] { slot->value.emplace(compute()); }); });
+  return *slot->value;
+}
+
 const GazeSample& ObservableContext::optimalShift(double gaze_deg, GazeAxis axis, ShiftMethod method,
                                                   std::optional<double> wavelength_nm,
                                                   const GazeStudyOptions& options) {
   const std::string k =
       keyOf({gaze_deg, double(axis), double(method), options.plateau_tolerance_deg, double(options.xp_rule)},
             laserKey(wavelength_nm));
-  auto it = shifts_.find(k);
-  if (it == shifts_.end())
-    it = shifts_.emplace(k, optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options)).first;
-  return it->second;
+  return once(shifts_, k,
+              [&] { return optimiseShift(scene_, evaluator(wavelength_nm), gaze_deg, axis, method, options); });
 }
 
-const GazeSweepResult& ObservableContext::sweep(double from_deg, double to_deg, double step_deg, GazeAxis axis,
-                                                ShiftMethod method, std::optional<double> wavelength_nm,
-                                                const GazeStudyOptions& options) {
+const EyeBox& ObservableContext::eyeBox(double from_deg, double to_deg, double step_deg, GazeAxis axis,
+                                        ShiftMethod method, std::optional<double> wavelength_nm,
+                                        const GazeStudyOptions& options) {
   const std::string k = keyOf(
       {from_deg, to_deg, step_deg, double(axis), double(method), options.tolerance_deg, double(options.criterion)},
       laserKey(wavelength_nm));
-  auto it = sweeps_.find(k);
-  if (it == sweeps_.end()) {
-    auto r = sweepGaze(scene_, evaluator(wavelength_nm), from_deg, to_deg, step_deg, axis, method, options);
-    it = sweeps_.emplace(k, std::move(*r.value)).first;
-  }
-  return it->second;
+  return once(eyeboxes_, k, [&] {
+    return walkEyeBox(sweepGazes(from_deg, to_deg, step_deg), axis, options,
+                      [&](double gaze_deg) { return optimalShift(gaze_deg, axis, method, wavelength_nm, options); });
+  });
 }
 
 namespace {
@@ -113,13 +131,13 @@ FovSample fovAt(ObservableContext& ctx, const nlohmann::json& p) {
   return ctx.evaluator(laser(p))(ctx.scene(), gazeQuery(gaze, axis, method, s));
 }
 
-const GazeSweepResult& sweepOf(ObservableContext& ctx, const nlohmann::json& p) {
+const EyeBox& eyeBoxOf(ObservableContext& ctx, const nlohmann::json& p) {
   if (!(num(p, "gaze_to") > num(p, "gaze_from")) || !(num(p, "gaze_step") > 0) ||
       (num(p, "gaze_to") - num(p, "gaze_from")) / num(p, "gaze_step") > analysis::kMaxGazeSamples)
     throw std::invalid_argument("gaze_from < gaze_to and 0 < gaze_step with at most " +
                                 std::to_string(analysis::kMaxGazeSamples) + " samples");
-  return ctx.sweep(num(p, "gaze_from"), num(p, "gaze_to"), num(p, "gaze_step"), axisOf(p), methodOf(p), laser(p),
-                   studyOptions(ctx, p));
+  return ctx.eyeBox(num(p, "gaze_from"), num(p, "gaze_to"), num(p, "gaze_step"), axisOf(p), methodOf(p), laser(p),
+                    studyOptions(ctx, p));
 }
 
 std::size_t endIndex(const nlohmann::json& p) {
@@ -241,14 +259,14 @@ std::vector<ObservableDefinition> buildTable() {
                            "eye-box width: pupil-centre range around zero gaze whose FOV stays within tolerance_deg "
                            "of the zero-gaze FOV (gaze_studies.h sweepGaze)",
                            sweepParams(false), nullptr};
-    d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) { return sweepOf(ctx, p).eyebox.width_mm; };
+    d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) { return eyeBoxOf(ctx, p).width_mm; };
     t.push_back(d);
   }
   {
     ObservableDefinition d{"gaze_coverage_deg", "deg", "gaze angle at a border of the eye box of a method",
                            sweepParams(true), nullptr};
     d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) {
-      return sweepOf(ctx, p).eyebox.gaze_range_deg[endIndex(p)];
+      return eyeBoxOf(ctx, p).gaze_range_deg[endIndex(p)];
     };
     t.push_back(d);
   }
@@ -257,7 +275,7 @@ std::vector<ObservableDefinition> buildTable() {
                            "travel (x_p or z_s) at a border of the eye box of a method (seed A.4: z_s +5.6 ... -6.3)",
                            sweepParams(true), nullptr};
     d.evaluate = [](ObservableContext& ctx, const nlohmann::json& p) {
-      return sweepOf(ctx, p).eyebox.travel_mm[endIndex(p)];
+      return eyeBoxOf(ctx, p).travel_mm[endIndex(p)];
     };
     t.push_back(d);
   }

@@ -11,6 +11,8 @@
 
 #include <functional>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,18 +39,31 @@ class ObservableContext {
   const ObservableSettings& settings() const { return settings_; }
   // The edge FOV evaluator of one laser (nothing: every projector laser).
   const FovEvaluator& evaluator(std::optional<double> wavelength_nm);
-  // The x_p search of a gaze and the gaze sweep of a method, memoised by their inputs.
+  // The x_p search of a gaze and the eye box of a gaze sweep, memoised by their inputs. The
+  // eye box is sweepGaze's, walked lazily (eyebox_walk.h) over this memo: its zero gaze is the
+  // x_p target's at gaze 0, and the sweep gazes past the borders are never searched.
+  // Thread-safe: targets evaluate in parallel (evaluateTargets) and the eye box's two sides
+  // search in parallel; each value is computed once, a concurrent caller of the same one waits.
   const GazeSample& optimalShift(double gaze_deg, GazeAxis axis, ShiftMethod method,
                                  std::optional<double> wavelength_nm, const GazeStudyOptions& options);
-  const GazeSweepResult& sweep(double from_deg, double to_deg, double step_deg, GazeAxis axis, ShiftMethod method,
-                               std::optional<double> wavelength_nm, const GazeStudyOptions& options);
+  const EyeBox& eyeBox(double from_deg, double to_deg, double step_deg, GazeAxis axis, ShiftMethod method,
+                       std::optional<double> wavelength_nm, const GazeStudyOptions& options);
 
  private:
+  template <class T>
+  struct Once {
+    std::once_flag flag;
+    std::optional<T> value;
+  };
+  template <class T, class Compute>
+  const T& once(std::map<std::string, std::unique_ptr<Once<T>>>& memo, const std::string& key, Compute&& compute);
+
   const Scene& scene_;
   ObservableSettings settings_;
+  std::mutex mutex_;  // guards the maps (their nodes never move: references stay valid)
   std::map<std::string, FovEvaluator> evaluators_;
-  std::map<std::string, GazeSample> shifts_;
-  std::map<std::string, GazeSweepResult> sweeps_;
+  std::map<std::string, std::unique_ptr<Once<GazeSample>>> shifts_;
+  std::map<std::string, std::unique_ptr<Once<EyeBox>>> eyeboxes_;
 };
 
 struct ObservableParameter {

@@ -84,7 +84,10 @@ FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
     const Problem* pb;
     int evals = 0;
     nlopt::opt* opt = nullptr;
-  } data{&pb, 0, nullptr};
+    double best_chi2 = std::numeric_limits<double>::infinity();  // the best evaluated point and its residuals
+    std::vector<double> best_p;
+    std::vector<double> best_r;
+  } data{&pb, 0, nullptr, std::numeric_limits<double>::infinity(), {}, {}};
   nlopt::opt opt(n >= 2 ? nlopt::LN_BOBYQA : nlopt::LN_COBYLA, static_cast<unsigned>(n));
   data.opt = &opt;
   opt.set_lower_bounds(std::vector<double>(n, 0.0));
@@ -101,9 +104,11 @@ FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
         ++d->evals;
         d->pb->progress->add();
         const std::vector<double> point(x, x + d->pb->free->size());
-        const auto r = residualsAt(*d->pb->scene, *d->pb->targets, *d->pb->free, fromUnit(*d->pb->free, point),
-                                   d->pb->options->observables);
-        return r ? chi2Of(*r) : kFitPenaltyChi2;
+        const std::vector<double> p = fromUnit(*d->pb->free, point);
+        const auto r = residualsAt(*d->pb->scene, *d->pb->targets, *d->pb->free, p, d->pb->options->observables);
+        const double chi2 = r ? chi2Of(*r) : kFitPenaltyChi2;
+        if (r && chi2 < d->best_chi2) d->best_chi2 = chi2, d->best_p = p, d->best_r = *r;
+        return chi2;
       },
       &data);
   double f = 0;
@@ -120,6 +125,7 @@ FitStart runStart(const Problem& pb, std::vector<double> u, int max_evals) {
   s.chi2 = f;
   s.evaluations = data.evals;
   s.status = statusText(res);
+  if (!data.best_p.empty() && data.best_p == s.to) s.residuals_at_to = std::move(data.best_r);
   return s;
 }
 
@@ -160,33 +166,37 @@ StudyOutcome<FitResult> fitScene(const Scene& scene, const std::vector<FitTarget
   }
   const std::vector<double> p = out.starts[best].to;
 
-  // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a bound).
+  // Jacobian of the normalised residuals at the optimum (central differences, one-sided at a
+  // bound): its 2n points and the optimum itself (unless its start kept its residuals), all
+  // independent, evaluated in parallel.
   struct Column {
     std::optional<std::vector<double>> plus, minus;
   };
-  auto columns = runSamples<Column>(
-      n,
-      [&](std::size_t j) {
-        Column c;
+  const std::optional<std::vector<double>>& known = out.starts[best].residuals_at_to;
+  auto points = runSamples<std::optional<std::vector<double>>>(
+      known ? 2 * n : 2 * n + 1,
+      [&](std::size_t k) {
+        if (k == 2 * n) return residualsAt(scene, targets, free, p, options.observables);
+        const std::size_t j = k / 2;
         const double h = options.jacobian_step * (free[j].upper - free[j].lower);
-        std::vector<double> a = p, b = p;
-        a[j] = std::min(p[j] + h, free[j].upper);
-        b[j] = std::max(p[j] - h, free[j].lower);
-        c.plus = residualsAt(scene, targets, free, a, options.observables);
-        c.minus = residualsAt(scene, targets, free, b, options.observables);
-        progress.add(2);
-        return c;
+        std::vector<double> x = p;
+        x[j] = k % 2 == 0 ? std::min(p[j] + h, free[j].upper) : std::max(p[j] - h, free[j].lower);
+        auto r = residualsAt(scene, targets, free, x, options.observables);
+        progress.add();
+        return r;
       },
       StudyControl{nullptr, control.cancel});
-  if (!columns.ok()) return {};
-  const auto rp = residualsAt(scene, targets, free, p, options.observables);
+  if (!points.ok()) return {};
+  std::vector<Column> columns(n);
+  for (std::size_t j = 0; j < n; ++j) columns[j] = {(*points.value)[2 * j], (*points.value)[2 * j + 1]};
+  const std::optional<std::vector<double>> rp = known ? known : (*points.value)[2 * n];
   progress.add();
   if (!rp) throw std::runtime_error("fit: the best point gives no value for a target");
   UncertaintyInput ui;
   ui.jacobian = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(targets.size()), static_cast<Eigen::Index>(n));
   ui.rcond = options.rcond;
   for (std::size_t j = 0; j < n; ++j) {
-    const Column& c = (*columns.value)[j];
+    const Column& c = columns[j];
     const double window = free[j].upper - free[j].lower;
     ui.windows.push_back(window);
     ui.at_bound.push_back(p[j] - free[j].lower < 1e-6 * window || free[j].upper - p[j] < 1e-6 * window);

@@ -62,6 +62,9 @@ struct FitStart {
   double chi2 = 0;
   int evaluations = 0;
   std::string status;  // NLopt's result: "xtol reached", "max evaluations" ...
+  // The normalised residuals at `to` when the start evaluated it (the fit reuses them for the
+  // optimum instead of tracing it again); nothing otherwise.
+  std::optional<std::vector<double>> residuals_at_to;
 };
 
 struct FitWarning {

@@ -6,6 +6,8 @@
 #include <set>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 #include "model/scene/scene_fields.h"  // Range
 
 namespace fovea {
@@ -166,16 +168,21 @@ std::vector<FitTarget> selectFitTargets(const std::vector<FitTarget>& targets, c
 
 std::vector<double> evaluateTargets(const Scene& scene, const std::vector<FitTarget>& targets,
                                     const ObservableSettings& settings) {
+  // The targets in parallel over one context (their shared x_p searches and eye boxes are
+  // computed once); a failure is reported for the first failing target in file order.
   ObservableContext ctx(scene, settings);
-  std::vector<double> out;
-  out.reserve(targets.size());
-  for (const auto& t : targets) {
+  std::vector<double> out(targets.size());
+  std::vector<std::string> errors(targets.size());
+  tbb::parallel_for(std::size_t{0}, targets.size(), [&](std::size_t i) {
+    const FitTarget& t = targets[i];
     try {
-      out.push_back(findObservable(t.observable)->evaluate(ctx, t.parameters));
+      out[i] = findObservable(t.observable)->evaluate(ctx, t.parameters);
     } catch (const std::exception& e) {
-      throw std::runtime_error("target \"" + t.id + "\" (" + t.observable + "): " + e.what());
+      errors[i] = "target \"" + t.id + "\" (" + t.observable + "): " + e.what();
     }
-  }
+  });
+  for (const auto& e : errors)
+    if (!e.empty()) throw std::runtime_error(e);
   return out;
 }
 

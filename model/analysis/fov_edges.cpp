@@ -193,8 +193,8 @@ EdgeFovResult edgeFov(const RayProbe& probe, const std::vector<double>& waveleng
       const LineScan column(probe, lambda, o.efficiency_threshold, o.angle, 1, c.x, out.rays_traced);
       const std::array<double, 2>& a = spanAngle(c.ray, o.angle);
       const Sample centre_row{c.x, true, a[0]}, centre_column{c.y, true, a[1]};
-      h = widestRun(row, box[0], box[1], c.x, centre_row, o.scan_samples, o.tolerance_deg);
-      v = widestRun(column, box[2], box[3], c.y, centre_column, o.scan_samples, o.tolerance_deg);
+      if (o.scan_lines[0]) h = widestRun(row, box[0], box[1], c.x, centre_row, o.scan_samples, o.tolerance_deg);
+      if (o.scan_lines[1]) v = widestRun(column, box[2], box[3], c.y, centre_column, o.scan_samples, o.tolerance_deg);
     }
     const double diagonal = h.width() > 0 && v.width() > 0 ? spanDiagonalDeg({h.lo, v.lo}, {h.hi, v.hi}) : 0.0;
     if (first || h.width() < out.fov.horizontal_deg) out.fov.horizontal_deg = h.width();

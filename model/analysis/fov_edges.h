@@ -40,6 +40,9 @@ struct EdgeFovOptions {
   double tolerance_deg = 0.005;            // each edge's field angle to this
   int scan_samples = 49;                   // bracketing samples along each scan line
   std::array<int, 2> coarse_grid{24, 14};  // line-of-sight search and statistics (columns, rows)
+  // Scan the row (horizontal FOV) and the column (vertical); a skipped line gives a FOV of 0
+  // along it and no diagonal, the other one's is unchanged (it never reads the skipped one).
+  std::array<bool, 2> scan_lines{true, true};
 };
 
 struct EdgeFovResult {

@@ -120,7 +120,12 @@ GazeSample optimiseShift(const Scene& scene, const FovEvaluator& eval, double ga
   if (method == ShiftMethod::Hoe && options.xp_rule == XpRule::FollowFocus)
     return followFocusShift(scene, eval, gaze_deg, axis, options, guess);
   const int n = std::max(3, options.bracket_points);
-  auto fovAt = [&](double s) { return axisFov(eval(scene, gazeQuery(gaze_deg, axis, method, s)), axis); };
+  // The bracket and the edges read only the FOV along the axis (the sample at x_p has all).
+  auto fovAt = [&](double s) {
+    FovQuery q = gazeQuery(gaze_deg, axis, method, s);
+    q.only_axis = axis == GazeAxis::Yaw ? 0 : 1;
+    return axisFov(eval(scene, q), axis);
+  };
   if (method == ShiftMethod::None) {
     GazeSample fixed;
     fixed.gaze_deg = gaze_deg;

@@ -90,6 +90,9 @@ struct FovQuery {
   std::array<double, 2> hoe_shift_mm{0, 0};
   double source_shift_mm = 0;        // projector point source along bench z
   double source_axial_shift_mm = 0;  // projector point source along its optical axis (+: projection direction)
+  // A hint: only this FOV is read (0 horizontal, 1 vertical; -1 all of FovSample). The edge
+  // estimator then skips the other scan line (fov_edges.h); other evaluators may ignore it.
+  int only_axis = -1;
 };
 
 using FovEvaluator = std::function<FovSample(const Scene&, const FovQuery&)>;

@@ -171,6 +171,7 @@ FovEvaluator traceEvaluator(const TraceEvaluatorOptions& options) {
       e.efficiency_threshold = options.efficiency_threshold;
       e.tolerance_deg = options.edge_tolerance_deg;
       e.angle = options.fov_angle;
+      if (q.only_axis == 0 || q.only_axis == 1) e.scan_lines = {q.only_axis == 0, q.only_axis == 1};
       const std::vector<double> wavelengths =
           options.wavelength_nm ? std::vector<double>{*options.wavelength_nm} : scene.projector.wavelengths_nm;
       const EdgeFovResult r = edgeFov(probe, wavelengths, e);

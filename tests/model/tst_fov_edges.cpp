@@ -163,6 +163,18 @@ class TestFovEdges : public QObject {
     QCOMPARE(f.horizontal_deg, e.horizontal_deg);
     QVERIFY(f.mean_efficiency > 0.1 && f.mean_efficiency <= 1.0 && f.rays_in_pupil > 0);
     QVERIFY(f.extent_horizontal_deg >= f.horizontal_deg - 5.0 && f.extent_horizontal_deg <= f.horizontal_deg);
+    // only_axis (the x_p search's hint): the read FOV to the bit, the other scan line skipped.
+    for (const int axis : {0, 1}) {
+      FovQuery one = q;
+      one.gaze_deg = {10.0, 0.0};
+      one.hoe_shift_mm = {2.0, 0.0};
+      const FovSample all = traceEvaluator(o)(scene, {one.gaze_deg, one.hoe_shift_mm});
+      one.only_axis = axis;
+      const FovSample only = traceEvaluator(o)(scene, one);
+      QCOMPARE(axis == 0 ? only.horizontal_deg : only.vertical_deg, axis == 0 ? all.horizontal_deg : all.vertical_deg);
+      QCOMPARE(axis == 0 ? only.vertical_deg : only.horizontal_deg, 0.0);
+      QVERIFY(all.horizontal_deg > 60.0 && all.vertical_deg > 40.0);
+    }
     QCOMPARE(parseFovMethod("edges").value(), FovMethod::Edges);
     QCOMPARE(parseFovMethod("dense").value(), FovMethod::Dense);
     QVERIFY(!parseFovMethod("exact"));

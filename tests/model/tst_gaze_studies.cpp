@@ -3,10 +3,12 @@
 // against numbers (the traced prototype is checked in tst_gaze_studies_traced).
 #include <QtTest>
 
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
 #include "app/embedded_scene.h"
+#include "model/analysis/eyebox_walk.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
@@ -103,6 +105,33 @@ class TestGazeStudies : public QObject {
     for (const auto& s : r.value->samples)
       if (s.gaze_deg > eb.gaze_range_deg[1] + 1e-9 || s.gaze_deg < eb.gaze_range_deg[0] - 1e-9)
         QVERIFY(s.fov.horizontal_deg < 87.0);
+  }
+
+  // The fit's lazy eye box (eyebox_walk.h) is the full sweep's, to the bit, with fewer x_p
+  // searches: only the gazes up to the first failure on each side and the bisections.
+  void lazyEyeBoxWalkEqualsTheFullSweep() {
+    const Scene scene = prototype();
+    for (const auto& [method, step] :
+         {std::pair{ShiftMethod::Hoe, 5.0}, std::pair{ShiftMethod::Source, 2.5}, std::pair{ShiftMethod::None, 5.0}}) {
+      const auto full = sweepGaze(scene, toy, -40, 40, step, GazeAxis::Yaw, method);
+      QVERIFY(full.ok());
+      std::atomic<int> searches{0};
+      const EyeBox lazy = walkEyeBox(sweepGazes(-40, 40, step), GazeAxis::Yaw, {}, [&](double g) {
+        ++searches;
+        return optimiseShift(scene, toy, g, GazeAxis::Yaw, method);
+      });
+      const EyeBox& eb = full.value->eyebox;
+      QCOMPARE(lazy.width_mm, eb.width_mm);
+      QCOMPARE(lazy.gaze_range_deg, eb.gaze_range_deg);
+      QCOMPARE(lazy.pupil_range_mm, eb.pupil_range_mm);
+      QCOMPARE(lazy.travel_mm, eb.travel_mm);
+      QCOMPARE(lazy.reference_fov_deg, eb.reference_fov_deg);
+      QCOMPARE(lazy.lower_bounded, eb.lower_bounded);
+      QCOMPARE(lazy.upper_bounded, eb.upper_bounded);
+      // The full sweep: every gaze, the reference and 6 bisections per border.
+      const int full_searches = static_cast<int>(sweepGazes(-40, 40, step).size()) + 1 + 2 * 6;
+      QVERIFY2(searches < full_searches, qPrintable(QString("%1 of %2").arg(int(searches)).arg(full_searches)));
+    }
   }
 
   void sourceShiftEyeBoxIsSmaller() {
