@@ -24,6 +24,7 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/window_capture.h"
+#include "model/analysis/trace_fov.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
@@ -102,6 +103,8 @@ std::shared_ptr<widgets::LiveTraceResult> traced(const Scene& scene, std::array<
   r->hoe_shift_mm = shift;
   r->trace = traceScene(scene, o);
   r->grid = projectorGrid(scene.projector, o.rays);
+  r->fov = exactTraceFov(scene, o);  // as the live trace fills it (widgets/live_trace.cpp)
+  r->fov_dense = denseTraceFov(r->trace, o.efficiency_threshold);
   r->cloud = gratingVectorCloud(scene, r->trace.ray_list, shift);
   return r;
 }
