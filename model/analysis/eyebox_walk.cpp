@@ -30,7 +30,7 @@ EyeBox walkEyeBox(const std::vector<double>& gazes, GazeAxis axis, const GazeStu
         g_out = g;
         break;
       }
-      inside = std::move(s);
+      inside = s;  // GazeSample is trivially copyable (clang-tidy performance-move-const-arg)
     }
     if (!found_outside) return {inside, false};
     double g_in = inside.gaze_deg;
@@ -38,7 +38,7 @@ EyeBox walkEyeBox(const std::vector<double>& gazes, GazeAxis axis, const GazeStu
       const double mid = 0.5 * (g_in + g_out);
       GazeSample s = sample(mid);
       if (good(s)) {
-        inside = std::move(s);
+        inside = s;  // GazeSample is trivially copyable (clang-tidy performance-move-const-arg)
         g_in = mid;
       } else {
         g_out = mid;

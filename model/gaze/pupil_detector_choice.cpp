@@ -2,17 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
 #include "model/gaze/learned_pupil_detector.h"
 
 namespace fovea::gaze {
 namespace {
 
+// One network per thread (a cv::dnn::Net is not to be shared between threads). A constructor
+// that throws (no model file) leaves it uninitialised, and the next call tries again
+// ([stmt.dcl]: an initialisation that exits by an exception is retried).
 LearnedPupilDetector& threadDetector() {
-  thread_local std::unique_ptr<LearnedPupilDetector> net;
-  if (!net) net = std::make_unique<LearnedPupilDetector>();
-  return *net;
+  thread_local LearnedPupilDetector net;
+  return net;
 }
 
 PupilDetection refined(const cv::Mat& image, const PupilDetection& learned, const PupilDetectorOptions& o) {
@@ -62,7 +63,7 @@ void requireLearnedModel() {
 PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, const PupilDetectorOptions& classical,
                                double learned_min_confidence) {
   if (kind == PupilDetectorKind::Classical) return detectPupil(image, classical);
-  const PupilDetection learned = threadDetector().detect(image, learned_min_confidence);
+  PupilDetection learned = threadDetector().detect(image, learned_min_confidence);
   if (kind == PupilDetectorKind::Learned || !learned.found) return learned;
   return refined(image, learned, classical);
 }
