@@ -52,12 +52,7 @@ EyeBox walkEyeBox(const std::vector<double>& gazes, GazeAxis axis, const GazeStu
   const auto& [high, high_bounded] = (*sides.value)[1];
   EyeBox eb;
   eb.reference_fov_deg = axisFov(reference.fov, axis);
-  eb.gaze_range_deg = {low.gaze_deg, high.gaze_deg};
-  eb.pupil_range_mm = {low.pupil_position_mm, high.pupil_position_mm};
-  eb.width_mm = high.pupil_position_mm - low.pupil_position_mm;
-  eb.travel_mm = {low.shift_mm, high.shift_mm};
-  eb.lower_bounded = low_bounded;
-  eb.upper_bounded = high_bounded;
+  setEyeBoxBorders(eb, low, low_bounded, high, high_bounded);
   return eb;
 }
 

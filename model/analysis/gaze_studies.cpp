@@ -225,6 +225,15 @@ StudyOutcome<GazeSweepResult> sweepGaze(const Scene& scene, const FovEvaluator& 
   return finishSweep(scene, eval, std::move(*runs.value), reference, axis, method, options, control);
 }
 
+void setEyeBoxBorders(EyeBox& eb, const GazeSample& low, bool low_bounded, const GazeSample& high, bool high_bounded) {
+  eb.gaze_range_deg = {low.gaze_deg, high.gaze_deg};
+  eb.pupil_range_mm = {low.pupil_position_mm, high.pupil_position_mm};
+  eb.width_mm = high.pupil_position_mm - low.pupil_position_mm;
+  eb.travel_mm = {low.shift_mm, high.shift_mm};
+  eb.lower_bounded = low_bounded;
+  eb.upper_bounded = high_bounded;
+}
+
 StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator& eval, std::vector<GazeSample> samples,
                                           const GazeSample& reference, GazeAxis axis, ShiftMethod method,
                                           const GazeStudyOptions& options, const StudyControl& control) {
@@ -275,12 +284,7 @@ StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator
   if (!borders.ok() || !(*borders.value)[0] || !(*borders.value)[1]) return out;
   const auto& [low, low_bounded] = *(*borders.value)[0];
   const auto& [high, high_bounded] = *(*borders.value)[1];
-  eb.gaze_range_deg = {low.gaze_deg, high.gaze_deg};
-  eb.pupil_range_mm = {low.pupil_position_mm, high.pupil_position_mm};
-  eb.width_mm = high.pupil_position_mm - low.pupil_position_mm;
-  eb.travel_mm = {low.shift_mm, high.shift_mm};
-  eb.lower_bounded = low_bounded;
-  eb.upper_bounded = high_bounded;
+  setEyeBoxBorders(eb, low, low_bounded, high, high_bounded);
   out.status = StudyStatus::Completed;
   out.value = std::move(r);
   return out;

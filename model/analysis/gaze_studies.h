@@ -146,6 +146,9 @@ struct GazeSweepResult {
 double axisFov(const FovSample& f, GazeAxis axis);
 // The least FOV along the axis that still counts as inside the eye box (see the criteria above).
 double eyeBoxThresholdDeg(double reference_fov_deg, const GazeStudyOptions& options);
+// The eye box between its two border samples (the last gaze inside on each side, and whether a
+// failure bounded that side): finishSweep's and walkEyeBox's common last step.
+void setEyeBoxBorders(EyeBox& eb, const GazeSample& low, bool low_bounded, const GazeSample& high, bool high_bounded);
 // The scene with the projector (and so its point source) moved by shift_mm along its optical
 // axis; its recorded HOE layers keep their reference points (the fringes do not move).
 Scene withSourceAlongAxis(const Scene& scene, double shift_mm);
