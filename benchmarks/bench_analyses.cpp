@@ -2,9 +2,14 @@
 #include <benchmark/benchmark.h>
 
 #include "app/embedded_scene.h"
+#include "model/analysis/analysis_json.h"
+#include "model/analysis/analysis_registry.h"
 #include "model/analysis/angular_resolution.h"
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/foveal_optics.h"
+#include "model/analysis/study_analyses.h"
+#include "model/analysis/trace_fov.h"
+#include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
 
 namespace {
@@ -38,3 +43,23 @@ void BM_LensOptimisation(benchmark::State& state) {
 }
 BENCHMARK(BM_LensOptimisation)->Unit(benchmark::kMillisecond)->Iterations(1);
 }  // namespace
+
+// What `fovea.trace(scene, rays=4000)` computes (app/python/py_analyses.cpp), called from C++:
+// the registry's trace defaults, traceScene with the rays kept, the FOV and the JSON document.
+// The Python call's target is 1.1x this (docs/python.md); its conversion to Python objects and
+// NumPy ray arrays is the difference.
+void BM_TraceCallAsPython4000(benchmark::State& state) {
+  const fovea::Scene s = prototype();
+  const auto& def = *fovea::analysis::findAnalysisDefinition("trace");
+  nlohmann::json values = fovea::analysis::defaultValues(def);
+  values["rays"] = 4000;
+  if (!fovea::analysis::validateValues(def, values).empty()) state.SkipWithError("trace defaults refused");
+  fovea::TraceOptions o = fovea::analysis::traceOptionsFrom(values);
+  o.keep_rays = true;
+  const auto method = fovea::analysis::traceFovMethodFrom(values);
+  for (auto _ : state) {
+    const fovea::TraceResult r = fovea::traceScene(s, o);
+    benchmark::DoNotOptimize(fovea::traceResultJson(r, o, fovea::traceFov(s, r, o), method));
+  }
+}
+BENCHMARK(BM_TraceCallAsPython4000)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -24,12 +24,29 @@ constexpr const char* kInputs[] = {"n0",        "n1",        "thickness_um",  "p
                                    "slant_deg", "probe_deg", "wavelength_nm", "absorption_per_mm"};
 constexpr std::size_t kInputCount = std::size(kInputs);
 
+// One input column of the broadcast batch. A zero-stride broadcast (a scalar such as the default
+// absorption_per_mm = 0.0, or an array broadcast along every axis) is read as a constant instead
+// of being copied out to n elements; everything else is a C-contiguous view (no copy when the
+// caller's array is already contiguous float64).
+struct Column {
+  Array keep;  // owns the data `p` points into
+  const double* p = nullptr;
+  bool constant = false;
+  double at(std::size_t i) const { return constant ? p[0] : p[i]; }
+};
+
 struct Batch {
-  std::vector<Array> in;           // broadcast, contiguous, one per kInputs
+  std::vector<Column> in;          // one per kInputs
   std::vector<py::ssize_t> shape;  // the broadcast shape
   std::size_t n = 0;
   Polarization polarization = Polarization::S;
 };
+
+bool allStridesZero(const py::array& a) {
+  for (py::ssize_t d = 0; d < a.ndim(); ++d)
+    if (a.strides(d) != 0 && a.shape(d) > 1) return false;
+  return true;
+}
 
 Batch batchOf(const std::vector<py::object>& values, const std::string& polarization) {
   const auto pol = parsePolarization(polarization);
@@ -40,7 +57,15 @@ Batch batchOf(const std::vector<py::object>& values, const std::string& polariza
   const py::list broadcast = np.attr("broadcast_arrays")(*args);
   Batch b;
   b.polarization = *pol;
-  for (const auto& a : broadcast) b.in.push_back(Array::ensure(np.attr("ascontiguousarray")(a)));
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const py::array a = broadcast[k];
+    Column c;
+    c.constant = allStridesZero(a);
+    // A constant column is its original (possibly 0-d) array's first element.
+    c.keep = Array::ensure(c.constant ? np.attr("ascontiguousarray")(args[k]) : np.attr("ascontiguousarray")(a));
+    c.p = c.keep.data();
+    b.in.push_back(std::move(c));
+  }
   // The shape before ascontiguousarray (which makes a 0-d array 1-d).
   const py::array first = broadcast[0];
   b.shape.assign(first.shape(), first.shape() + first.ndim());
@@ -48,27 +73,30 @@ Batch batchOf(const std::vector<py::object>& values, const std::string& polariza
   return b;
 }
 
-GratingRequest requestAt(const Batch& b, std::size_t i) {
-  GratingRequest r;
-  auto v = [&](std::size_t k) { return b.in[k].data()[i]; };
-  r.grating.film.n0 = v(0);
-  r.grating.film.n1 = v(1);
-  r.grating.film.thickness_um = v(2);
-  r.grating.period_nm = v(3);
-  r.grating.slant_deg = v(4);
-  r.grating.probe_deg = v(5);
-  r.grating.wavelength_nm = v(6);
-  r.absorption_per_mm = v(7);
+// Fills the reusable request `r` with element i (its model/orders/slices untouched): no
+// per-element construction of the request's strings.
+void fillRequest(const Batch& b, std::size_t i, GratingRequest& r) {
+  r.grating.film.n0 = b.in[0].at(i);
+  r.grating.film.n1 = b.in[1].at(i);
+  r.grating.film.thickness_um = b.in[2].at(i);
+  r.grating.period_nm = b.in[3].at(i);
+  r.grating.slant_deg = b.in[4].at(i);
+  r.grating.probe_deg = b.in[5].at(i);
+  r.grating.wavelength_nm = b.in[6].at(i);
+  r.absorption_per_mm = b.in[7].at(i);
   r.grating.polarization = b.polarization;
-  return r;
 }
 
-// Every element validated before any is computed: the first bad one raises ValueError naming
-// its index and the key, in the words of `fovea-cli grating --batch`.
-void validate(const Batch& b) {
-  for (std::size_t i = 0; i < b.n; ++i)
-    if (const auto e = validateGratingRequest(requestAt(b, i), /*flags=*/false))
-      throw py::value_error("grating " + std::to_string(i) + ": " + e->message);
+// The first invalid element of a batch, found inside the GIL-free loop: the loop stops there and
+// the caller raises ValueError naming its index and the key, in the words of `fovea-cli grating
+// --batch` (nothing is returned for a batch with a bad element, as before).
+struct FirstError {
+  std::size_t index = 0;
+  std::string message;
+};
+
+[[noreturn]] void raise(const FirstError& e) {
+  throw py::value_error("grating " + std::to_string(e.index) + ": " + e.message);
 }
 
 // The broadcast shape, also for scalars (NumPy's 0-d arrays, as numpy.add(1.0, 2.0) gives).
@@ -92,14 +120,20 @@ py::dict kogelnikBatch(py::object n0, py::object n1, py::object thickness_um, py
                        const std::string& polarization, py::object absorption_per_mm) {
   const Batch b =
       batchOf({n0, n1, thickness_um, period_nm, slant_deg, probe_deg, wavelength_nm, absorption_per_mm}, polarization);
-  validate(b);
   Outputs o(b, 5);  // efficiency, zero_order, nu, xi, diffracted_deg
   py::array_t<bool> reflection(b.shape);
   bool* refl = reflection.mutable_data();
+  std::optional<FirstError> bad;
   {
     py::gil_scoped_release release;
+    GratingRequest r;
     for (std::size_t i = 0; i < b.n; ++i) {
-      const PlanarDiffraction d = diffractPlanar(planarGratingOf(requestAt(b, i)));  // as kogelnikGratingJson
+      fillRequest(b, i, r);
+      if (auto e = validateGratingRequest(r, /*flags=*/false)) {
+        bad = FirstError{i, std::move(e->message)};
+        break;
+      }
+      const PlanarDiffraction d = diffractPlanar(planarGratingOf(r));  // as kogelnikGratingJson
       o.data[0][i] = d.grating.kogelnik.efficiency;
       o.data[1][i] = d.grating.kogelnik.zero_order;
       o.data[2][i] = d.grating.kogelnik.nu;
@@ -108,6 +142,7 @@ py::dict kogelnikBatch(py::object n0, py::object n1, py::object thickness_um, py
       refl[i] = d.grating.reflection();
     }
   }
+  if (bad) raise(*bad);
   py::dict out;
   out["efficiency"] = shaped(o.arrays[0], b.shape);
   out["zero_order"] = shaped(o.arrays[1], b.shape);
@@ -124,27 +159,34 @@ py::dict rcwaBatch(py::object n0, py::object n1, py::object thickness_um, py::ob
                    py::object absorption_per_mm, std::optional<int> orders, std::optional<int> slices) {
   const Batch b =
       batchOf({n0, n1, thickness_um, period_nm, slant_deg, probe_deg, wavelength_nm, absorption_per_mm}, polarization);
-  validate(b);
   Outputs o(b, 3);  // efficiency, zero_order, kogelnik_efficiency
+  std::optional<FirstError> bad;
   {
     py::gil_scoped_release release;
-    for (std::size_t i = 0; i < b.n; ++i) {
-      GratingRequest r = requestAt(b, i);
-      r.model = "rcwa";
-      r.orders = orders;
-      r.slices = slices;
+    GratingRequest r;
+    r.model = "rcwa";
+    r.orders = orders;
+    r.slices = slices;
+    // Every element validated before any is computed (an RCWA point costs milliseconds).
+    for (std::size_t i = 0; i < b.n && !bad; ++i) {
+      fillRequest(b, i, r);
+      if (auto e = validateGratingRequest(r, /*flags=*/false)) bad = FirstError{i, std::move(e->message)};
+    }
+    for (std::size_t i = 0; i < b.n && !bad; ++i) {
+      fillRequest(b, i, r);
       nlohmann::json j;
       try {
         j = rigorous::rcwaGratingJson(r);
       } catch (const std::exception& e) {
-        py::gil_scoped_acquire acquire;
-        throw py::value_error("grating " + std::to_string(i) + ": " + e.what());
+        bad = FirstError{i, e.what()};
+        break;
       }
       o.data[0][i] = j.at("efficiency").get<double>();
       o.data[1][i] = j.at("zero_order").get<double>();
       o.data[2][i] = j.value("kogelnik_efficiency", std::numeric_limits<double>::quiet_NaN());
     }
   }
+  if (bad) raise(*bad);
   py::dict out;
   out["efficiency"] = shaped(o.arrays[0], b.shape);
   out["zero_order"] = shaped(o.arrays[1], b.shape);

@@ -218,6 +218,17 @@ class GratingTest(unittest.TestCase):
         angles = np.linspace(-5, 5, 11)
         r = fovea.kogelnik(1.5, 0.02, 16.0, 177.333, 0.0, angles[:, None], np.array([520.0, 532.0, 545.0]))
         self.assertEqual(r["efficiency"].shape, (11, 3))
+        # Every element as its scalar call: constant columns (zero-stride broadcasts, read without a
+        # copy) and strided views (copied to contiguous) give the same numbers as plain arrays.
+        for i in (0, 4, 10):
+            for j in range(3):
+                one = fovea.kogelnik(1.5, 0.02, 16.0, 177.333, 0.0, float(angles[i]), [520.0, 532.0, 545.0][j])
+                self.assertEqual(float(one["efficiency"][()]), float(r["efficiency"][i, j]))
+        n1 = np.broadcast_to(np.float64(0.02), (11, 3))  # all strides zero
+        probe = np.repeat(angles, 2)[::2][:, None]  # a strided view
+        r2 = fovea.kogelnik(1.5, n1, 16.0, 177.333, 0.0, probe, np.array([520.0, 532.0, 545.0]))
+        self.assertTrue(np.array_equal(r2["efficiency"], r["efficiency"]))
+        self.assertTrue(np.array_equal(r2["reflection"], r["reflection"]))
         with self.assertRaises(ValueError) as e:
             fovea.kogelnik(1.5, [0.02, 1.6], 16.0, 177.333, 0.0, 0.0, 532.0)
         self.assertIn("grating 1: n1", str(e.exception))
