@@ -138,21 +138,16 @@ py::dict analyses() {
   return out;
 }
 
-template <class F>
-py::array_t<double> column(const std::vector<TracedRay>& rays, int width, F get) {
-  py::array_t<double> a(width == 1 ? std::vector<py::ssize_t>{py::ssize_t(rays.size())}
-                                   : std::vector<py::ssize_t>{py::ssize_t(rays.size()), width});
-  double* p = a.mutable_data();
-  for (const auto& r : rays) get(r, p), p += width;
-  return a;
-}
-
-template <class F>
-py::array_t<bool> flags(const std::vector<TracedRay>& rays, F get) {
-  py::array_t<bool> a(static_cast<py::ssize_t>(rays.size()));
-  bool* p = a.mutable_data();
-  for (const auto& r : rays) *p++ = get(r);
-  return a;
+// Zero-copy NumPy views of one field of every ray: the rays stay in the std::vector the trace
+// filled (owned by `keep`, a capsule that frees it with the last view), each view strided by
+// sizeof(TracedRay). `field` points at the field in the first ray; width 1 gives shape (n,),
+// else (n, width) over that many contiguous values (Eigen::Vector3d, std::array<double, 2>).
+template <class T>
+py::array view(const std::vector<TracedRay>& rays, const T* field, int width, const py::capsule& keep) {
+  const auto n = static_cast<py::ssize_t>(rays.size());
+  const auto stride = static_cast<py::ssize_t>(sizeof(TracedRay));
+  if (width == 1) return py::array_t<T>({n}, {stride}, field, keep);
+  return py::array_t<T>({n, py::ssize_t(width)}, {stride, py::ssize_t(sizeof(T))}, field, keep);
 }
 
 // The trace document of `fovea-cli trace --json` plus the rays as NumPy arrays (bench frame, mm).
@@ -174,24 +169,23 @@ py::object trace(const Scene& scene, const std::optional<std::array<double, 2>>&
     doc = traceResultJson(r, o, traceFov(scene, r, o), analysis::traceFovMethodFrom(values));
   }
   py::dict out = toPython(doc);
-  const auto& rays = r.ray_list;
+  // The rays move to the heap, owned by the capsule the views share (no copy of any ray).
+  auto* owned = new std::vector<TracedRay>(std::move(r.ray_list));
+  const py::capsule keep(owned, [](void* p) { delete static_cast<std::vector<TracedRay>*>(p); });
+  const std::vector<TracedRay>& rays = *owned;
+  // An empty trace has no first ray to point at; its views are empty all the same.
+  static const TracedRay none;
+  const TracedRay& first = rays.empty() ? none : rays.front();
   py::dict arrays;
-  arrays["source_mm"] = column(rays, 3, [](const TracedRay& t, double* p) {
-    for (int k = 0; k < 3; ++k) p[k] = t.source[k];
-  });
-  arrays["hoe_point_mm"] = column(rays, 3, [](const TracedRay& t, double* p) {
-    for (int k = 0; k < 3; ++k) p[k] = t.hoe_point[k];
-  });
-  arrays["out_direction"] = column(rays, 3, [](const TracedRay& t, double* p) {
-    for (int k = 0; k < 3; ++k) p[k] = t.out_direction[k];
-  });
-  arrays["field_deg"] =
-      column(rays, 2, [](const TracedRay& t, double* p) { p[0] = t.field_deg[0], p[1] = t.field_deg[1]; });
-  arrays["wavelength_nm"] = column(rays, 1, [](const TracedRay& t, double* p) { *p = t.wavelength_nm; });
-  arrays["efficiency"] = column(rays, 1, [](const TracedRay& t, double* p) { *p = t.efficiency; });
-  arrays["pupil_radius_mm"] = column(rays, 1, [](const TracedRay& t, double* p) { *p = t.pupil_radius_mm; });
-  arrays["hits_hoe"] = flags(rays, [](const TracedRay& t) { return t.hits_hoe; });
-  arrays["in_pupil"] = flags(rays, [](const TracedRay& t) { return t.in_pupil; });
+  arrays["source_mm"] = view(rays, first.source.data(), 3, keep);
+  arrays["hoe_point_mm"] = view(rays, first.hoe_point.data(), 3, keep);
+  arrays["out_direction"] = view(rays, first.out_direction.data(), 3, keep);
+  arrays["field_deg"] = view(rays, first.field_deg.data(), 2, keep);
+  arrays["wavelength_nm"] = view(rays, &first.wavelength_nm, 1, keep);
+  arrays["efficiency"] = view(rays, &first.efficiency, 1, keep);
+  arrays["pupil_radius_mm"] = view(rays, &first.pupil_radius_mm, 1, keep);
+  arrays["hits_hoe"] = view(rays, &first.hits_hoe, 1, keep);
+  arrays["in_pupil"] = view(rays, &first.in_pupil, 1, keep);
   out["ray_arrays"] = arrays;
   return out;
 }

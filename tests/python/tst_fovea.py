@@ -135,6 +135,17 @@ class AnalysesTest(unittest.TestCase):
         self.assertEqual(int(a["in_pupil"].sum()), doc["rays_in_pupil"])
         self.assertTrue(np.allclose(np.linalg.norm(a["out_direction"][a["hits_hoe"]], axis=1), 1.0, atol=1e-12)
                         or not a["hits_hoe"].any())
+        # Zero-copy: every array is a strided view of the same ray records, kept alive by the views
+        # themselves (the rest of the result dropped and collected).
+        self.assertTrue(np.may_share_memory(a["source_mm"], a["in_pupil"]))
+        self.assertIsNotNone(a["efficiency"].base)
+        copy = a["efficiency"].copy()
+        eff = a["efficiency"]
+        del a, r
+        import gc
+        gc.collect()
+        self.assertTrue(np.array_equal(eff, copy))
+        self.assertTrue(np.all((eff >= 0) & (eff <= 1)))
 
     def test_refused_parameter_has_the_cli_message(self):
         scene = fovea.Scene.embedded()
