@@ -3,10 +3,13 @@
 #include "model/color/measurement_csv.h"
 
 #include <algorithm>
+#include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <fstream>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -143,6 +146,33 @@ cv::Mat CaptureSession::image(const std::string& id) const {
   return cv::imread(path, cv::IMREAD_GRAYSCALE);
 }
 
+namespace {
+
+// Counts the axes that have sent their move. wait() returns when all have, or after a wall-clock
+// second: a queued move dropped by an emergency stop never arrives, and the others must not hang.
+class StartGate {
+ public:
+  explicit StartGate(std::size_t count) : pending_(count) {}
+  void arrive() {
+    {
+      std::lock_guard lock(mutex_);
+      if (pending_ > 0) --pending_;
+    }
+    cv_.notify_all();
+  }
+  void wait() {
+    std::unique_lock lock(mutex_);
+    cv_.wait_for(lock, std::chrono::seconds(1), [this] { return pending_ == 0; });
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::size_t pending_;
+};
+
+}  // namespace
+
 const CaptureRecord& CaptureSession::capture(std::size_t index, BenchRig& rig) {
   if (index >= plan_.size()) throw std::out_of_range("capture step index");
   if (!rig.bench || !rig.camera)
@@ -153,18 +183,33 @@ const CaptureRecord& CaptureSession::capture(std::size_t index, BenchRig& rig) {
              image::offPattern());
     rig.show(step.display, step.pattern);
   }
-  // Every axis moves at once; the frame must be exposed after the last one settled.
-  auto settled = std::make_shared<std::vector<double>>(step.targets.size(), 0.0);
+  // Every axis moves at once; the frame must be exposed after the last one settled. Each axis
+  // sends its move, then waits at the start gate until every axis has sent its own: on a virtual
+  // bench the first axis to wait advances the simulated clock, and an axis whose thread started
+  // later would begin its move that much later (the moves ran one after the other or overlapped
+  // by chance, so captures landed in different frames from run to run).
+  std::vector<std::pair<AxisWorker*, double>> axes;
+  for (const StageTarget& t : step.targets)
+    if (AxisWorker* w = rig.bench->find(t.element, t.axis)) axes.emplace_back(w, elementToStage(w->binding(), t.value));
+  auto settled = std::make_shared<std::vector<double>>(axes.size(), 0.0);
+  auto gate = std::make_shared<StartGate>(axes.size());
   std::vector<std::future<void>> moves;
-  for (std::size_t k = 0; k < step.targets.size(); ++k) {
-    const StageTarget& t = step.targets[k];
-    AxisWorker* w = rig.bench->find(t.element, t.axis);
-    if (!w) continue;
-    const double target = elementToStage(w->binding(), t.value);
-    moves.push_back(w->submit([target, settled, k](Stage& s) {
-      s.moveAbsolute(target);
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    const double target = axes[k].second;
+    std::future<void> f = axes[k].first->submit([target, settled, gate, k](Stage& s) {
+      double duration = 0;
+      try {
+        duration = s.startMoveAbsolute(target);
+      } catch (...) {
+        gate->arrive();  // refused: the others need not wait for it
+        throw;
+      }
+      gate->arrive();
+      gate->wait();
+      s.finishMove(duration);
       (*settled)[k] = s.settledAt();
-    }));
+    });
+    moves.push_back(std::move(f));
   }
   std::exception_ptr error;
   for (auto& m : moves) {

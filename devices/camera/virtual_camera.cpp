@@ -9,7 +9,7 @@
 namespace fovea::devices {
 
 VirtualCamera::VirtualCamera(std::shared_ptr<Clock> clock, Renderer renderer, cv::Size size, double fps, unsigned seed)
-    : clock_(std::move(clock)), renderer_(std::move(renderer)), size_(size), period_s_(1.0 / fps), rng_(seed) {
+    : clock_(std::move(clock)), renderer_(std::move(renderer)), size_(size), period_s_(1.0 / fps), seed_(seed) {
   if (!renderer_) {
     const cv::Mat board = checkerboard(size_, {9, 7});
     renderer_ = [board](double) { return board; };
@@ -38,10 +38,14 @@ Frame VirtualCamera::grab() {
   // Signal: 0..1 radiance maps to 0..255 DN at 10 ms and gain 1; Gaussian read noise.
   cv::Mat dn = radiance * (255.0 * gain_ * exposure_s_ / 0.01);
   if (noise_sigma_ > 0) {
+    // One generator per exposure, seeded by (seed, slot index): the slot's noise whoever reads it.
+    const auto slot = static_cast<std::uint64_t>(std::llround(start / period_s_));
+    std::seed_seq seq{seed_, static_cast<unsigned>(slot & 0xffffffffu), static_cast<unsigned>(slot >> 32)};
+    std::mt19937 rng(seq);
     std::normal_distribution<float> n(0.0f, static_cast<float>(noise_sigma_));
     for (int y = 0; y < dn.rows; ++y) {
       float* row = dn.ptr<float>(y);
-      for (int x = 0; x < dn.cols; ++x) row[x] += n(rng_);
+      for (int x = 0; x < dn.cols; ++x) row[x] += n(rng);
     }
   }
   Frame f;

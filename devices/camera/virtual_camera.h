@@ -1,7 +1,10 @@
 #pragma once
 // The virtual bench's camera: frames from a renderer function of the bench time, taken at
-// a fixed frame rate on the shared clock (simulated or steady), with sensor noise from a
-// seeded generator, exposure and gain scaling the signal. The renderer is where the
+// a fixed frame rate on the shared clock (simulated or steady), with sensor noise seeded by
+// (camera seed, frame slot), exposure and gain scaling the signal. The noise belongs to the
+// exposure, as on a sensor: a frame's noise does not depend on how many frames the host read
+// before it, so a capture that discards one stale frame more (thread timing on a loaded
+// machine) still sees the same image in the same slot. The renderer is where the
 // simulated optics plug in (what a camera at the eye sees); without one it shows a
 // calibration checkerboard. Each grab waits for the next frame slot, so a frame's
 // exposure start is a whole number of frame periods: the stale-frame rule applies exactly
@@ -44,7 +47,7 @@ class VirtualCamera : public Camera {
   Renderer renderer_;
   cv::Size size_;
   double period_s_;
-  std::mt19937 rng_;
+  unsigned seed_;
   double exposure_s_ = 0.01, gain_ = 1.0, noise_sigma_ = 2.0;
   std::uint64_t sequence_ = 0;
   bool open_ = false, unplugged_ = false;

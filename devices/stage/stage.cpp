@@ -412,14 +412,16 @@ void Stage::waitForMotion(double timeout_s) {
   waitMotionEnd(timeout_s, pending_what_);
 }
 
+void Stage::finishMove(double duration_s) {
+  waitForMotion(1.5 * duration_s + config_.move_timeout_margin_s);
+}
+
 void Stage::moveAbsolute(double position) {
-  const double t = startMoveAbsolute(position);
-  waitForMotion(1.5 * t + config_.move_timeout_margin_s);
+  finishMove(startMoveAbsolute(position));
 }
 
 void Stage::moveRelative(double distance) {
-  const double t = startMoveRelative(distance);
-  waitForMotion(1.5 * t + config_.move_timeout_margin_s);
+  finishMove(startMoveRelative(distance));
 }
 
 void Stage::jog(apt::JogDirection direction) {

@@ -114,6 +114,9 @@ class Stage {
   double startMoveAbsolute(double position);
   double startMoveRelative(double distance);
   void waitForMotion(double timeout_s);
+  // waitForMotion with the blocking moves' timeout for a move of `duration_s` (as returned by
+  // the start functions): 1.5 x the duration plus the configured margin.
+  void finishMove(double duration_s);
   void jog(apt::JogDirection direction);  // one single-step jog, waits for completion
   void stop(bool immediate);              // waits for MOVE_STOPPED
   void sendStop(bool immediate);          // e-stop: the STOP message only, no wait

@@ -80,15 +80,26 @@ class TestCameras : public QObject {
     cam.setGain(4.0);
     QCOMPARE(cv::mean(cam.grab().image)[0], 255.0);  // saturates
     QVERIFY_THROWS_EXCEPTION(DeviceError, cam.setExposure(-1));
-    // Noise: seeded, so two cameras with one seed agree frame for frame; sigma measured.
-    VirtualCamera a(
-        clock, [](double) { return cv::Mat(100, 100, CV_32F, cv::Scalar(0.5)); }, {100, 100}, 30, 7);
-    VirtualCamera b(
-        clock, [](double) { return cv::Mat(100, 100, CV_32F, cv::Scalar(0.5)); }, {100, 100}, 30, 7);
+    // Noise: seeded by (seed, frame slot), so two cameras with one seed agree slot for slot, and
+    // a camera that skipped frames sees in a slot what one that read every frame saw there.
+    const auto grey = [](double) { return cv::Mat(100, 100, CV_32F, cv::Scalar(0.5)); };
+    auto clock_a = std::make_shared<SimulatedClock>(), clock_b = std::make_shared<SimulatedClock>();
+    VirtualCamera a(clock_a, grey, {100, 100}, 30, 7);
+    VirtualCamera b(clock_b, grey, {100, 100}, 30, 7);
     a.open();
     b.open();
     const Frame fa = a.grab(), fb = b.grab();
+    QCOMPARE(fa.exposure_start_s, fb.exposure_start_s);
     QCOMPARE(cv::norm(fa.image, fb.image, cv::NORM_L1), 0.0);
+    const Frame a1 = a.grab(), a2 = a.grab(), a3 = a.grab();   // slots 1, 2, 3
+    QVERIFY(cv::norm(a1.image, a2.image, cv::NORM_L1) > 0.0);  // a new exposure, new noise
+    clock_b->waitUntil(a3.exposure_start_s - 0.5 / 30);        // b reads slot 3 only
+    const Frame b3 = b.grab();
+    QCOMPARE(b3.exposure_start_s, a3.exposure_start_s);
+    QCOMPARE(cv::norm(a3.image, b3.image, cv::NORM_L1), 0.0);
+    VirtualCamera other(std::make_shared<SimulatedClock>(), grey, {100, 100}, 30, 8);  // another seed
+    other.open();
+    QVERIFY(cv::norm(other.grab().image, fa.image, cv::NORM_L1) > 0.0);
     cv::Scalar mean, sd;
     cv::meanStdDev(fa.image, mean, sd);
     QVERIFY(std::abs(sd[0] - 2.0) < 0.2);  // default 2 DN read noise (quantisation adds ~0.3 in quadrature)

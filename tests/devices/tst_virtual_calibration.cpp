@@ -8,8 +8,11 @@
 #include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <thread>
 
 #include "devices/bench/live_bench.h"
 #include "devices/calibration/capture_session.h"
@@ -125,6 +128,46 @@ class TestVirtualCalibration : public QObject {
     QVERIFY(std::abs(session.record("b")->positions.at("hoe.x") - 2.0) < 1e-6);
     QVERIFY(std::abs(session.record("a")->positions.at("hoe.x") - 0.0) < 1e-6);
     QVERIFY(session.record("b")->sequence > session.record("a")->sequence);
+  }
+
+  void theAxesOfOneStepMoveAtOnceWhateverTheThreadTiming() {
+    // A step that moves the camera's yaw and the HOE: both moves start at the same simulated
+    // instant, so the frame comes max(durations) after the step began, not their sum, and the
+    // same frame whichever axis thread runs first (a late thread once meant a later move, and
+    // captures that changed from run to run on a loaded machine).
+    const Scene s = prototype();
+    CaptureStep both;
+    both.id = "both";
+    both.display = BenchDisplay::Peripheral;
+    both.pattern = peripheralBoard(s);
+    both.targets = {{"camera", "yaw", 10.0}, {"hoe", "x", 2.0}};
+    CaptureStep yaw = both, hoe = both;
+    yaw.id = "yaw", yaw.targets = {both.targets[0]};
+    hoe.id = "hoe", hoe.targets = {both.targets[1]};
+    // Seconds from the step's start to its frame; `late` keeps the HOE's thread busy for 300 ms
+    // of wall time before it gets the move.
+    const auto delay = [&s](const CaptureStep& step, const char* late) {
+      auto live = virtualBench(s);
+      BenchRig rig = live->rig();
+      if (late)
+        live->bench().find(late, late == std::string("hoe") ? "x" : "yaw")->submit([](Stage&) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        });
+      const double t0 = live->camera().now();
+      CaptureSession session(CaptureKind::Geometric, {step}, {});
+      session.capture(0, rig);
+      return session.record(step.id)->exposure_start_s - t0;
+    };
+    const double d_yaw = delay(yaw, nullptr), d_hoe = delay(hoe, nullptr), d_both = delay(both, nullptr);
+    const double d_hoe_late = delay(both, "hoe"), d_yaw_late = delay(both, "camera");
+    qInfo("frame after: yaw alone %.3f s, HOE alone %.3f s, both %.3f s (HOE thread late %.3f s, yaw late %.3f s)",
+          d_yaw, d_hoe, d_both, d_hoe_late, d_yaw_late);
+    QVERIFY(d_yaw > 0.2 && d_hoe > 0.2);     // both moves take time
+    const double frame = 1.0 / 30.0 + 1e-9;  // the camera's frame period: the frame slot rounds up
+    QVERIFY(d_both <= std::max(d_yaw, d_hoe) + frame);
+    QVERIFY(d_both < d_yaw + d_hoe - frame);
+    QCOMPARE(d_hoe_late, d_both);
+    QCOMPARE(d_yaw_late, d_both);
   }
 
   void aStillBenchIsRenderedOnceAndTheEyesGazeChangesNothing() {
