@@ -147,6 +147,16 @@ class AnalysesTest(unittest.TestCase):
         self.assertTrue(np.array_equal(eff, copy))
         self.assertTrue(np.all((eff >= 0) & (eff <= 1)))
 
+    def test_tolerance_equals_the_cli(self):
+        # tolerance has its own CLI options (--spec required); with the same spec, trials and seed
+        # the Python run and `fovea-cli tolerance` give the same document.
+        scene = fovea.Scene.embedded()
+        spec = os.path.join(SOURCE, "resources", "tolerance", "prototype-tolerance.json")
+        py = fovea.run("tolerance", scene, spec=spec, trials=12, seed=3)
+        doc = cli_json("tolerance", "", "--spec", spec, "--trials", "12", "--seed", "3")
+        self.assertEqual(doc["trials"], 12)
+        self.assertEqual(canonical(py), canonical(doc))
+
     def test_refused_parameter_has_the_cli_message(self):
         scene = fovea.Scene.embedded()
         with self.assertRaises(ValueError) as e:
