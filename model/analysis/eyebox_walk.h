@@ -7,6 +7,8 @@
 // observables pass their memo, so a gaze shared with an x_p target is searched once).
 
 #include <functional>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "model/analysis/gaze_studies.h"
@@ -14,6 +16,17 @@
 namespace fovea {
 
 using GazeSampleSource = std::function<GazeSample(double gaze_deg)>;
+
+// One border of the eye box, on the side of `direction` (-1: negative gazes, +1: positive):
+// the side's `gazes` by |gaze| through `at_gaze` (a sweep's computed sample or a lazy search)
+// until the first outside the box, then `bisections` halvings between the last inside and it
+// through `search` (new gazes). Returns the last sample inside (`reference` if none) and whether
+// an outside gaze bounded the side; nullopt when `control` cancelled a bisection.
+std::optional<std::pair<GazeSample, bool>> eyeBoxBorder(const std::vector<double>& gazes, int direction,
+                                                        const GazeSample& reference,
+                                                        const std::function<bool(const GazeSample&)>& inside_box,
+                                                        const GazeSampleSource& at_gaze, const GazeSampleSource& search,
+                                                        int bisections, const StudyControl& control);
 
 // gazes: the sweep's gazes (sweepGazes()); sample(0.0) is the reference. Both sides run in
 // parallel, so `sample` must be thread-safe.

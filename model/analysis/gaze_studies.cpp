@@ -1,10 +1,12 @@
 #include "model/analysis/gaze_studies.h"
 
 #include "model/analysis/analysis_parameters.h"  // kMaxGazeSamples
+#include "model/analysis/eyebox_walk.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "model/scene/scene_geometry.h"
@@ -248,36 +250,14 @@ StudyOutcome<GazeSweepResult> finishSweep(const Scene& scene, const FovEvaluator
   // Walk out from zero gaze on each side; refine the first failure by bisection.
   EyeBox& eb = r.eyebox;
   eb.reference_fov_deg = axisFov(reference.fov, axis);
-  auto border = [&](int direction) -> std::optional<std::pair<GazeSample, bool>> {
-    GazeSample inside = reference;
-    std::optional<GazeSample> outside;
-    std::vector<const GazeSample*> side;
-    for (const auto& s : r.samples)
-      if (direction > 0 ? s.gaze_deg > 0 : s.gaze_deg < 0) side.push_back(&s);
-    std::sort(side.begin(), side.end(),
-              [](const GazeSample* a, const GazeSample* b) { return std::abs(a->gaze_deg) < std::abs(b->gaze_deg); });
-    for (const GazeSample* s : side) {
-      if (good(*s)) {
-        inside = *s;
-      } else {
-        outside = *s;
-        break;
-      }
-    }
-    if (!outside) return std::make_pair(inside, false);
-    double g_in = inside.gaze_deg, g_out = outside->gaze_deg;
-    for (int k = 0; k < options.border_bisections; ++k) {
-      if (control.cancelled()) return std::nullopt;
-      const double mid = 0.5 * (g_in + g_out);
-      const GazeSample s = optimiseShift(scene, eval, mid, axis, method, options);
-      if (good(s)) {
-        inside = s;
-        g_in = mid;
-      } else {
-        g_out = mid;
-      }
-    }
-    return std::make_pair(inside, true);
+  // The sweep's own samples along each side (looked up by gaze), new searches for the bisections.
+  std::vector<double> gazes;
+  std::map<double, const GazeSample*> by_gaze;
+  for (const auto& s : r.samples) gazes.push_back(s.gaze_deg), by_gaze[s.gaze_deg] = &s;
+  const GazeSampleSource computed = [&by_gaze](double g) { return *by_gaze.at(g); };
+  const GazeSampleSource search = [&](double g) { return optimiseShift(scene, eval, g, axis, method, options); };
+  auto border = [&](int direction) {
+    return eyeBoxBorder(gazes, direction, reference, good, computed, search, options.border_bisections, control);
   };
   auto borders = runSamples<std::optional<std::pair<GazeSample, bool>>>(
       2, [&](std::size_t i) { return border(i == 0 ? -1 : +1); }, control);
