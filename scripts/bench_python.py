@@ -17,13 +17,24 @@ build = sys.argv[1] if len(sys.argv) > 1 else "build/default"
 cli = os.path.join(build, "app", "fovea-cli")
 
 
-def best(f, repeat=3):
+def best(f, repeat=3, clock=time.perf_counter):
     times = []
     for _ in range(repeat):
-        t = time.perf_counter()
+        t = clock()
         f()
-        times.append(time.perf_counter() - t)
+        times.append(clock() - t)
     return min(times)
+
+
+def cpp(name):
+    """(wall, CPU) seconds per iteration of a Google Benchmark of fovea-benchmarks, fastest of 5."""
+    exe = os.path.join(build, "benchmarks", "fovea-benchmarks")
+    p = subprocess.run([exe, f"--benchmark_filter=^{name}$", "--benchmark_repetitions=5",
+                        "--benchmark_report_aggregates_only=false", "--benchmark_format=json"],
+                       check=True, capture_output=True, text=True)
+    runs = [b for b in json.loads(p.stdout)["benchmarks"] if b.get("run_type") == "iteration"]
+    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[runs[0]["time_unit"]]
+    return min(b["real_time"] for b in runs) * scale, min(b["cpu_time"] for b in runs) * scale
 
 
 rng = np.random.default_rng(1)
@@ -37,7 +48,13 @@ def gratings(n):
 
 out = {}
 g = gratings(1_000_000)
-out["kogelnik_1e6_python_s"] = best(lambda: fovea.kogelnik(**g))
+out["kogelnik_1e6_python_s"] = best(lambda: fovea.kogelnik(**g), repeat=5)
+out["kogelnik_1e6_python_cpu_s"] = best(lambda: fovea.kogelnik(**g), repeat=5, clock=time.process_time)
+# The C++ loops: diffractPlanar over 10^6 gratings into one reused array, and with all six of
+# fovea.kogelnik's outputs into fresh arrays (the Python call's work).
+out["kogelnik_1e6_cpp_s"], out["kogelnik_1e6_cpp_cpu_s"] = cpp("BM_DiffractPlanar1e6/real_time")
+out["kogelnik_1e6_cpp_all_outputs_s"], out["kogelnik_1e6_cpp_all_outputs_cpu_s"] = cpp(
+    "BM_DiffractPlanar1e6AllOutputs/real_time")
 # The same question through fovea-cli grating --batch (JSON lines), 1e5 gratings, scaled to 1e6.
 g5 = {k: v[:100_000] for k, v in g.items()}
 with tempfile.NamedTemporaryFile("w", suffix=".jsonl", delete=False) as f:
@@ -50,10 +67,16 @@ os.unlink(lines)
 
 scene = fovea.Scene.embedded()
 fovea.trace(scene, rays=4000)  # first call: the scene's memo
-out["trace_4000_python_s"] = best(lambda: fovea.trace(scene, rays=4000), repeat=5)
+out["trace_4000_python_s"] = best(lambda: fovea.trace(scene, rays=4000), repeat=20)
+out["trace_4000_python_cpu_s"] = best(lambda: fovea.trace(scene, rays=4000), repeat=20, clock=time.process_time)
+out["trace_4000_cpp_s"], out["trace_4000_cpp_cpu_s"] = cpp("BM_TraceCallAsPython4000/real_time")
 out["trace_4000_cli_subprocess_s"] = best(
     lambda: subprocess.run([cli, "trace", "", "--rays", "4000", "--json"], check=True, capture_output=True))
 out["sweep_default_python_s"] = best(lambda: fovea.run("sweep", scene), repeat=1)
 out["sweep_default_cli_subprocess_s"] = best(
     lambda: subprocess.run([cli, "sweep", "", "--no-cache", "--json"], check=True, capture_output=True), repeat=1)
+out["kogelnik_ratio_wall_all_outputs"] = out["kogelnik_1e6_python_s"] / out["kogelnik_1e6_cpp_all_outputs_s"]
+out["kogelnik_ratio_wall_one_output"] = out["kogelnik_1e6_python_s"] / out["kogelnik_1e6_cpp_s"]
+out["trace_ratio_wall"] = out["trace_4000_python_s"] / out["trace_4000_cpp_s"]
+out["load_average"] = os.getloadavg()
 print(json.dumps(out, indent=2))
