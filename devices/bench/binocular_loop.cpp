@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <memory>
 #include <random>
@@ -126,12 +127,16 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
     return e == 0 ? mirrorGaze(g) : g;
   };
 
-  // Per eye: the monocular loop on its own train.
-  std::array<TrackedRun, 2> runs;
-  for (int e = 0; e < 2; ++e) {
-    const auto ue = static_cast<std::size_t>(e);
+  // Per eye: the monocular loop on its own train. The two eyes' trackers are independent (own
+  // seeds, own calibration, thread-local detectors), so the right eye runs on a second thread:
+  // the same numbers, in about half the wall time on two cores.
+  auto optionsFor = [&](int e) {
     ClosedLoopOptions oe = o.loop;
-    oe.seed = seeds[ue];
+    oe.seed = seeds[static_cast<std::size_t>(e)];
+    return oe;
+  };
+  auto trackEye = [&](int e) -> TrackedRun {
+    const ClosedLoopOptions oe = optionsFor(e);
     EyeTrajectory traj;
     traj.end_s = sched->end_s;
     traj.path = [ownGaze, e](double time) { return ownGaze(e, time); };
@@ -145,29 +150,30 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
       ev.peak_velocity_deg_s = mainSequencePeakVelocity(ev.amplitude_deg);
       traj.saccades.push_back(ev);
     }
-    if (o.track) {
-      runs[ue] = trackEyeTrajectory(scene, oe, traj);
-    } else {
-      // Synthetic tracker: the true gaze at mid-exposure plus Gaussian noise per axis.
-      TrackedRun run;
-      run.trajectory = traj;
-      std::mt19937 rng(oe.seed);
-      std::normal_distribution<double> noise(0, o.synthetic_sigma_deg);
-      const double period = 1.0 / oe.camera_fps;
-      for (int k = 0; k * period < traj.end_s; ++k) {
-        TrackedFrame f;
-        f.exposure_start_s = k * period;
-        f.true_gaze_deg = traj.gazeAt(f.exposure_start_s + oe.exposure_s / 2);
-        f.found = true;
-        f.confidence = 1;
-        f.gaze_deg = {f.true_gaze_deg[0] + noise(rng), f.true_gaze_deg[1] + noise(rng)};
-        run.frames.push_back(f);
-      }
-      run.calibration_precision_sd_deg = o.synthetic_sigma_deg * std::sqrt(2.0);
-      runs[ue] = run;
+    if (o.track) return trackEyeTrajectory(scene, oe, traj);
+    // Synthetic tracker: the true gaze at mid-exposure plus Gaussian noise per axis.
+    TrackedRun run;
+    run.trajectory = traj;
+    std::mt19937 rng(oe.seed);
+    std::normal_distribution<double> noise(0, o.synthetic_sigma_deg);
+    const double period = 1.0 / oe.camera_fps;
+    for (int k = 0; k * period < traj.end_s; ++k) {
+      TrackedFrame f;
+      f.exposure_start_s = k * period;
+      f.true_gaze_deg = traj.gazeAt(f.exposure_start_s + oe.exposure_s / 2);
+      f.found = true;
+      f.confidence = 1;
+      f.gaze_deg = {f.true_gaze_deg[0] + noise(rng), f.true_gaze_deg[1] + noise(rng)};
+      run.frames.push_back(f);
     }
-    r.eyes[ue] = simulateStages(scene, runs[ue], oe);
-  }
+    run.calibration_precision_sd_deg = o.synthetic_sigma_deg * std::sqrt(2.0);
+    return run;
+  };
+  std::future<TrackedRun> right = std::async(std::launch::async, trackEye, 1);
+  std::array<TrackedRun, 2> runs;
+  runs[0] = trackEye(0);
+  runs[1] = right.get();
+  for (int e = 0; e < 2; ++e) r.eyes[static_cast<std::size_t>(e)] = simulateStages(scene, runs[e], optionsFor(e));
   // Per-axis sample SD: precision SD is the RMS angle to the mean direction over both axes.
   r.precision_sd_deg_left = runs[0].calibration_precision_sd_deg / std::sqrt(2.0);
   r.precision_sd_deg_right = runs[1].calibration_precision_sd_deg / std::sqrt(2.0);
