@@ -74,6 +74,7 @@ void FocusRingFilter::showAround(QWidget* w) {
 void FocusRingFilter::hide() {
   if (!ring_) return;
   if (QWidget* target = ring_->parentWidget()) target->removeEventFilter(this);
+  ring_->hide();
   ring_->deleteLater();
   ring_ = nullptr;
 }

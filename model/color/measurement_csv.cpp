@@ -112,13 +112,20 @@ MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
         std::string given;
         for (const char* t : {"X", "Z"})
           if (column.count(t)) given += (given.empty() ? "" : ", ") + std::string(t);
-        problem(number_of_line,
-                tristimulus
-                    ? "the header has the tristimulus column(s) " + given + " but lacks " + missing +
-                          " (expected display,channel,level,X,Y,Z,repeat for tristimulus "
-                          "values or display,channel,level,x,y,Y,repeat for chromaticity; "
-                          "X is not the chromaticity x)"
-                    : "the header lacks the column(s) " + missing + " (expected display,channel,level,x,y,Y,repeat)");
+        std::string m;
+        if (tristimulus) {
+          m = "the header has the tristimulus column(s) ";
+          m += given;
+          m += " but lacks ";
+          m += missing;
+          m += " (expected display,channel,level,X,Y,Z,repeat for tristimulus values or "
+               "display,channel,level,x,y,Y,repeat for chromaticity; X is not the chromaticity x)";
+        } else {
+          m = "the header lacks the column(s) ";
+          m += missing;
+          m += " (expected display,channel,level,x,y,Y,repeat)";
+        }
+        problem(number_of_line, m);
         return result;
       }
       result.tristimulus = tristimulus;
