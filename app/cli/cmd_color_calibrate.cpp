@@ -1,6 +1,6 @@
 // fovea-cli color-calibrate (MEAS.json | --measurements READINGS.csv) --out CAL.json
 //                           [--white-xy x,y] [--gamma G] [--json]
-// READINGS.csv: spectroradiometer readings (display,channel,level,x,y,Y,repeat), averaged
+// READINGS.csv: spectroradiometer readings (display,channel,level,x,y,Y,repeat or X,Y,Z), averaged
 // per level (model/color/measurement_csv.h); bad rows are reported by line (exit 1).
 // Seed B.2.2: common primaries of the foveal and peripheral displays, white balance and the
 // look-up tables; writes the calibration file used by `color-map`.
@@ -67,6 +67,7 @@ void install(CLI::App& app) {
         m = imp.measurements;
         imported = {{"file", a->csv},
                     {"readings", imp.rows},
+                    {"values", imp.tristimulus ? "tristimulus X,Y,Z" : "chromaticity x,y and luminance Y"},
                     {"repeats_min", imp.min_repeats},
                     {"repeats_max", imp.max_repeats}};
       } else {

@@ -50,16 +50,23 @@ void install(CLI::App& app) {
   cmd->add_option("--scene", a->scene, "scene file (default: the prototype bench)");
   cmd->add_option("--gaze-deg", a->gaze, "gaze yaw,pitch in degrees")->required();
   cmd->add_flag("--no-blend", a->noBlend, "hard switch at eps_o, no blur (for comparison)");
-  cmd->add_option("--out-foveal", a->foveal, "micro-OLED image to write")->required();
-  cmd->add_option("--out-peripheral", a->peripheral, "projector image to write")->required();
-  cmd->add_option("--out-perceived", a->perceived, "perceived composite to write (target grid)")->required();
+  auto* out_foveal = cmd->add_option("--out-foveal", a->foveal, "micro-OLED image to write")->required();
+  auto* out_peripheral = cmd->add_option("--out-peripheral", a->peripheral, "projector image to write")->required();
+  auto* out_perceived =
+      cmd->add_option("--out-perceived", a->perceived, "perceived composite to write (target grid)")->required();
   cmd->add_flag("--json", a->json, "print {\"seam_metric\":..., \"timings_ms\":{...}}");
   cmd->add_option("--warp-foveal", a->warpFoveal,
                   "pre-warp of the micro-OLED: fit-warp pairs file, src = display pixel, dst = ideal pixel");
   cmd->add_option("--warp-peripheral", a->warpPeripheral, "pre-warp of the projector (same format)");
   cmd->add_option("--warp-model", a->warpModel, "model of the pre-warps: poly1, poly2 (default), poly3, homography")
       ->check(CLI::IsMember({"poly1", "poly2", "poly3", "homography"}));
-  cmd->callback([a] {
+  cmd->callback([a, out_foveal, out_peripheral, out_perceived] {
+    // Before any work: each output a file of its own (the same path twice kept only the last image).
+    checkOutputOption(out_foveal, a->foveal);
+    checkOutputOption(out_peripheral, a->peripheral);
+    checkOutputOption(out_perceived, a->perceived);
+    checkDistinctOutputs(
+        {{"--out-foveal", a->foveal}, {"--out-peripheral", a->peripheral}, {"--out-perceived", a->perceived}});
     const auto g = parseNumberList(a->gaze, "--gaze-deg", 2, 2);
     const Scene scene = loadSceneOrExit(a->scene);
     const auto t0 = std::chrono::steady_clock::now();

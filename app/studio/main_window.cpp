@@ -27,6 +27,7 @@
 #include "viz/scene_view.h"
 #include "widgets/bench/devices_panel.h"
 #include "widgets/dialog_start.h"
+#include "widgets/focus_ring.h"
 #include "widgets/message_log.h"
 #include "widgets/preview_panel.h"
 #include "widgets/property_editor.h"
@@ -55,6 +56,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   // Before any field exists: the wheel changes a spin box, combo or slider of any dock or
   // dialog only while it has the focus (widgets/wheel_guard.h).
   widgets::installWheelGuard();
+  // A keyboard focus that shows: Tab from the 3-D view (or any widget that draws no focus of
+  // its own) rings the widget it reaches (widgets/focus_ring.h).
+  widgets::installFocusRing();
   setObjectName("MainWindow");
   setWindowIcon(QIcon(":/icons/fovea-studio.svg"));
   document_ = new widgets::SceneDocument(this);

@@ -20,13 +20,19 @@ ManifestTargets fitTargetsFromManifest(const nlohmann::json& m, const ManifestTa
   if (!m.contains("steps") || !m["steps"].is_array() || !m.contains("captures") || !m["captures"].is_array())
     throw std::invalid_argument("manifest: \"steps\" and \"captures\" must be lists");
   std::map<std::string, CaptureStep> steps;
+  std::map<std::string, std::size_t> step_index;  // two steps of one id: a capture of it could be either
   for (std::size_t i = 0; i < m["steps"].size(); ++i) {
+    const std::string at = "steps[" + std::to_string(i) + "]";
+    CaptureStep s;
     try {
-      const CaptureStep s = captureStepFromJson(m["steps"][i], "steps[" + std::to_string(i) + "]");
-      steps[s.id] = s;
+      s = captureStepFromJson(m["steps"][i], at);
     } catch (const std::exception& e) {
       throw std::invalid_argument(e.what());
     }
+    if (const auto [it, fresh] = step_index.emplace(s.id, i); !fresh)
+      throw std::invalid_argument(at + ".id: \"" + s.id + "\" is also the id of steps[" + std::to_string(it->second) +
+                                  "] (each step of the plan needs its own id)");
+    steps[s.id] = s;
   }
   if (kind != "geometric") {
     out.skipped.push_back("a " + kind + " session carries no observable of the fit (only geometric sessions do)");

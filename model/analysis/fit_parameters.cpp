@@ -77,16 +77,18 @@ FreeParameter parseFreeParameter(const Scene& scene, const std::string& spec) {
   // Clip to the field's range when the bounds were defaulted or given as +-D; refuse explicit
   // LO:HI outside it. An open bound is kept a margin inside: 1e-9 of the window *after*
   // clipping (of the unclipped +-D window, a large D would push the margin past the scene's
-  // own value), and never more than half the way from the scene's value to the bound.
+  // own value), and never more than 1e-6 of the way from the scene's value to the bound (on a
+  // half-open range the clipped window still grows with D: waist_fwhm_um=+-1e12 kept the
+  // search above 300 µm for a scene value of 600).
   using Bound = Range::Bound;
   if (eq == std::string::npos || spec.find("=+-") != std::string::npos) {
     if (range.low != Bound::None) p.lower = std::max(p.lower, range.lo);
     if (range.high != Bound::None) p.upper = std::min(p.upper, range.hi);
     const double margin = 1e-9 * (p.upper - p.lower);
     if (range.low == Bound::Open)
-      p.lower = std::max(p.lower, range.lo + std::min(margin, 0.5 * (p.initial - range.lo)));
+      p.lower = std::max(p.lower, range.lo + std::min(margin, 1e-6 * (p.initial - range.lo)));
     if (range.high == Bound::Open)
-      p.upper = std::min(p.upper, range.hi - std::min(margin, 0.5 * (range.hi - p.initial)));
+      p.upper = std::min(p.upper, range.hi - std::min(margin, 1e-6 * (range.hi - p.initial)));
   } else {
     const double margin = 1e-9 * (p.upper - p.lower);
     double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();

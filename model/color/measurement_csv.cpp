@@ -64,7 +64,7 @@ std::string ranges(const std::vector<int>& levels) {
 }
 
 struct Accumulator {
-  double sum_Y = 0, sum_x = 0, sum_y = 0;
+  double sum_Y = 0, sum_x = 0, sum_y = 0, sum_X = 0, sum_Z = 0;
   int n = 0;
 };
 
@@ -84,7 +84,8 @@ MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
   std::string line;
   int number_of_line = 0;
   std::map<std::string, std::size_t> column;
-  const std::vector<std::string> required = {"display", "channel", "level", "x", "y", "Y", "repeat"};
+  std::vector<std::string> required = {"display", "channel", "level", "x", "y", "Y", "repeat"};
+  bool tristimulus = false;  // X, Y, Z columns instead of x, y, Y
   while (std::getline(in, line)) {
     ++number_of_line;
     if (result.problems.size() >= kMaxProblems) {  // a file of garbage: the first ones say enough
@@ -101,14 +102,33 @@ MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
         const std::string name = fields[i].size() == 1 ? fields[i] : lower(fields[i]);
         column.emplace(name, i);
       }
+      // x and y: chromaticity and luminance. Without them, X or Z: tristimulus values (X, Y, Z).
+      tristimulus = !(column.count("x") && column.count("y")) && (column.count("X") || column.count("Z"));
+      if (tristimulus) required = {"display", "channel", "level", "X", "Y", "Z", "repeat"};
       std::string missing;
       for (const auto& r : required)
         if (!column.count(r)) missing += (missing.empty() ? "" : ", ") + r;
       if (!missing.empty()) {
-        problem(number_of_line,
-                "the header lacks the column(s) " + missing + " (expected display,channel,level,x,y,Y,repeat)");
+        std::string given;
+        for (const char* t : {"X", "Z"})
+          if (column.count(t)) given += (given.empty() ? "" : ", ") + std::string(t);
+        std::string m;
+        if (tristimulus) {
+          m = "the header has the tristimulus column(s) ";
+          m += given;
+          m += " but lacks ";
+          m += missing;
+          m += " (expected display,channel,level,X,Y,Z,repeat for tristimulus values or "
+               "display,channel,level,x,y,Y,repeat for chromaticity; X is not the chromaticity x)";
+        } else {
+          m = "the header lacks the column(s) ";
+          m += missing;
+          m += " (expected display,channel,level,x,y,Y,repeat)";
+        }
+        problem(number_of_line, m);
         return result;
       }
+      result.tristimulus = tristimulus;
       continue;
     }
     std::size_t needed = 0;
@@ -133,9 +153,14 @@ MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
       bad.push_back("level '" + field("level") + "' is not an integer in 0..255");
     if (!integer(field("repeat"), 0, 1000000, repeat))
       bad.push_back("repeat '" + field("repeat") + "' is not a non-negative integer");
-    double x = 0, y = 0, Y = 0;
-    if (!number(field("x"), x) || x < 0 || x > 1) bad.push_back("x '" + field("x") + "' is not a number in [0, 1]");
-    if (!number(field("y"), y) || y < 0 || y > 1) bad.push_back("y '" + field("y") + "' is not a number in [0, 1]");
+    double x = 0, y = 0, X = 0, Y = 0, Z = 0;
+    if (tristimulus) {
+      if (!number(field("X"), X) || X < 0) bad.push_back("X '" + field("X") + "' is not a number >= 0");
+      if (!number(field("Z"), Z) || Z < 0) bad.push_back("Z '" + field("Z") + "' is not a number >= 0");
+    } else {
+      if (!number(field("x"), x) || x < 0 || x > 1) bad.push_back("x '" + field("x") + "' is not a number in [0, 1]");
+      if (!number(field("y"), y) || y < 0 || y > 1) bad.push_back("y '" + field("y") + "' is not a number in [0, 1]");
+    }
     if (!number(field("Y"), Y))
       bad.push_back("Y '" + field("Y") + "' is not a number");
     else if (Y < 0)
@@ -157,6 +182,8 @@ MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
     a.sum_Y += Y;
     a.sum_x += x;
     a.sum_y += y;
+    a.sum_X += X;
+    a.sum_Z += Z;
     ++a.n;
     ++result.rows;
   }
@@ -194,7 +221,12 @@ MeasurementImport importSpectroradiometerCsv(const std::string& file_text) {
         continue;
       }
       const Accumulator& top = acc[d][c][kLevels - 1];
-      cm.xy = {top.sum_x / top.n, top.sum_y / top.n};
+      if (tristimulus) {  // the chromaticity of the mean tristimulus values (their sum > 0: Y rises)
+        const double sum = top.sum_X + top.sum_Y + top.sum_Z;
+        cm.xy = {top.sum_X / sum, top.sum_Y / sum};
+      } else {
+        cm.xy = {top.sum_x / top.n, top.sum_y / top.n};
+      }
       // Laser primaries lie on the spectral locus (x + y = 1 for red): allow the reading noise.
       if (!(cm.xy.y > 0) || cm.xy.x + cm.xy.y > 1.01)
         problem(0, std::string(kDisplays[d]) + " " + kChannels[c] + ": the level-255 chromaticity is not a colour");

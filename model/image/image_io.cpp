@@ -11,9 +11,11 @@
 #include <cstring>
 #include <filesystem>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "model/color/srgb.h"
+#include "model/io/output_file.h"
 
 namespace fovea::image {
 
@@ -104,8 +106,14 @@ cv::Mat readLinearRgb(const std::string& path) {
 
 void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bit) {
   if (img.type() != CV_32FC3) throw ImageIoError(path + ": internal: expected a float RGB image");
+  if (const auto why = outputPathProblem(path)) throw ImageIoError(path + ": " + *why);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw ImageIoError(path + ": no image format for this file name: " + OIIO::geterror());
+  // Encoded in memory, then written by the one writer (atomic, checked, fsync'ed: a failed
+  // write leaves the existing file as it was); a format without memory output writes directly.
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
   const std::string ext = std::filesystem::path(path).extension().string();
   const bool isFloat = ext == ".exr" || ext == ".EXR" || ext == ".hdr";
   const OIIO::TypeDesc type = isFloat       ? OIIO::TypeDesc::FLOAT
@@ -125,6 +133,12 @@ void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bi
   if (!out->write_image(OIIO::TypeDesc::FLOAT, data.data()))
     throw ImageIoError(path + ": cannot write the image: " + out->geterror());
   if (!out->close()) throw ImageIoError(path + ": cannot finish the file: " + out->geterror());
+  if (!in_memory) return;
+  try {
+    writeOutputFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  } catch (const OutputError& e) {
+    throw ImageIoError(e.what());
+  }
 }
 
 }  // namespace fovea::image

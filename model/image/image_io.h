@@ -32,7 +32,10 @@ void checkImageFile(const std::string& path);
 // file and the reason.
 cv::Mat readLinearRgb(const std::string& path);
 // Writes a CV_32FC3 linear RGB image, sRGB-encoded to 8 bits (16 for .tif/.png with
-// `sixteen_bit`), or as float for .exr. Throws ImageIoError.
+// `sixteen_bit`), or as float for .exr. Encoded in memory and written by the one writer
+// (model/io/output_file.h: a device, FIFO or directory refused, atomic rename, every write
+// checked) when the format can write to memory (PNG, JPEG, TIFF, EXR, ...), else directly.
+// Throws ImageIoError.
 void writeLinearRgb(const std::string& path, const cv::Mat& linear_rgb, bool sixteen_bit = false);
 
 }  // namespace fovea::image

@@ -19,11 +19,19 @@ Run cli(const QStringList& args) {
 QString tmp(const char* name) {
   return QString::fromStdString((fovea::testing::testTmpDir("") / (std::string("cli_colormeas_") + name)).string());
 }
-// Two repeats of noiseless readings of gamma-2.2 / 2.5 displays.
-QString writeReadings(const char* name, const std::string& corrupt_line = {}) {
+enum class Values { Chromaticity, Tristimulus };
+// Two repeats of noiseless readings of gamma-2.2 / 2.5 displays: x,y,Y or the same colours as
+// tristimulus X,Y,Z (X = x / y Y, Z = (1 - x - y) / y Y).
+QString writeReadings(const char* name, const std::string& corrupt_line = {}, Values values = Values::Chromaticity,
+                      const std::string& header = {}) {
   const QString path = tmp(name);
   std::ofstream out(path.toStdString());
-  out << "display,channel,level,x,y,Y,repeat\n";
+  out.precision(17);
+  const bool xyz = values == Values::Tristimulus;
+  out << (!header.empty() ? header
+          : xyz           ? std::string("display,channel,level,X,Y,Z,repeat")
+                          : std::string("display,channel,level,x,y,Y,repeat"))
+      << "\n";
   const double xy[2][3][2] = {{{0.64, 0.33}, {0.265, 0.69}, {0.15, 0.06}},
                               {{0.72, 0.28}, {0.25, 0.68}, {0.145, 0.035}}};
   const double peak[2][3] = {{60, 180, 15}, {35, 120, 9}};
@@ -39,8 +47,13 @@ QString writeReadings(const char* name, const std::string& corrupt_line = {}) {
             out << corrupt_line << "\n";
             continue;
           }
-          out << d[i] << "," << c[k] << "," << l << "," << xy[i][k][0] << "," << xy[i][k][1] << ","
-              << peak[i][k] * std::pow(l / 255.0, i == 0 ? 2.2 : 2.5) << "," << r << "\n";
+          const double Y = peak[i][k] * std::pow(l / 255.0, i == 0 ? 2.2 : 2.5);
+          const double x = xy[i][k][0], y = xy[i][k][1];
+          if (xyz)
+            out << d[i] << "," << c[k] << "," << l << "," << x / y * Y << "," << Y << "," << (1 - x - y) / y * Y << ","
+                << r << "\n";
+          else
+            out << d[i] << "," << c[k] << "," << l << "," << x << "," << y << "," << Y << "," << r << "\n";
         }
   return path;
 }
@@ -67,6 +80,70 @@ class TestCliColorMeasurements : public QObject {
     std::ifstream in(cal.toStdString());
     const auto file = nlohmann::json::parse(in);
     QVERIFY(file.contains("measurements"));
+  }
+
+  // Issue 28: X, Y, Z readings give the calibration of the same colours as x, y, Y; an "X"
+  // column is never read as the chromaticity x (it was, and the primaries came out wrong).
+  void tristimulusReadingsAreTristimulus() {
+    const QString cal_xy = tmp("cal-xy.json"), cal_xyz = tmp("cal-xyz.json");
+    const Run a = cli({"color-calibrate", "--measurements", writeReadings("xyY.csv"), "--out", cal_xy, "--json"});
+    QVERIFY2(a.code == 0, a.err.constData());
+    const Run b = cli({"color-calibrate", "--measurements", writeReadings("XYZ.csv", {}, Values::Tristimulus), "--out",
+                       cal_xyz, "--json"});
+    QVERIFY2(b.code == 0, b.err.constData());
+    const auto ja = nlohmann::json::parse(a.out.toStdString()), jb = nlohmann::json::parse(b.out.toStdString());
+    QCOMPARE(jb["measurements_csv"]["values"].get<std::string>(), std::string("tristimulus X,Y,Z"));
+    QCOMPARE(ja["measurements_csv"]["values"].get<std::string>(), std::string("chromaticity x,y and luminance Y"));
+    for (const char* p : {"R", "G", "B"})
+      for (int k = 0; k < 2; ++k) {
+        const double va = ja["common_primaries_xy"][p][k].get<double>(),
+                     vb = jb["common_primaries_xy"][p][k].get<double>();
+        QVERIFY2(std::abs(va - vb) < 1e-9, qPrintable(QString("%1[%2]: %3 vs %4").arg(p).arg(k).arg(va).arg(vb)));
+      }
+    QCOMPARE(jb["common_primaries_xy"]["R"][0].get<double>(), 0.64);  // the foveal red (inside the peripheral one)
+    QVERIFY(std::abs(jb["delta_e00"]["mean"].get<double>() - ja["delta_e00"]["mean"].get<double>()) < 1e-9);
+    // X with x's other columns (y, Y): refused naming the X column, nothing written.
+    const QString cal_bad = tmp("cal-bad.json");
+    QFile::remove(cal_bad);
+    const Run c = cli({"color-calibrate", "--measurements",
+                       writeReadings("Xy.csv", {}, Values::Chromaticity, "display,channel,level,X,y,Y,repeat"), "--out",
+                       cal_bad});
+    QCOMPARE(c.code, 1);
+    QVERIFY2(c.err.contains("Xy.csv:1: the header has the tristimulus column(s) X but lacks Z"), c.err.constData());
+    QVERIFY2(c.err.contains("X is not the chromaticity x"), c.err.constData());
+    QVERIFY(!QFile::exists(cal_bad));
+  }
+
+  // A spreadsheet's UTF-8 byte order mark is accepted; all-zero luminance is refused by channel.
+  void bomAcceptedAndDarkRefused() {
+    const QString plain = writeReadings("plain.csv");
+    QFile in(plain);
+    QVERIFY(in.open(QIODevice::ReadOnly));
+    const QString bom = tmp("bom.csv");
+    {
+      QFile out(bom);
+      QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));
+      out.write("\xEF\xBB\xBF" + in.readAll());
+    }
+    const Run r = cli({"color-calibrate", "--measurements", bom, "--out", tmp("cal-bom.json"), "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QCOMPARE(nlohmann::json::parse(r.out.toStdString())["measurements_csv"]["readings"].get<int>(), 3072);
+    const QString dark = tmp("dark.csv");
+    {
+      std::ofstream out(dark.toStdString());
+      out << "display,channel,level,x,y,Y,repeat\n";
+      for (const char* d : {"foveal", "peripheral"})
+        for (const char* c : {"R", "G", "B"})
+          for (int l = 0; l < 256; ++l) out << d << "," << c << "," << l << ",0.3,0.3,0,0\n";
+    }
+    const QString cal_dark = tmp("cal-dark.json");
+    QFile::remove(cal_dark);
+    const Run z = cli({"color-calibrate", "--measurements", dark, "--out", cal_dark, "--json"});
+    QCOMPARE(z.code, 1);
+    QVERIFY2(z.err.contains("6 problem(s) in the measurements"), z.err.constData());
+    QVERIFY2(z.err.contains("dark.csv: foveal R: the luminance does not rise"), z.err.constData());
+    QVERIFY(z.out.isEmpty());  // no dE00 null printed
+    QVERIFY(!QFile::exists(cal_dark));
   }
 
   void badRowsByLineAndNothingWritten() {

@@ -149,6 +149,47 @@ class TestCliIoHardening : public QObject {
     QVERIFY(fs::is_fifo(fifo.toStdString()));
   }
 
+  // The same file for two outputs of one command line: refused (exit 2) before any work, the
+  // file untouched: composite wrote its three images one over the other and exited 0.
+  void sameOutputTwiceRefused() {
+    QTemporaryDir dir;
+    const QString kept = writeTestFile(dir, "kept.png", "not replaced");
+    const QString other = dir.filePath("other.png");
+    // Spelt differently, the same file: dir/./kept.png.
+    const QString respelt = dir.path() + "/./kept.png";
+    struct Case {
+      QStringList args;
+      QString message;
+    };
+    const QList<Case> cases{
+        {{"composite", "--image", dir.filePath("none.png"), "--gaze-deg", "0,0", "--out-foveal", kept,
+          "--out-peripheral", other, "--out-perceived", respelt},
+         "--out-foveal and --out-perceived name the same file (" + respelt + "): each output needs its own file"},
+        {{"composite", "--image", dir.filePath("none.png"), "--gaze-deg", "0,0", "--out-foveal", other,
+          "--out-peripheral", kept, "--out-perceived", dir.filePath("third.png")},
+         ""},  // distinct: passes the check, then fails on the missing image (exit 1)
+        {{"composite", "--image", dir.filePath("none.png"), "--gaze-deg", "0,0", "--out-foveal", "", "--out-peripheral",
+          kept, "--out-perceived", other},
+         "--out-foveal: an empty path names no file"},
+        {{"stage", "--virtual", "MTS25-Z8", "--trace", kept, "--transcript", respelt, "move-abs", "1"},
+         "--trace and --transcript name the same file"},
+    };
+    for (const auto& c : cases) {
+      const auto r = runFoveaCli(c.args, 60000);
+      if (c.message.isEmpty()) {
+        QVERIFY2(r.code == 1, qPrintable(c.args.join(' ') + ": exit " + QString::number(r.code) + "\n" + r.err));
+        QVERIFY2(r.err.contains("none.png"), r.err.constData());
+        continue;
+      }
+      QVERIFY2(r.code == 2, qPrintable(c.args.join(' ') + ": exit " + QString::number(r.code) + "\n" + r.err));
+      QVERIFY2(r.err.contains(c.message.toUtf8()), qPrintable(c.args.join(' ') + "\n" + r.err));
+      QFile f(kept);
+      QVERIFY(f.open(QIODevice::ReadOnly));
+      QCOMPARE(f.readAll(), QByteArray("not replaced"));
+      QVERIFY(!QFile::exists(other));
+    }
+  }
+
   // --seed: a 64-bit unsigned integer, never wrapped (-1 was 2^64 - 1) nor rounded (1e23).
   void seedsAreValidated() {
     QTemporaryDir dir;

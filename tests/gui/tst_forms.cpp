@@ -29,6 +29,7 @@
 #include "viz/scene_view.h"
 #include "viz/vtk_gl_widget.h"
 #include "widgets/analyses/analyses_panel.h"
+#include "widgets/focus_ring.h"
 #include "widgets/gaze_panel.h"
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
@@ -121,6 +122,75 @@ class TestForms : public QObject {
     combo->setFocus();
     wheel(combo, -1);
     QVERIFY(combo->currentIndex() != combo0);
+  }
+
+  // Issue 27 item 7: after a click in the 3-D view, Tab moves the focus to the next control and
+  // the focus shows: a widget that draws no focus of its own (the scene tree, the message log)
+  // gets the ring; a field draws its own; Tab never stops in a dock tabbed behind another (it
+  // went from the Messages to the hidden Foveated preview's "Target…" button, then through
+  // the rest of that unseen dock). A click hides the ring again.
+  void tabFromTheViewShowsTheFocus() {
+    studio::MainWindow w;
+    w.resize(1366, 738);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&w));
+    viz::SceneView* view = w.sceneView();
+    const QPoint empty(8, view->height() - 8);  // a corner of the view: no element there
+    QTest::mouseClick(view, Qt::LeftButton, Qt::NoModifier, empty);
+    QCoreApplication::processEvents();
+    auto name = [](QWidget* f) {
+      if (!f) return QString("no focus");
+      QString s = QString("%1 \"%2\"").arg(f->metaObject()->className(), f->objectName());
+      if (auto* b = qobject_cast<QAbstractButton*>(f)) s += " '" + b->text() + "'";
+      for (QWidget* p = f->parentWidget(); p; p = p->parentWidget())
+        s += " < " + QString(p->metaObject()->className()) + ":" + p->objectName();
+      s += QString(" geo %1,%2 %3x%4").arg(f->x()).arg(f->y()).arg(f->width()).arg(f->height());
+      return s;
+    };
+    QVERIFY2(view->hasFocus(), qPrintable(name(QApplication::focusWidget())));
+    QVERIFY(!widgets::currentFocusRing());
+    QStringList path;
+    for (int k = 0; k < 8; ++k) {
+      QTest::keyClick(QApplication::focusWidget(), Qt::Key_Tab);
+      QCoreApplication::processEvents();
+      QWidget* f = QApplication::focusWidget();
+      QVERIFY(f);
+      path << name(f);
+      QVERIFY2(f != view, qPrintable(path.join(" -> ")));
+      // A control the user sees: shown, inside the window, not covered by its window's edge.
+      QVERIFY2(f->isVisible() && f->window() == &w, qPrintable(path.join(" -> ")));
+      const QRect in_window(f->mapTo(&w, QPoint(0, 0)), f->size());
+      QVERIFY2(w.rect().intersects(in_window) && !f->visibleRegion().isEmpty(), qPrintable(path.join(" -> ")));
+      widgets::FocusRing* ring = widgets::currentFocusRing();
+      if (widgets::FocusRingFilter::drawsOwnFocus(f)) {
+        QVERIFY2(!ring, qPrintable(path.join(" -> ")));
+        continue;
+      }
+      QVERIFY2(ring && ring->isVisible(), qPrintable(path.join(" -> ") + ": no ring"));
+      QCOMPARE(ring->parentWidget(), f);
+      QCOMPARE(ring->geometry(), f->rect());
+      QVERIFY(ring->testAttribute(Qt::WA_TransparentForMouseEvents));
+      // The ring is drawn on top: the pixel at its edge is the highlight colour.
+      const QImage shot = f->grab().toImage();
+      QCOMPARE(shot.pixelColor(shot.width() / 2, 1).rgb(), ring->palette().color(QPalette::Highlight).rgb());
+    }
+    // The first Tab from the view reaches the scene tree (the first dock), ringed.
+    QVERIFY2(path.first().startsWith("fovea::widgets::SceneTree"), qPrintable(path.join(" -> ")));
+    // A click back into the view: focus there, no ring.
+    QTest::mouseClick(view, Qt::LeftButton, Qt::NoModifier, empty);
+    QCoreApplication::processEvents();
+    QVERIFY(view->hasFocus());
+    QVERIFY(!widgets::currentFocusRing());
+    // Backtab from the view rings the widget before it as well.
+    QTest::keyClick(view, Qt::Key_Backtab, Qt::ShiftModifier);
+    QCoreApplication::processEvents();
+    QWidget* back = QApplication::focusWidget();
+    QVERIFY(back && back != view);
+    QVERIFY2(widgets::FocusRingFilter::drawsOwnFocus(back) ||
+                 (widgets::currentFocusRing() && widgets::currentFocusRing()->parentWidget() == back),
+             qPrintable(name(back)));
   }
 
   void oneScrollAreaPerDock() {

@@ -3,7 +3,10 @@
 // perfect, incremental gaze updates identical to a fresh render, FLIP seam metric, I/O.
 #include <QtTest>
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 
@@ -183,6 +186,31 @@ class TestFoveation : public QObject {
     }
     std::ofstream(dir + "/garbage.png") << "not an image";
     QVERIFY_THROWS_EXCEPTION(ImageIoError, readLinearRgb(dir + "/garbage.png"));
+    // Written through the one writer (issue 28): a FIFO, a device or a directory is refused and
+    // stays what it was; an existing file is replaced whole (no temporary file left beside it).
+    const std::string fifo = dir + "/io-fifo.png";
+    std::filesystem::remove(fifo);
+    QCOMPARE(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& bad : {fifo, std::string("/dev/null"), dir}) {
+      try {
+        writeLinearRgb(bad, img);
+        QFAIL(qPrintable(QString::fromStdString(bad) + ": written"));
+      } catch (const ImageIoError& e) {
+        QVERIFY2(std::string(e.what()).rfind(bad + ": ", 0) == 0, e.what());
+      }
+    }
+    QVERIFY(std::filesystem::is_fifo(fifo));
+    QVERIFY(std::filesystem::is_character_file("/dev/null"));
+    std::filesystem::remove(fifo);
+    const std::string sub = dir + "/io-writer";
+    std::filesystem::remove_all(sub);
+    std::filesystem::create_directories(sub);
+    std::ofstream(sub + "/old.exr") << "an older file";
+    writeLinearRgb(sub + "/old.exr", img);
+    QVERIFY(maxAbsDiff(readLinearRgb(sub + "/old.exr"), img) < 1e-6);  // float EXR: exact
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(sub)) ++files;
+    QCOMPARE(files, 1);
   }
 };
 

@@ -295,6 +295,17 @@ class TestInputHardening : public QObject {
     QCOMPARE(t.targets[0].value, 1.75);
     QCOMPARE(parseFitTargets(fitTargetsJson(t.targets)).size(), std::size_t(1));
     QVERIFY(!t.skipped.empty() && QString::fromStdString(t.skipped.back()).contains("captured again"));
+    // Two steps of one id: a capture of "g10" could be either gaze (+10 or -10): refused.
+    json twice = m;
+    json other = step;
+    other["gaze_deg"] = {-10, 0};
+    twice["steps"].push_back(other);
+    QVERIFY2(refusal([&] {
+               devices::fitTargetsFromManifest(twice, {0.05, "bench"});
+             }).contains("steps[1].id: \"g10\" is also the id of steps[0]"),
+             qPrintable(refusal([&] {
+               devices::fitTargetsFromManifest(twice, {0.05, "bench"});
+             })));
     m["captures"][0] = 7;
     QVERIFY(refusal([&] {
               devices::fitTargetsFromManifest(m, {0.05, "bench"});
@@ -328,7 +339,11 @@ class TestInputHardening : public QObject {
     QVERIFY2(bom.ok(), bom.problems.empty() ? "" : bom.problems[0].message.c_str());
     const auto tristimulus = color::importSpectroradiometerCsv(csv("display,channel,level,X,y,Y,repeat", 0.25));
     QVERIFY(!tristimulus.ok());
-    QVERIFY(QString::fromStdString(tristimulus.problems[0].message).contains("lacks the column(s) x"));
+    // X without Z: named, not read as x.
+    QVERIFY2(QString::fromStdString(tristimulus.problems[0].message)
+                 .contains("the header has the tristimulus column(s) X but lacks Z"),
+             tristimulus.problems[0].message.c_str());
+    QVERIFY(QString::fromStdString(tristimulus.problems[0].message).contains("X is not the chromaticity x"));
     const auto dark = color::importSpectroradiometerCsv(csv("display,channel,level,x,y,Y,repeat", 0.0));
     QVERIFY(!dark.ok());
     QVERIFY(QString::fromStdString(dark.problems[0].message).contains("does not rise"));
@@ -339,7 +354,9 @@ class TestInputHardening : public QObject {
   }
 
   // --free PATH=+-D: the window is clipped to the field's open range first, then kept 1e-9 of
-  // the clipped window inside it (the margin of the unclipped window refused the scene's value).
+  // the clipped window inside it (the margin of the unclipped window refused the scene's value),
+  // at most 1e-6 of the way from the scene's value to the bound (the clipped window of a large D
+  // still kept the search above half the scene's value).
   void freeWindowClippedBeforeTheMargin() {
     const Scene s = prototype();
     std::vector<FreeParameter> p;
@@ -352,6 +369,15 @@ class TestInputHardening : public QObject {
     QVERIFY(p[0].lower > 0);             // the open bound "> 0" kept
     QVERIFY(p[0].lower < p[0].initial);  // the scene's value inside
     QVERIFY(p[0].upper >= p[0].initial + 1e11);
+    // The whole open range below the value is searched: (0, 22] less 1e-6 of 22 mm (was 11 mm).
+    QCOMPARE(p[0].initial, 22.0);
+    QVERIFY2(std::abs(p[0].lower - 22e-6) < 1e-12, qPrintable(QString::number(p[0].lower, 'g', 17)));
+    // A window inside the range keeps its own bounds; a small one reaching the bound keeps
+    // 1e-9 of itself: relief +-22 mm is (0, 44] less 44e-9 mm.
+    const FreeParameter inside = parseFreeParameter(s, "eye.relief_mm=+-21");
+    QCOMPARE(inside.lower, 1.0);
+    const FreeParameter reach = parseFreeParameter(s, "eye.relief_mm=+-22");
+    QVERIFY2(std::abs(reach.lower - 44e-9) < 1e-15, qPrintable(QString::number(reach.lower, 'g', 17)));
   }
 
   // The field reader's own rules.
