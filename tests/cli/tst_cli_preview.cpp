@@ -265,7 +265,11 @@ class TestCliPreview : public QObject {
     QCOMPARE(j["validated_targets"].size(), std::size_t{4});
     const double acc9 = j["accuracy_deg"]["mean"].get<double>();
     QVERIFY(acc9 > 0.1 && acc9 < 0.3);  // see tst_gaze_calibration: 0.23 deg
-    QVERIFY(j["precision_deg"]["rms_s2s"].get<double>() >= 0);
+    // Precision is over every sample of a held-out target (gaze_calibration.h): its samples
+    // are still but for the 25 px landing jump in the first two, one step among 11, so the
+    // RMS-S2S is that jump's angle over sqrt(11) (measured 1.74 deg: a 5.8 deg jump).
+    const double s2s = j["precision_deg"]["rms_s2s"].get<double>();
+    QVERIFY2(s2s > 1.5 && s2s < 2.0, qPrintable(QString::number(s2s)));
 
     r = cliText({"gaze-fit", "--samples", samplesFile(false), "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
