@@ -25,6 +25,24 @@ fovea::Scene prototype() {
   return *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
 }
 
+// n planar gratings uniform over the ranges of scripts/bench_python.py (xorshift64, fixed seed).
+std::vector<fovea::PlanarGrating> randomGratings(std::size_t n) {
+  std::vector<fovea::PlanarGrating> g(n);
+  std::uint64_t x = 88172645463325252ULL;  // xorshift64: uniform in [0, 1)
+  auto u = [&x] {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    return static_cast<double>(x >> 11) * 0x1.0p-53;
+  };
+  for (auto& p : g) {
+    p.film = {1.45 + 0.15 * u(), 0.001 + 0.039 * u(), 2 + 38 * u(), 0.0};
+    p.period_nm = 150 + 450 * u();
+    p.slant_deg = -30 + 60 * u();
+    p.probe_deg = -40 + 80 * u();
+    p.wavelength_nm = 450 + 230 * u();
+  }
+  return g;
+}
+
 void BM_KogelnikLossless(benchmark::State& state) {
   std::vector<double> cs(1024), vt(1024);
   for (int i = 0; i < 1024; ++i) {
@@ -76,19 +94,7 @@ BENCHMARK(BM_Diffract3d);
 // diffractPlanar per element, one core): the C++ side of its 1.2x target (docs/benchmarks.md).
 void BM_DiffractPlanar1e6(benchmark::State& state) {
   constexpr std::size_t n = 1000000;
-  std::vector<fovea::PlanarGrating> g(n);
-  std::uint64_t x = 88172645463325252ULL;  // xorshift64: uniform in [0, 1)
-  auto u = [&x] {
-    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
-    return static_cast<double>(x >> 11) * 0x1.0p-53;
-  };
-  for (auto& p : g) {
-    p.film = {1.45 + 0.15 * u(), 0.001 + 0.039 * u(), 2 + 38 * u(), 0.0};
-    p.period_nm = 150 + 450 * u();
-    p.slant_deg = -30 + 60 * u();
-    p.probe_deg = -40 + 80 * u();
-    p.wavelength_nm = 450 + 230 * u();
-  }
+  const std::vector<fovea::PlanarGrating> g = randomGratings(n);
   std::vector<double> eta(n);
   for (auto _ : state) {
     for (std::size_t i = 0; i < n; ++i) eta[i] = fovea::diffractPlanar(g[i]).grating.kogelnik.efficiency;
@@ -104,19 +110,7 @@ BENCHMARK(BM_DiffractPlanar1e6)->Unit(benchmark::kMillisecond)->UseRealTime();
 // on ~41 MB of outputs included).
 void BM_DiffractPlanar1e6AllOutputs(benchmark::State& state) {
   constexpr std::size_t n = 1000000;
-  std::vector<fovea::PlanarGrating> g(n);
-  std::uint64_t x = 88172645463325252ULL;
-  auto u = [&x] {
-    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
-    return static_cast<double>(x >> 11) * 0x1.0p-53;
-  };
-  for (auto& p : g) {
-    p.film = {1.45 + 0.15 * u(), 0.001 + 0.039 * u(), 2 + 38 * u(), 0.0};
-    p.period_nm = 150 + 450 * u();
-    p.slant_deg = -30 + 60 * u();
-    p.probe_deg = -40 + 80 * u();
-    p.wavelength_nm = 450 + 230 * u();
-  }
+  const std::vector<fovea::PlanarGrating> g = randomGratings(n);
   for (auto _ : state) {
     // new[] without value-initialisation, like NumPy's empty arrays behind py::array_t(shape).
     std::array<std::unique_ptr<double[]>, 5> out;

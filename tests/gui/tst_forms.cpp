@@ -46,6 +46,15 @@ void wheel(QWidget* w, int notches) {
   QApplication::sendEvent(w, &e);
 }
 
+// The main window at the small screen's size, shown and active (keyboard focus goes to it).
+bool shownActive(studio::MainWindow& w) {
+  w.resize(1366, 738);
+  w.show();
+  if (!QTest::qWaitForWindowExposed(&w)) return false;
+  w.activateWindow();
+  return QTest::qWaitForWindowActive(&w);
+}
+
 QDockWidget* raised(studio::MainWindow& w, const char* name) {
   auto* dock = w.findChild<QDockWidget*>(name);
   if (dock) {
@@ -79,11 +88,7 @@ class TestForms : public QObject {
 
   void wheelChangesOnlyAFocusedField() {
     studio::MainWindow w;
-    w.resize(1366, 738);
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
-    w.activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(&w));
+    QVERIFY(shownActive(w));
     raised(w, "AnalysesDock");
     widgets::AnalysesPanel* panel = w.analysisFeatures()->analysesPanel();
     panel->selectAnalysis("sweep");
@@ -131,11 +136,7 @@ class TestForms : public QObject {
   // the rest of that unseen dock). A click hides the ring again.
   void tabFromTheViewShowsTheFocus() {
     studio::MainWindow w;
-    w.resize(1366, 738);
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
-    w.activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(&w));
+    QVERIFY(shownActive(w));
     viz::SceneView* view = w.sceneView();
     const QPoint empty(8, view->height() - 8);  // a corner of the view: no element there
     QTest::mouseClick(view, Qt::LeftButton, Qt::NoModifier, empty);
@@ -261,11 +262,7 @@ class TestForms : public QObject {
 
   void refusedValueRevertsOnEscAndFocusOut() {
     studio::MainWindow w;
-    w.resize(1366, 738);
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
-    w.activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(&w));
+    QVERIFY(shownActive(w));
     w.selectElement("hoe_layers[1]");
     QCoreApplication::processEvents();
     widgets::PropertyEditor* editor = w.propertyEditor();
