@@ -301,7 +301,7 @@ void install(CLI::App& app) {
       devices::BinocularResult br;
       try {
         // The loop mirrors the scene's (right) train itself: it gets the right eye's scene.
-        br = devices::runBinocularLoop(scene.binocular ? eyeScene(scene, EyeSide::right) : scene, fixations, bo);
+        br = devices::runBinocularLoop(scene.binocular ? eyeScene(scene, EyeSide::Right) : scene, fixations, bo);
       } catch (const std::invalid_argument& e) {
         inputError(std::string("closed-loop: ") + e.what());
       }

@@ -21,7 +21,7 @@ std::vector<EyeRun> eyeRuns(const Scene& scene, const std::string& eye, const st
     return {EyeRun{std::nullopt, scene}};
   }
   std::vector<EyeRun> runs;
-  for (const EyeSide side : {EyeSide::left, EyeSide::right})
+  for (const EyeSide side : {EyeSide::Left, EyeSide::Right})
     if (eye.empty() || eye == "both" || eye == eyeSideName(side)) runs.push_back({side, eyeScene(scene, side)});
   return runs;
 }
@@ -36,7 +36,7 @@ nlohmann::json combineEyeDocuments(const std::vector<EyeRun>& runs, const std::v
   nlohmann::json out;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     eyes[eyeSideName(*runs[i].side)] = docs[i];
-    if (*runs[i].side == EyeSide::right) out = docs[i];
+    if (*runs[i].side == EyeSide::Right) out = docs[i];
   }
   out["eyes"] = std::move(eyes);
   return out;

@@ -30,12 +30,12 @@ bool flipsUnderMirror(const std::string& axis) {
 }  // namespace
 
 const char* eyeSideName(EyeSide side) {
-  return side == EyeSide::left ? "left" : "right";
+  return side == EyeSide::Left ? "left" : "right";
 }
 
 std::optional<EyeSide> eyeSideFromName(const std::string& name) {
-  if (name == "left") return EyeSide::left;
-  if (name == "right") return EyeSide::right;
+  if (name == "left") return EyeSide::Left;
+  if (name == "right") return EyeSide::Right;
   return std::nullopt;
 }
 
@@ -73,7 +73,7 @@ Scene mirroredScene(const Scene& scene, double mid_plane_x_mm) {
 
 Scene eyeScene(const Scene& scene, EyeSide side) {
   const double mid_plane_x_mm = midPlaneX(scene);  // throws for a monocular scene
-  Scene eye = side == EyeSide::left ? mirroredScene(scene, mid_plane_x_mm) : scene;
+  Scene eye = side == EyeSide::Left ? mirroredScene(scene, mid_plane_x_mm) : scene;
   eye.binocular.reset();
   return eye;
 }

@@ -34,7 +34,7 @@
 
 namespace fovea {
 
-enum class EyeSide { left, right };
+enum class EyeSide { Left, Right };
 
 // "left" / "right".
 const char* eyeSideName(EyeSide side);

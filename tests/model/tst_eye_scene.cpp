@@ -72,7 +72,7 @@ class TestEyeScene : public QObject {
     QCOMPARE(serializeScene(*r.scene), text);  // canonical: load -> save byte for byte
     QVERIFY(text.find("\"version\": 2,") != std::string::npos);
     // Apart from the block (and the name and notes), it is the monocular prototype.
-    Scene right = eyeScene(*r.scene, EyeSide::right);
+    Scene right = eyeScene(*r.scene, EyeSide::Right);
     Scene proto = parsedOrFail(readText("resources/scenes/prototype-bench.json"), "p");
     right.name = proto.name;
     right.notes = proto.notes;
@@ -145,7 +145,7 @@ class TestEyeScene : public QObject {
     const Scene s = binocularPrototype();
     // Right eye's rotation centre at x = 0 (HOE at 0, no lateral offset): mid-plane at -31.5.
     QCOMPARE(midPlaneX(s), -31.5);
-    const Scene right = eyeScene(s, EyeSide::right), left = eyeScene(s, EyeSide::left);
+    const Scene right = eyeScene(s, EyeSide::Right), left = eyeScene(s, EyeSide::Left);
     QVERIFY(!right.binocular && !left.binocular);
     QCOMPARE(right.projector.pose.position_mm[0], 90.0);
     QCOMPARE(left.projector.pose.position_mm[0], -153.0);  // 2 (-31.5) - 90
@@ -181,7 +181,7 @@ class TestEyeScene : public QObject {
     off.stages[0].axis = "x";
     off.stages[0].soft_limits = {-2.0, 6.0};
     off.stages[0].home_offset = -12.5;
-    const StageBinding m = eyeScene(off, EyeSide::left).stages[0];
+    const StageBinding m = eyeScene(off, EyeSide::Left).stages[0];
     QCOMPARE(m.soft_limits[0], -6.0);
     QCOMPARE(m.soft_limits[1], 2.0);
     QCOMPARE(m.home_offset, -16.5);
@@ -190,8 +190,8 @@ class TestEyeScene : public QObject {
     QVERIFY(mirroredScene(mirroredScene(s, -31.5), -31.5) == s);
     // A monocular scene has no eyes to choose from.
     const Scene mono = parsedOrFail(readText("resources/scenes/prototype-bench.json"), "p");
-    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, eyeScene(mono, EyeSide::left));
-    QCOMPARE(eyeSideFromName("left"), std::optional<EyeSide>(EyeSide::left));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, eyeScene(mono, EyeSide::Left));
+    QCOMPARE(eyeSideFromName("left"), std::optional<EyeSide>(EyeSide::Left));
     QVERIFY(!eyeSideFromName("both"));
   }
 
@@ -203,7 +203,7 @@ class TestEyeScene : public QObject {
     // turns the last-bit rounding of the mirrored coordinates (the left train sits 63 mm
     // away, other magnitudes, other roundings) into up to 2e-10 deg here.
     const Scene s = binocularPrototype();
-    const Scene right = eyeScene(s, EyeSide::right), left = eyeScene(s, EyeSide::left);
+    const Scene right = eyeScene(s, EyeSide::Right), left = eyeScene(s, EyeSide::Left);
     TracePipeline pr, pl;
     int compared = 0;
     for (const auto& [yaw, pitch, shift] :
@@ -261,8 +261,8 @@ class TestEyeScene : public QObject {
       v["rays"] = 1500;
       v["fov-method"] = method;
       const bool dense = std::string(method) == "dense";
-      const auto a = def->run(eyeScene(s, EyeSide::right), v, {});
-      const auto b = def->run(eyeScene(s, EyeSide::left), v, {});
+      const auto a = def->run(eyeScene(s, EyeSide::Right), v, {});
+      const auto b = def->run(eyeScene(s, EyeSide::Left), v, {});
       QVERIFY(a && b);
       const auto& sa = (*a)["samples"];
       const auto& sb = (*b)["samples"];
