@@ -7,7 +7,11 @@ namespace fovea {
 
 namespace {
 
-// The reflection rules of eye_scene.h, one per kind of quantity.
+// The reflection rules of eye_scene.h, one per kind of quantity. Negation as 0 - v, so a
+// zero stays +0 (not -0, which a saved scene or a JSON document would print as "-0.0").
+double negated(double v) {
+  return 0.0 - v;
+}
 double mirrorX(double x_mm, double mid_plane_x_mm) {
   return 2.0 * mid_plane_x_mm - x_mm;
 }
@@ -16,12 +20,12 @@ void mirrorPoint(Vec3mm& p, double mid_plane_x_mm) {
 }
 void mirrorPose(Pose& pose, double mid_plane_x_mm) {
   mirrorPoint(pose.position_mm, mid_plane_x_mm);
-  pose.rotation_deg[0] = -pose.rotation_deg[0];  // yaw
-  pose.rotation_deg[2] = -pose.rotation_deg[2];  // roll; pitch is unchanged
+  pose.rotation_deg[0] = negated(pose.rotation_deg[0]);  // yaw
+  pose.rotation_deg[2] = negated(pose.rotation_deg[2]);  // roll; pitch is unchanged
 }
 // An interval of a mirrored coordinate: [a, b] -> [-b, -a].
 void mirrorInterval(std::array<double, 2>& interval) {
-  interval = {-interval[1], -interval[0]};
+  interval = {negated(interval[1]), negated(interval[0])};
 }
 bool flipsUnderMirror(const std::string& axis) {
   return axis == "x" || axis == "yaw" || axis == "roll";
@@ -54,8 +58,8 @@ Scene mirroredScene(const Scene& scene, double mid_plane_x_mm) {
     mirrorPoint(layer.recording.signal_point_mm, mid_plane_x_mm);
   }
   // The eye's placement is an offset from the HOE centre (a vector); its gaze a direction.
-  m.eye.lateral_offset_mm[0] = -m.eye.lateral_offset_mm[0];
-  m.eye.gaze_deg[0] = -m.eye.gaze_deg[0];
+  m.eye.lateral_offset_mm[0] = negated(m.eye.lateral_offset_mm[0]);
+  m.eye.gaze_deg[0] = negated(m.eye.gaze_deg[0]);
   mirrorInterval(m.eye.gaze_range_deg);
   mirrorPose(m.foveal_display.pose, mid_plane_x_mm);
   mirrorPose(m.lens.pose, mid_plane_x_mm);

@@ -185,6 +185,10 @@ class TestEyeScene : public QObject {
     QCOMPARE(m.soft_limits[0], -6.0);
     QCOMPARE(m.soft_limits[1], 2.0);
     QCOMPARE(m.home_offset, -16.5);
+    // Zeros stay +0 (no "-0.0" in a saved scene or a document).
+    QVERIFY(!std::signbit(left.eye.gaze_deg[0]) && !std::signbit(left.projector.pose.rotation_deg[2]));
+    const std::string saved = serializeScene(left);
+    QVERIFY(saved.find("-0.0,") == std::string::npos && saved.find("-0.0\n") == std::string::npos);
     // The left scene is a valid monocular scene; mirroring twice gives the scene back.
     QVERIFY2(validateScene(left).empty(), joined(validateScene(left)).c_str());
     QVERIFY(mirroredScene(mirroredScene(s, -31.5), -31.5) == s);
