@@ -1,6 +1,6 @@
 #pragma once
 // --eye left|right|both: an analysis per eye of a binocular scene (issue 30;
-// model/scene/eye_scene.h). Shared by trace, sweep and the other registry analyses that use it.
+// model/scene/eye_scene.h). Shared by trace, sweep, compare-shift, selectivity and resolution.
 //
 // Without --eye a monocular scene runs as it always did (its JSON unchanged) and a binocular
 // scene runs both eyes. --eye on a monocular scene is a usage error (exit 2): it has one eye.

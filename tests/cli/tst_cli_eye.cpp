@@ -1,4 +1,4 @@
-// fovea-cli --eye left|right|both on trace, sweep, compare-shift and selectivity (issue 30;
+// fovea-cli --eye left|right|both on trace, sweep, compare-shift, selectivity and resolution (issue 30;
 // app/cli/eye_option.h): a monocular scene's documents unchanged and --eye refused on it; a
 // binocular scene's "eyes" with each eye's usual document; mirrored eyes give equal numbers;
 // validate on the binocular example and on a bad block.
@@ -186,6 +186,18 @@ class TestCliEye : public QObject {
     for (std::size_t i = 0; i < s["eyes"]["left"]["layers"].size(); ++i)
       QVERIFY(std::abs(num(s["eyes"]["left"]["layers"][i]["nominal_efficiency"]) -
                        num(s["eyes"]["right"]["layers"][i]["nominal_efficiency"])) < 1e-12);
+  }
+
+  void resolutionPerEye() {
+    const auto mono = cliText({"resolution", kMono, "--gaze-deg", "5", "--json"});
+    QVERIFY2(mono.code == 0, qPrintable(mono.err));
+    QCOMPARE(cliText({"resolution", kMono, "--eye", "right", "--json"}).code, 2);
+    const auto both = cliText({"resolution", kBino, "--gaze-deg", "5", "--json"});
+    QVERIFY2(both.code == 0, qPrintable(both.err));
+    const auto j = both.j();
+    QCOMPARE(keysOf(j["eyes"]["left"]), keysOf(mono.j()));
+    QCOMPARE(j["eyes"]["right"], mono.j());            // the right eye is the prototype's train
+    QVERIFY(j["eyes"]["left"] != j["eyes"]["right"]);  // 5 deg is temporal for one eye, nasal for the other
   }
 
   void validateBinocularScenes() {
