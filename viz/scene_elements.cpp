@@ -27,6 +27,7 @@ QStringList elementIds(const Scene& scene) {
       << "beam_shaping_lens"
       << "foveation";
   for (int i = 0; i < static_cast<int>(scene.stages.size()); ++i) ids << stageId(i);
+  if (scene.binocular) ids << "binocular";  // the two-eye block (its fields: mode, IPD)
   return ids;
 }
 
@@ -39,6 +40,8 @@ QString elementTitle(const Scene& scene, const QString& id) {
   if (id == "beam_shaping_lens")
     return "Beam-shaping lens — " + q(scene.lens.name) + (scene.lens.enabled ? "" : " (disabled)");
   if (id == "foveation") return QStringLiteral("Foveation blend");
+  if (id == "binocular" && scene.binocular)
+    return "Binocular — " + q(scene.binocular->mode) + ", IPD " + q(formatNumber(scene.binocular->ipd_mm)) + " mm";
   if (int i = indexedElement(id, "hoe_layers"); i >= 0 && i < static_cast<int>(scene.hoe_layers.size())) {
     const auto& l = scene.hoe_layers[static_cast<std::size_t>(i)];
     return QStringLiteral("Layer %1 (%2, %3 nm)")

@@ -2,7 +2,7 @@
 // Names of the scene's elements shared by the 3D view, the scene tree and the property
 // editor. An element id is the element's path in the scene file, as the loader's messages
 // spell it: "projector", "hoe", "hoe_layers[1]", "eye", "foveal_display",
-// "beam_shaping_lens", "foveation", "stages[0]".
+// "beam_shaping_lens", "foveation", "stages[0]", and "binocular" for a binocular scene.
 
 #include <QString>
 #include <QStringList>

@@ -29,6 +29,7 @@
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 
+#include "model/scene/eye_scene.h"
 #include "model/scene/scene_compare.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
@@ -101,7 +102,8 @@ constexpr double kPrintMargin[3] = {1.0, 1.0, 1.0};
 // Layers the eye's view hides: the light seen edge-on, fans converging on the camera, the
 // eye's own marks around it, the handles, and the stages' travel bars and end stops (drawn
 // mechanics: from the pupil the micro-OLED's stops were two big magenta balls at the top).
-const char* const kHiddenInEyeView[] = {"frustum", "rays", "eye_marks", "handles", "stages"};
+// (the left eye's train of a binocular scene too: the view is from the right eye's pupil)
+const char* const kHiddenInEyeView[] = {"frustum", "rays", "eye_marks", "handles", "stages", "left-train"};
 }  // namespace
 
 void SceneView::applyMarginColors() {
@@ -281,6 +283,11 @@ void SceneView::setScene(const Scene& scene, bool reset) {
     scene_ = scene;
     sceneLayer().removeElement(QStringLiteral("eye"));
     buildEyeActors(scene_, sceneLayer());
+    if (scene_.binocular) {
+      SceneLayer& left = layer(QStringLiteral("left-train"));
+      left.removeElement(QStringLiteral("eye"));
+      buildEyeActors(eyeScene(scene_, EyeSide::Left), left);
+    }
     updateHighlight();
     requestRender();
     return;
@@ -294,6 +301,12 @@ void SceneView::setScene(const Scene& scene, bool reset) {
   light.clear();
   stages.clear();
   buildSceneActors(scene_, l, light, stages);
+  // A binocular scene (model/scene/eye_scene.h): the left eye's mirrored train beside the
+  // scene's own (right) one, in its own layer; its props carry the ids of the right train's
+  // elements they mirror, so picking one selects the element both trains are built from.
+  SceneLayer& left = layer(QStringLiteral("left-train"));
+  left.clear();
+  if (scene_.binocular) buildSceneActors(eyeScene(scene_, EyeSide::Left), left, light, stages);
   labels_->setScene(scene_);
   applyHoeShift();
   updateHighlight();
@@ -354,9 +367,13 @@ void SceneView::setHoeDisplayShift(const Eigen::Vector3d& shift) {
 void SceneView::applyHoeShift() {
   QStringList ids{"hoe"};
   for (int i = 0; i < static_cast<int>(scene_.hoe_layers.size()); ++i) ids << hoeLayerId(i);
-  for (const QString& id : ids)
+  for (const QString& id : ids) {
     for (vtkProp* p : sceneLayer().propsOf(id))
       if (auto* p3 = vtkProp3D::SafeDownCast(p)) p3->SetPosition(hoeShift_.x(), hoeShift_.y(), hoeShift_.z());
+    // The left train's HOE travels by the mirror image of the shift.
+    for (vtkProp* p : layer(QStringLiteral("left-train")).propsOf(id))
+      if (auto* p3 = vtkProp3D::SafeDownCast(p)) p3->SetPosition(-hoeShift_.x(), hoeShift_.y(), hoeShift_.z());
+  }
 }
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> SceneView::viewRay(const QPointF& pos) {

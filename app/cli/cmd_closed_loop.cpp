@@ -24,6 +24,7 @@
 #include "devices/bench/closed_gaze_loop.h"
 #include "model/io/json_fields.h"
 #include "model/io/json_input.h"
+#include "model/scene/eye_scene.h"
 
 namespace fovea::cli {
 namespace cmd_closed_loop {  // one per command file: fovea-cli compiles in unity batches
@@ -258,12 +259,15 @@ void install(CLI::App& app) {
                   "pupil detector of the calibration and the loop: classical (default), learned or auto");
   cmd->add_flag("--binocular", a->binocular, "both eyes (the left on the mirrored train), vergence and focus stages");
   cmd->add_option("--fixations", a->fixations, "with --binocular: a fixation file (JSON) or a count of random ones");
-  cmd->add_option("--ipd", a->ipd_mm, "with --binocular: interpupillary distance in mm (default 63)")
-      ->check(CLI::Range(40.0, 80.0));
+  CLI::Option* ipd_option =
+      cmd->add_option(
+             "--ipd", a->ipd_mm,
+             "with --binocular: interpupillary distance in mm (default: the scene's binocular.ipd_mm, else 63)")
+          ->check(CLI::Range(40.0, 80.0));
   cmd->add_option("--focus-stage-model", a->focus_stage_model,
                   "with --binocular: the focus stages' model (default: the micro-OLED's)")
       ->check(CLI::IsMember({"MTS25-Z8", "Z825B", "DDSM50"}));
-  cmd->callback([a] {
+  cmd->callback([a, ipd_option] {
     const auto kind = gaze::parseDetectorKind(a->detector);
     if (!kind) usageError("--detector: '" + a->detector + "' is not one of " + gaze::kDetectorChoices);
     if (a->binocular && *kind != gaze::PupilDetectorKind::Classical)
@@ -287,17 +291,22 @@ void install(CLI::App& app) {
         bo.loop.exposure_s = 0.5 / bo.loop.camera_fps, bo.loop.readout_s = 0.4 / bo.loop.camera_fps;
       if (!a->stage_model.empty()) bo.loop.stage_model = a->stage_model;
       if (!a->focus_stage_model.empty()) bo.focus_stage_model = a->focus_stage_model;
-      bo.geometry.ipd_mm = a->ipd_mm;
+      // The IPD: --ipd, else a binocular scene's (its "binocular" block), else 63 mm.
+      const bool ipd_given = ipd_option->count() > 0;
+      bo.geometry.ipd_mm = ipd_given || !scene.binocular ? a->ipd_mm : scene.binocular->ipd_mm;
+      const char* ipd_source = ipd_given ? "--ipd" : scene.binocular ? "scene" : "default";
       bo.seed_right = a->seed;
       bo.seed_left = a->seed + 1000003u;
       const auto fixations = fixationsFrom(a->fixations, a->seed);
       devices::BinocularResult br;
       try {
-        br = devices::runBinocularLoop(scene, fixations, bo);
+        // The loop mirrors the scene's (right) train itself: it gets the right eye's scene.
+        br = devices::runBinocularLoop(scene.binocular ? eyeScene(scene, EyeSide::Right) : scene, fixations, bo);
       } catch (const std::invalid_argument& e) {
         inputError(std::string("closed-loop: ") + e.what());
       }
       nlohmann::json out = binocularJson(br, bo);
+      out["vergence"]["ipd_source"] = ipd_source;
       out["scene"] = scene.name;
       out["seed"] = a->seed;
       out["binocular"] = true;

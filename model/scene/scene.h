@@ -175,8 +175,21 @@ struct ViewState {
   bool operator==(const ViewState&) const = default;
 };
 
+// A binocular scene (optional top-level "binocular" block, format version 2). The scene's own
+// optical train is the right eye's (+x is temporal for a right eye, above); the left train is
+// its mirror image about the head's mid-sagittal plane, which lies ipd_mm / 2 nasal (towards
+// -x) of the right eye's rotation centre (model/scene/eye_scene.h).
+struct Binocular {
+  std::string mode = "mirror";  // the only mode so far: the left train mirrors the right
+  double ipd_mm = 63.0;         // interpupillary distance (adult mean, Dodgson 2004)
+  bool operator==(const Binocular&) const = default;
+};
+
 struct Scene {
-  static constexpr int kFormatVersion = 1;
+  // Files without a "binocular" block are written as version 1 (as before it existed), files
+  // with one as version 2; this version reads both.
+  static constexpr int kFormatVersion = 2;
+  static constexpr int kMonocularFormatVersion = 1;
   std::string name = "untitled";
   nlohmann::ordered_json notes;  // free text / object; kept verbatim
   Projector projector;
@@ -188,6 +201,7 @@ struct Scene {
   Foveation foveation;
   std::vector<StageBinding> stages;
   ViewState view;
+  std::optional<Binocular> binocular;  // absent: a monocular scene (one eye)
   // Keys this version does not know, by JSON pointer of their parent object, kept so a
   // load -> save round trip loses nothing ("/" is the root, "/eye" the eye object, ...).
   nlohmann::ordered_json unknown = nlohmann::ordered_json::object();

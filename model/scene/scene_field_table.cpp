@@ -268,6 +268,22 @@ FieldTable<ViewState> makeView() {
   return t;
 }
 
+// The binocular block (issue 30). IPD range: Dodgson 2004 ("Variation and extrema of human
+// interpupillary distance", Proc. SPIE 5291) gives an adult mean of 63 mm, almost all adults
+// within 45-80 mm and children from 5 years upwards above 40 mm; [40, 90] admits all of them.
+FieldTable<Binocular> makeBinocular() {
+  using B = Binocular;
+  FieldTable<B> t;
+  t.group("Binocular");
+  t.text<&B::mode>("mode", kOpt, "Binocular mode",
+                   "mirror: the left eye's train is the mirror image of the scene's (right) train about the "
+                   "mid-plane, ipd_mm / 2 nasal of the right eye's rotation centre",
+                   {"mirror"});
+  t.add<&B::ipd_mm>("ipd_mm", "mm", Range::closed(40, 90), kOpt, {"Interpupillary distance"},
+                    "distance between the eyes' rotation centres (63 mm: the adult mean)");
+  return t;
+}
+
 }  // namespace
 
 // Each table is built once, on first use.
@@ -303,6 +319,9 @@ const FieldTable<StageBinding>& stageFields() {
 }
 const FieldTable<ViewState>& viewFields() {
   return built<ViewState, makeView>();
+}
+const FieldTable<Binocular>& binocularFields() {
+  return built<Binocular, makeBinocular>();
 }
 
 }  // namespace fovea

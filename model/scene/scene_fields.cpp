@@ -109,6 +109,9 @@ std::vector<SceneField> elementFields(const Scene& scene, const std::string& id)
   if (id == "view")
     addFields(
         out, viewFields(), scene.view, id, [](Scene & s) -> auto& { return s.view; });
+  if (id == "binocular" && scene.binocular)
+    addFields(
+        out, binocularFields(), *scene.binocular, id, [](Scene & s) -> auto& { return s.binocular.value(); });
   if (const int i = indexIn(id, "hoe_layers"); i >= 0 && i < static_cast<int>(scene.hoe_layers.size()))
     addFields(
         out, hoeLayerFields(), scene.hoe_layers[i],

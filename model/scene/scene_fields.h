@@ -242,6 +242,7 @@ const FieldTable<BeamShapingLens>& lensFields();
 const FieldTable<Foveation>& foveationFields();
 const FieldTable<StageBinding>& stageFields();
 const FieldTable<ViewState>& viewFields();
+const FieldTable<Binocular>& binocularFields();
 
 bool isRotationAxis(const std::string& axis);
 
@@ -258,7 +259,8 @@ struct SceneField {
 };
 
 // The fields of element `id` ("projector", "hoe", "hoe_layers[1]", "eye", "foveal_display",
-// "beam_shaping_lens", "foveation", "view", "stages[0]"), in file order; empty when unknown.
+// "beam_shaping_lens", "foveation", "view", "stages[0]", "binocular" when the scene has that
+// block), in file order; empty when unknown.
 std::vector<SceneField> elementFields(const Scene& scene, const std::string& id);
 
 // A number addressed by a JSON path of the file ("eye.relief_mm", "hoe.rotation_deg[0]",

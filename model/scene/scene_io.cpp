@@ -363,6 +363,11 @@ SceneLoadResult parseScene(std::string_view text, const std::string& source) {
     readObjectElement(r, o, "foveation", Presence::Optional, foveationFields(), scene.foveation);
     readElements(r, o, "stages", Presence::Optional, stageFields(), scene.stages);
     readObjectElement(r, o, "view", Presence::Optional, viewFields(), scene.view);
+    if (const ojson* b = o.object("binocular", false)) {  // issue 30: present = a binocular scene
+      Binocular binocular;
+      readElement(r, *b, "binocular", "/binocular", binocularFields(), binocular);
+      scene.binocular = binocular;
+    }
   }
   if (result.errors.empty()) result.scene = std::move(scene);
   return result;
@@ -491,7 +496,8 @@ std::string serializeScene(const Scene& s) {
   const ojson& u = s.unknown;
   ojson root = ojson::object();
   root["format"] = "fovea-scene";
-  root["version"] = Scene::kFormatVersion;
+  // Version 2 only for what needs it: a monocular scene keeps the bytes it had before.
+  root["version"] = s.binocular ? Scene::kFormatVersion : Scene::kMonocularFormatVersion;
   root["name"] = s.name;
   if (!s.notes.is_null()) root["notes"] = s.notes;
   root["projector"] = writeElement(u, "/projector", projectorFields(), s.projector);
@@ -504,6 +510,7 @@ std::string serializeScene(const Scene& s) {
   root["stages"] = writeElements(u, "stages", stageFields(), s.stages);
   // Newer, optional state: left out while it holds only defaults (older files stay as they are).
   if (ojson view = writeElement(u, "/view", viewFields(), s.view); !view.empty()) root["view"] = view;
+  if (s.binocular) root["binocular"] = writeElement(u, "/binocular", binocularFields(), *s.binocular);
   appendUnknown(root, u, "/");
   return root.dump(2) + "\n";
 }
@@ -531,6 +538,7 @@ std::string sceneSummary(const Scene& s) {
     << s.projector.pixels[0] << "x" << s.projector.pixels[1] << " px over " << formatNumber(s.projector.fov_deg[0])
     << "x" << formatNumber(s.projector.fov_deg[1]) << " deg, eye relief " << formatNumber(s.eye.relief_mm)
     << " mm, pupil " << formatNumber(s.eye.pupil_diameter_mm) << " mm, " << s.stages.size() << " stage axes";
+  if (s.binocular) o << ", binocular (" << s.binocular->mode << ", IPD " << formatNumber(s.binocular->ipd_mm) << " mm)";
   return o.str();
 }
 

@@ -222,7 +222,7 @@ class TestSceneIo : public QObject {
                                         << "f.json: hoe.size_mm: must be an array of 2 numbers, got an array of 1";
     QTest::newRow("newer version")
         << QString::fromStdString(edited("\"version\": 1,", "\"version\": 7,"))
-        << "f.json: version: file is version 7, this studio reads up to version 1 (update the studio)";
+        << "f.json: version: file is version 7, this studio reads up to version 2 (update the studio)";
     const int relief_line = lineOf(prototypeText(), "\"relief_mm\"");  // moves when the scene gains a field
     QTest::newRow("overflow number")
         << QString::fromStdString(edited("\"relief_mm\": 22.0", "\"relief_mm\": 1e999"))

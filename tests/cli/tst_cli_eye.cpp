@@ -1,0 +1,241 @@
+// fovea-cli --eye left|right|both on trace, sweep, compare-shift, selectivity and resolution (issue 30;
+// app/cli/eye_option.h): a monocular scene's documents unchanged and --eye refused on it; a
+// binocular scene's "eyes" with each eye's usual document; mirrored eyes give equal numbers;
+// validate on the binocular example and on a bad block.
+#include <QtTest>
+#include "tests/test_paths.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/cli/cli_process.h"
+#include "tests/test_files.h"
+
+namespace {
+using fovea::testing::cliText;
+const QString kMono = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
+const QString kBino = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json";
+
+std::set<std::string> keysOf(const nlohmann::json& j) {
+  std::set<std::string> k;
+  for (auto it = j.begin(); it != j.end(); ++it) k.insert(it.key());
+  return k;
+}
+double num(const nlohmann::json& j) {
+  return j.get<double>();
+}
+}  // namespace
+
+class TestCliEye : public QObject {
+  Q_OBJECT
+ private slots:
+  void monocularTraceUnchangedAndEyeRefused() {
+    const auto mono = cliText({"trace", kMono, "--gaze-deg", "10", "--rays", "1500", "--json"});
+    QVERIFY2(mono.code == 0, qPrintable(mono.err));
+    const auto j = mono.j();
+    QVERIFY(!j.contains("eye") && !j.contains("eyes"));
+    for (const char* k : {"fov_deg", "rays", "rays_in_pupil", "mean_efficiency", "gaze_deg", "per_wavelength"})
+      QVERIFY2(j.contains(k), k);
+    for (const char* eye : {"left", "right", "both"}) {
+      const auto r = cliText({"trace", kMono, "--eye", eye, "--json"});
+      QCOMPARE(r.code, 2);
+      QVERIFY2(r.err.contains(QString("--eye %1: ").arg(eye)) && r.err.contains("monocular scene"), qPrintable(r.err));
+      QVERIFY(r.out.isEmpty());
+    }
+    const auto embedded = cliText({"trace", "-", "--eye", "right", "--json"});
+    QCOMPARE(embedded.code, 2);
+    QVERIFY2(embedded.err.contains("the embedded scene is a monocular scene"), qPrintable(embedded.err));
+    const auto bad = cliText({"trace", kBino, "--eye", "nose", "--json"});
+    QCOMPARE(bad.code, 2);
+    QVERIFY2(bad.err.contains("--eye"), qPrintable(bad.err));
+  }
+
+  void binocularTraceGivesBothEyes() {
+    const auto mono = cliText({"trace", kMono, "--gaze-deg", "10,3", "--rays", "1500", "--json"});
+    QCOMPARE(mono.code, 0);
+    const std::set<std::string> monoKeys = keysOf(mono.j());
+    // Default = both; --eye both the same document.
+    for (const QStringList& extra : {QStringList{}, QStringList{"--eye", "both"}}) {
+      const auto r = cliText(QStringList{"trace", kBino, "--gaze-deg", "10,3", "--rays", "1500", "--json"} + extra);
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+      const auto j = r.j();
+      QVERIFY(j.contains("eyes"));
+      QCOMPARE(keysOf(j["eyes"]), (std::set<std::string>{"left", "right"}));
+      for (const char* e : {"left", "right"}) QCOMPARE(keysOf(j["eyes"][e]), monoKeys);
+      // The top level is the right eye's document (the scene's own train, every monocular key).
+      nlohmann::json top = j;
+      top.erase("eyes");
+      QCOMPARE(top, j["eyes"]["right"]);
+      // The right eye is the prototype's train: the monocular numbers.
+      QCOMPARE(j["eyes"]["right"], mono.j());
+      QCOMPARE(j["eyes"]["left"]["gaze_deg"], nlohmann::json::parse("[10.0, 3.0]"));
+      // A conjugate gaze of 10 deg is temporal for the right eye, nasal for the left: they differ.
+      QVERIFY(j["eyes"]["left"]["rays_in_pupil"] != j["eyes"]["right"]["rays_in_pupil"] ||
+              j["eyes"]["left"]["fov_deg"] != j["eyes"]["right"]["fov_deg"]);
+    }
+    // Repeated gazes: a list, each entry with both eyes.
+    const auto list = cliText({"trace", kBino, "--gaze-deg", "0", "--gaze-deg", "5", "--rays", "1000", "--json"});
+    QCOMPARE(list.code, 0);
+    const auto l = list.j();
+    QVERIFY(l.is_array());
+    QCOMPARE(l.size(), std::size_t{2});
+    for (const auto& e : l) QVERIFY(e.contains("eyes") && e["eyes"].contains("left") && e.contains("fov_deg"));
+    QCOMPARE(num(l[1]["eyes"]["left"]["gaze_deg"][0]), 5.0);
+    // Text output names the eyes.
+    const auto text = cliText({"trace", kBino, "--rays", "1000"});
+    QCOMPARE(text.code, 0);
+    QVERIFY2(text.out.contains("left eye: gaze") && text.out.contains("right eye: gaze"), qPrintable(text.out));
+  }
+
+  void mirroredEyesGiveEqualNumbers() {
+    // The left eye at (-12, 4) deg with the HOE at -2 mm = the right eye at (12, 4) with +2 mm:
+    // counts exactly, the dense FOV and the extent to 1e-12; the default edge-finding FOV to
+    // its own tolerance, 0.005 deg (its bisections meet a mirrored edge from the other side).
+    const QStringList common{"--rays", "3000", "--json"};
+    const auto l = cliText(QStringList{"trace", kBino, "--eye", "left", "--gaze-deg", "-12,4", "--hoe-shift-mm", "-2",
+                                       "--fov-method", "dense"} +
+                           common);
+    const auto r = cliText(QStringList{"trace", kBino, "--eye", "right", "--gaze-deg", "12,4", "--hoe-shift-mm", "2",
+                                       "--fov-method", "dense"} +
+                           common);
+    QVERIFY2(l.code == 0 && r.code == 0, qPrintable(l.err + r.err));
+    const auto a = l.j(), b = r.j();
+    QCOMPARE(a["eye"], nlohmann::json("left"));
+    QCOMPARE(b["eye"], nlohmann::json("right"));
+    QVERIFY(!a.contains("eyes"));
+    QVERIFY(num(b["rays_efficient"]) > 500);
+    for (const char* k : {"rays", "rays_in_pupil", "rays_efficient", "rays_on_hoe"}) QCOMPARE(a[k], b[k]);
+    for (const char* f : {"fov_deg", "fov_dense_deg", "fov_extent_deg"})
+      for (const char* k : {"horizontal", "vertical", "diagonal"})
+        QVERIFY2(std::abs(num(a[f][k]) - num(b[f][k])) < 1e-12, f);
+    QVERIFY(num(b["fov_deg"]["horizontal"]) > 80.0);  // the prototype's ~90 deg, counted densely
+    QVERIFY(std::abs(num(a["mean_efficiency"]) - num(b["mean_efficiency"])) < 1e-12);
+    QCOMPARE(num(a["hoe_shift_mm"][0]), -num(b["hoe_shift_mm"][0]));
+    const auto le =
+        cliText(QStringList{"trace", kBino, "--eye", "left", "--gaze-deg", "-12,4", "--hoe-shift-mm", "-2"} + common);
+    const auto re =
+        cliText(QStringList{"trace", kBino, "--eye", "right", "--gaze-deg", "12,4", "--hoe-shift-mm", "2"} + common);
+    QVERIFY2(le.code == 0 && re.code == 0, qPrintable(le.err + re.err));
+    for (const char* k : {"horizontal", "vertical", "diagonal"})
+      QVERIFY2(std::abs(num(le.j()["fov_deg"][k]) - num(re.j()["fov_deg"][k])) < 0.005, k);
+  }
+
+  void sweepPerEye() {
+    // The dense FOV: mirror-exact (the default edge estimator only to its 0.005 deg tolerance).
+    const QStringList common = QStringList{"--gaze-from", "-10", "--gaze-to", "10", "--gaze-step", "10"} +
+                               QStringList{"--rays", "1500", "--fov-method", "dense", "--no-cache", "--json"};
+    const auto mono = cliText(QStringList{"sweep", kMono} + common);
+    QVERIFY2(mono.code == 0, qPrintable(mono.err));
+    QVERIFY(!mono.j().contains("eyes") && !mono.j().contains("eye"));
+    const auto refused = cliText(QStringList{"sweep", kMono, "--eye", "left"} + common);
+    QCOMPARE(refused.code, 2);
+    QVERIFY2(refused.err.contains("monocular scene"), qPrintable(refused.err));
+    const auto both = cliText(QStringList{"sweep", kBino, "--eye", "both"} + common);
+    QVERIFY2(both.code == 0, qPrintable(both.err));
+    const auto j = both.j();
+    const auto& left = j["eyes"]["left"];
+    const auto& right = j["eyes"]["right"];
+    // Every key of the monocular document, per eye and at the top level.
+    std::set<std::string> monoKeys = keysOf(mono.j());
+    monoKeys.erase("cached");
+    for (const auto& doc : {left, right, j})
+      for (const auto& k : monoKeys) QVERIFY2(doc.contains(k), k.c_str());
+    QCOMPARE(right["samples"], mono.j()["samples"]);
+    // Mirror: the left sample at -g is the right one at +g with the HOE shift negated.
+    const auto& sl = left["samples"];
+    const auto& sr = right["samples"];
+    QCOMPARE(sl.size(), std::size_t{3});
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto& x = sr[i];
+      const auto& y = sl[2 - i];
+      QCOMPARE(num(y["gaze_deg"]), -num(x["gaze_deg"]));
+      QVERIFY(std::abs(num(y["hoe_shift_mm"]) + num(x["hoe_shift_mm"])) < 1e-12);
+      for (const char* k : {"horizontal", "vertical", "diagonal"})
+        QVERIFY(std::abs(num(y["fov_deg"][k]) - num(x["fov_deg"][k])) < 1e-12);
+    }
+    QVERIFY(std::abs(num(sr[2]["hoe_shift_mm"])) > 0.5);  // a 10 deg gaze needs the HOE moved
+    QVERIFY(std::abs(num(left["eyebox_mm"]) - num(right["eyebox_mm"])) < 1e-12);
+    // One eye: its document and "eye"; a shard runs one eye only.
+    const auto one = cliText(QStringList{"sweep", kBino, "--eye", "left"} + common);
+    QCOMPARE(one.code, 0);
+    QCOMPARE(one.j()["eye"], nlohmann::json("left"));
+    QCOMPARE(one.j()["samples"], left["samples"]);
+    const auto shard = cliText({"sweep", kBino, "--shard", "0/2", "--json"});
+    QCOMPARE(shard.code, 2);
+    QVERIFY2(shard.err.contains("--shard") && shard.err.contains("--eye left or right"), qPrintable(shard.err));
+  }
+
+  void otherAnalysesPerEye() {
+    const auto cs = cliText({"compare-shift", kBino, "--eye", "right", "--no-cache", "--json"});
+    QVERIFY2(cs.code == 0, qPrintable(cs.err));
+    QCOMPARE(cs.j()["eye"], nlohmann::json("right"));
+    QVERIFY(cs.j().contains("hoe_shift") && cs.j().contains("source_shift"));
+    const auto monoCs = cliText({"compare-shift", kMono, "--eye", "both", "--json"});
+    QCOMPARE(monoCs.code, 2);
+    const auto sel = cliText({"selectivity", kBino, "--json"});
+    QVERIFY2(sel.code == 0, qPrintable(sel.err));
+    const auto s = sel.j();
+    QVERIFY(s.contains("eyes") && s["eyes"].contains("left") && s["eyes"].contains("right"));
+    // At the plate centre both eyes' layers see the same angles (mirror images).
+    QCOMPARE(s["eyes"]["left"]["layers"].size(), s["eyes"]["right"]["layers"].size());
+    for (std::size_t i = 0; i < s["eyes"]["left"]["layers"].size(); ++i)
+      QVERIFY(std::abs(num(s["eyes"]["left"]["layers"][i]["nominal_efficiency"]) -
+                       num(s["eyes"]["right"]["layers"][i]["nominal_efficiency"])) < 1e-12);
+  }
+
+  void resolutionPerEye() {
+    const auto mono = cliText({"resolution", kMono, "--gaze-deg", "5", "--json"});
+    QVERIFY2(mono.code == 0, qPrintable(mono.err));
+    QCOMPARE(cliText({"resolution", kMono, "--eye", "right", "--json"}).code, 2);
+    const auto both = cliText({"resolution", kBino, "--gaze-deg", "5", "--json"});
+    QVERIFY2(both.code == 0, qPrintable(both.err));
+    const auto j = both.j();
+    QCOMPARE(keysOf(j["eyes"]["left"]), keysOf(mono.j()));
+    QCOMPARE(j["eyes"]["right"], mono.j());            // the right eye is the prototype's train
+    QVERIFY(j["eyes"]["left"] != j["eyes"]["right"]);  // 5 deg is temporal for one eye, nasal for the other
+  }
+
+  void validateBinocularScenes() {
+    const auto ok = cliText({"validate", kBino});
+    QVERIFY2(ok.code == 0, qPrintable(ok.err));
+    QVERIFY2(ok.out.contains("binocular (mirror, IPD 63 mm)"), qPrintable(ok.out));
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    std::ifstream in(kBino.toStdString());
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("\"ipd_mm\": 63.0"), 14, "\"ipd_mm\": 120");
+    const auto bad = dir / "bad-ipd.json";
+    std::ofstream(bad) << text;
+    const auto r = cliText({"validate", QString::fromStdString(bad.string())});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.out.contains("bad-ipd.json: binocular.ipd_mm: must be in [40, 90], got 120"), qPrintable(r.out));
+  }
+
+  void closedLoopTakesTheScenesIpd() {
+    // closed-loop --binocular on a binocular scene: the scene's IPD unless --ipd is given.
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    std::ifstream in(kBino.toStdString());
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("\"ipd_mm\": 63.0"), 14, "\"ipd_mm\": 58.0");
+    const auto scene = dir / "ipd58.json";
+    std::ofstream(scene) << text;
+    const QString path = QString::fromStdString(scene.string());
+    const QStringList common{"--binocular", "--fixations", "1", "--fps", "60", "--seed", "4", "--json"};
+    const auto fromScene = cliText(QStringList{"closed-loop", path} + common, 300000);
+    QVERIFY2(fromScene.code == 0, qPrintable(fromScene.err));
+    QCOMPARE(num(fromScene.j()["vergence"]["ipd_mm"]), 58.0);
+    QCOMPARE(fromScene.j()["vergence"]["ipd_source"], nlohmann::json("scene"));
+    QCOMPARE(fromScene.j()["fixations"].size(), std::size_t{1});
+    const auto given = cliText(QStringList{"closed-loop", path, "--ipd", "66"} + common, 300000);
+    QVERIFY2(given.code == 0, qPrintable(given.err));
+    QCOMPARE(num(given.j()["vergence"]["ipd_mm"]), 66.0);
+    QCOMPARE(given.j()["vergence"]["ipd_source"], nlohmann::json("--ipd"));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliEye)
+#include "tst_cli_eye.moc"
