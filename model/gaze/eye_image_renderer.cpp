@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <random>
 
@@ -190,6 +191,20 @@ Texture makeTexture(const IrCameraPose& c, const EyeAppearance& e, std::uint32_t
   return t;
 }
 
+// Complex product written out: GCC's operator* calls __muldc3 (its C99 inf/NaN recovery) and
+// these factors are finite unit numbers.
+std::complex<double> times(const std::complex<double>& a, const std::complex<double>& b) {
+  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+
+// e^{i n theta} from e^{i theta} by binary powers (n >= 0): no trigonometric call.
+std::complex<double> unitPower(const std::array<std::complex<double>, 7>& squares, int n) {
+  std::complex<double> p{1.0, 0.0};
+  for (int bit = 0; n != 0 && bit < static_cast<int>(squares.size()); ++bit, n >>= 1)
+    if (n & 1) p = times(p, squares[static_cast<std::size_t>(bit)]);
+  return p;
+}
+
 void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Texture& t) {
   cv::Mat mask = cv::Mat::zeros(img.size(), CV_8U);
   fillPolygon(mask, l.iris, 255);
@@ -198,8 +213,19 @@ void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Textu
   double mean_r = 0;
   for (const auto& p : l.iris) mean_r += std::hypot(p.x - l.pupil_centre.x, p.y - l.pupil_centre.y);
   mean_r /= static_cast<double>(l.iris.size());
+  std::array<int, 6> freq{};
+  std::array<std::complex<double>, 6> phase{};
+  for (std::size_t k = 0; k < 6; ++k) {
+    freq[k] = static_cast<int>(t.freq[k]);
+    phase[k] = std::polar(1.0, t.phase[k]);
+  }
+  // The texture v = 1 + sum_k a_k sin(f_k theta + phi_k + 3 rho k), theta the polar angle about
+  // the pupil centre. The f_k are integers (makeTexture), so e^{i f_k theta} is a power of
+  // e^{i theta} = (dx + i dy) / r and e^{i 3 rho k} a power of e^{i 3 rho}: one sincos a pixel
+  // instead of an atan2 and six sines (the same values to ~1e-15, far below the 8-bit output's
+  // step; issue 25: the sines were most of a closed-loop run's CPU).
   // Rows in parallel (each pixel depends on its own coordinates only: the same image whatever the
-  // split); the texture's six sines per pixel are most of a closed-loop run's rendering time.
+  // split).
   tbb::parallel_for(tbb::blocked_range<int>(box.y, box.y + box.height, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       float* row = img.ptr<float>(y);
@@ -207,9 +233,15 @@ void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Textu
       for (int x = box.x; x < box.x + box.width; ++x) {
         if (!m[x]) continue;
         const double dx = x - l.pupil_centre.x, dy = y - l.pupil_centre.y;
-        const double theta = std::atan2(dy, dx), rho = std::hypot(dx, dy) / std::max(mean_r, 1.0);
+        const double r = std::sqrt(dx * dx + dy * dy), rho = r / std::max(mean_r, 1.0);  // no overflow here
+        std::array<std::complex<double>, 7> squares{};
+        squares[0] = r > 0 ? std::complex<double>(dx / r, dy / r) : std::complex<double>(1.0, 0.0);  // atan2(0, 0) = 0
+        for (std::size_t b = 1; b < squares.size(); ++b) squares[b] = times(squares[b - 1], squares[b - 1]);
+        const std::complex<double> radial = std::polar(1.0, 3 * rho);
+        std::complex<double> radial_k{1.0, 0.0};
         double v = 1;
-        for (int k = 0; k < 6; ++k) v += t.amp[k] * std::sin(t.freq[k] * theta + t.phase[k] + 3 * rho * k);
+        for (std::size_t k = 0; k < 6; ++k, radial_k = times(radial_k, radial))
+          v += t.amp[k] * times(times(unitPower(squares, freq[k]), phase[k]), radial_k).imag();
         v *= 1 - 0.35 * std::clamp((rho - 0.8) / 0.2, 0.0, 1.0);  // darker limbal ring
         const double a = m[x] / 255.0;
         row[x] = static_cast<float>((1 - a) * row[x] + a * e.iris_level * v);
@@ -231,17 +263,30 @@ void drawGlint(cv::Mat& img, const cv::Point2d& p) {
   }
 }
 
-cv::Mat renderSubframe(const IrCameraPose& c, const EyeAppearance& e, const Layers& l, const Texture& t) {
-  cv::Mat eye(c.size, CV_32F, cv::Scalar(e.sclera_level));
+// Adds one sub-frame's radiance to `acc`: the eye (sclera, iris, pupil, glints) inside the soft
+// lid opening, `skin` outside it. `eye` and `opening` are scratch images kept across sub-frames
+// (a closed-loop run renders thousands of frames: fresh full-frame images and the temporaries
+// of a matrix expression were a fifth of its time in page faults, issue 25). Per pixel the same
+// float operations as eye.mul(opening) + skin.mul(1 - opening), so the same image.
+void addSubframe(cv::Mat& acc, cv::Mat& eye, cv::Mat& opening, const EyeAppearance& e, const Layers& l,
+                 const Texture& t, const cv::Mat& skin) {
+  eye.setTo(cv::Scalar(e.sclera_level));
   drawIris(eye, l, e, t);
   fillPolygon(eye, l.pupil, e.pupil_level);
   for (const auto& g : l.glints) drawGlint(eye, g);
-  cv::Mat opening = cv::Mat::zeros(c.size, CV_32F);
+  opening.setTo(cv::Scalar(0));
   fillPolygon(opening, l.opening, 1.0);
   cv::GaussianBlur(opening, opening, {0, 0}, 1.5);  // the lid margin is soft
-  cv::Mat skin = t.skin * e.skin_level;
-  cv::Mat out = eye.mul(opening) + skin.mul(1.0 - opening);
-  return out;
+  for (int y = 0; y < acc.rows; ++y) {
+    float* out = acc.ptr<float>(y);
+    const float* ey = eye.ptr<float>(y);
+    const float* op = opening.ptr<float>(y);
+    const float* sk = skin.ptr<float>(y);
+    for (int x = 0; x < acc.cols; ++x) {
+      const float inside = ey[x] * op[x], outside = sk[x] * (1.0f - op[x]);
+      out[x] += inside + outside;
+    }
+  }
 }
 
 void drawLashes(cv::Mat& img, const IrCameraPose& c, const CameraFrame& f, const EyeAppearance& e, const Texture& t) {
@@ -328,10 +373,11 @@ EyeFrame renderEyeFrame(const IrCameraPose& c, const EyeAppearance& e, const Eye
             spec.gaze_deg[1] + s * (spec.gaze_end_deg[1] - spec.gaze_deg[1])};
   };
   const int subframes = spec.moving ? std::max(1, spec.blur_subframes) : 1;
-  cv::Mat acc = cv::Mat::zeros(c.size, CV_32F);
+  cv::Mat acc = cv::Mat::zeros(c.size, CV_32F), eye(c.size, CV_32F), opening(c.size, CV_32F);
+  const cv::Mat skin = t.skin * e.skin_level;
   for (int i = 0; i < subframes; ++i) {
     const double s = subframes == 1 ? 0.5 : (i + 0.5) / subframes;
-    acc += renderSubframe(c, e, eyeLayers(c, f, e, spec, gazeAt(s)), t);
+    addSubframe(acc, eye, opening, e, eyeLayers(c, f, e, spec, gazeAt(s)), t, skin);
   }
   acc /= subframes;
   drawLashes(acc, c, f, e, t);
