@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <limits>
 #include <random>
 
@@ -178,7 +177,7 @@ Texture makeTexture(const IrCameraPose& c, const EyeAppearance& e, std::uint32_t
   std::uniform_real_distribution<double> u01(0, 1);
   for (int k = 0; k < 6; ++k) {
     t.phase[k] = 2 * kPi * u01(rng);
-    t.freq[k] = 7 + std::floor(40 * u01(rng));  // crypts and radial furrows
+    t.freq[k] = 7 + std::floor(40 * u01(rng));  // crypts and radial furrows; 7 ... 46 (< 64: drawIris)
     t.amp[k] = 0.05 + 0.08 * u01(rng);
   }
   cv::Mat low(12, 12, CV_32F);
@@ -191,18 +190,64 @@ Texture makeTexture(const IrCameraPose& c, const EyeAppearance& e, std::uint32_t
   return t;
 }
 
-// Complex product written out: GCC's operator* calls __muldc3 (its C99 inf/NaN recovery) and
-// these factors are finite unit numbers.
-std::complex<double> times(const std::complex<double>& a, const std::complex<double>& b) {
-  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+// A unit complex number in two scalars, its product written out and always inlined: GCC's
+// std::complex operator* calls __muldc3 (C99 inf/NaN recovery; these factors are finite), and
+// an out-of-line call or a stack array per pixel made the iris loop of the ASan tree (-O1) ten
+// times slower than the trigonometric one it replaces.
+struct Unit {
+  double re, im;
+};
+// (Not sanitized, like unitPower: see irisTextureAt.)
+[[gnu::always_inline, gnu::no_sanitize("address", "undefined")]] inline Unit times(Unit a, Unit b) {
+  return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re};
 }
 
-// e^{i n theta} from e^{i theta} by binary powers (n >= 0): no trigonometric call.
-std::complex<double> unitPower(const std::array<std::complex<double>, 7>& squares, int n) {
-  std::complex<double> p{1.0, 0.0};
-  for (int bit = 0; n != 0 && bit < static_cast<int>(squares.size()); ++bit, n >>= 1)
-    if (n & 1) p = times(p, squares[static_cast<std::size_t>(bit)]);
+// e^{i n theta} for 0 <= n < 64 from z1 = e^{i theta} and its squares z2 ... z32: no
+// trigonometric call. The texture's frequencies are 7 ... 46 (makeTexture).
+[[gnu::always_inline, gnu::no_sanitize("address", "undefined")]] inline Unit unitPower(int n, Unit z1, Unit z2, Unit z4,
+                                                                                       Unit z8, Unit z16, Unit z32) {
+  Unit p{1.0, 0.0};
+  if (n & 1) p = times(p, z1);
+  if (n & 2) p = times(p, z2);
+  if (n & 4) p = times(p, z4);
+  if (n & 8) p = times(p, z8);
+  if (n & 16) p = times(p, z16);
+  if (n & 32) p = times(p, z32);
   return p;
+}
+
+// The iris texture's constants for one frame.
+struct IrisTexture {
+  std::array<int, 6> freq{};
+  std::array<Unit, 6> phase{};  // e^{i phi_k}
+  std::array<double, 6> amp{};
+};
+
+// The texture v = 1 + sum_k a_k sin(f_k theta + phi_k + 3 rho k) at (dx, dy) from the pupil
+// centre, theta the polar angle, rho the radius over the iris's mean radius. The f_k are
+// integers (makeTexture), so e^{i f_k theta} is a power of e^{i theta} = (dx + i dy) / r and
+// e^{i 3 rho k} a power of e^{i 3 rho}: one sincos a pixel instead of an atan2 and six sines (the
+// same values to ~1e-15, far below the 8-bit output's step: 1200 frames of both domains
+// byte-identical; issue 25: the sines were most of a closed-loop run's CPU).
+// Arithmetic on its arguments only (no memory but `tex`'s fixed arrays at indices 0 ... 5), so
+// it is left out of the ASan/UBSan instrumentation, which kept its locals in guarded stack slots
+// and made it most of the ASan tree's closed-loop time (the helpers it inlines are marked too:
+// GCC puts their scope poisoning in before inlining).
+[[gnu::no_sanitize("address", "undefined")]] double irisTextureAt(const IrisTexture& tex, double dx, double dy,
+                                                                  double rho) {
+  const double r = std::sqrt(dx * dx + dy * dy);
+  const Unit z1 = r > 0 ? Unit{dx / r, dy / r} : Unit{1.0, 0.0};  // atan2(0, 0) = 0
+  const Unit z2 = times(z1, z1), z4 = times(z2, z2), z8 = times(z4, z4), z16 = times(z8, z8);
+  const Unit z32 = times(z16, z16);
+  const Unit radial{std::cos(3 * rho), std::sin(3 * rho)};
+  const int* freq = tex.freq.data();
+  const Unit* phase = tex.phase.data();
+  const double* amp = tex.amp.data();
+  Unit radial_k{1.0, 0.0};
+  double v = 1;
+  for (int k = 0; k < 6; ++k, radial_k = times(radial_k, radial))
+    v += amp[k] * times(times(unitPower(freq[k], z1, z2, z4, z8, z16, z32), phase[k]), radial_k).im;
+  return v;
 }
 
 void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Texture& t) {
@@ -213,17 +258,13 @@ void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Textu
   double mean_r = 0;
   for (const auto& p : l.iris) mean_r += std::hypot(p.x - l.pupil_centre.x, p.y - l.pupil_centre.y);
   mean_r /= static_cast<double>(l.iris.size());
-  std::array<int, 6> freq{};
-  std::array<std::complex<double>, 6> phase{};
+  const double radius = std::max(mean_r, 1.0);
+  IrisTexture tex;
   for (std::size_t k = 0; k < 6; ++k) {
-    freq[k] = static_cast<int>(t.freq[k]);
-    phase[k] = std::polar(1.0, t.phase[k]);
+    tex.freq[k] = static_cast<int>(t.freq[k]);
+    tex.phase[k] = {std::cos(t.phase[k]), std::sin(t.phase[k])};
+    tex.amp[k] = t.amp[k];
   }
-  // The texture v = 1 + sum_k a_k sin(f_k theta + phi_k + 3 rho k), theta the polar angle about
-  // the pupil centre. The f_k are integers (makeTexture), so e^{i f_k theta} is a power of
-  // e^{i theta} = (dx + i dy) / r and e^{i 3 rho k} a power of e^{i 3 rho}: one sincos a pixel
-  // instead of an atan2 and six sines (the same values to ~1e-15, far below the 8-bit output's
-  // step; issue 25: the sines were most of a closed-loop run's CPU).
   // Rows in parallel (each pixel depends on its own coordinates only: the same image whatever the
   // split).
   tbb::parallel_for(tbb::blocked_range<int>(box.y, box.y + box.height, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -233,15 +274,8 @@ void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Textu
       for (int x = box.x; x < box.x + box.width; ++x) {
         if (!m[x]) continue;
         const double dx = x - l.pupil_centre.x, dy = y - l.pupil_centre.y;
-        const double r = std::sqrt(dx * dx + dy * dy), rho = r / std::max(mean_r, 1.0);  // no overflow here
-        std::array<std::complex<double>, 7> squares{};
-        squares[0] = r > 0 ? std::complex<double>(dx / r, dy / r) : std::complex<double>(1.0, 0.0);  // atan2(0, 0) = 0
-        for (std::size_t b = 1; b < squares.size(); ++b) squares[b] = times(squares[b - 1], squares[b - 1]);
-        const std::complex<double> radial = std::polar(1.0, 3 * rho);
-        std::complex<double> radial_k{1.0, 0.0};
-        double v = 1;
-        for (std::size_t k = 0; k < 6; ++k, radial_k = times(radial_k, radial))
-          v += t.amp[k] * times(times(unitPower(squares, freq[k]), phase[k]), radial_k).imag();
+        const double rho = std::sqrt(dx * dx + dy * dy) / radius;
+        double v = irisTextureAt(tex, dx, dy, rho);
         v *= 1 - 0.35 * std::clamp((rho - 0.8) / 0.2, 0.0, 1.0);  // darker limbal ring
         const double a = m[x] / 255.0;
         row[x] = static_cast<float>((1 - a) * row[x] + a * e.iris_level * v);
