@@ -16,12 +16,12 @@
 #include <iomanip>
 #include <iostream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "app/cli/cli_common.h"
 #include "model/gaze/pupil_benchmark.h"
 #include "model/gaze/wide_eye_domain.h"
+#include "model/image/image_io.h"
 
 namespace fovea::cli {
 namespace cmd_eye_dataset {  // one per command file: fovea-cli compiles in unity batches
@@ -84,8 +84,11 @@ void install(CLI::App& app) {
       if (!a->no_png) {
         std::ostringstream name;
         name << std::setw(6) << std::setfill('0') << i << ".png";
-        if (!cv::imwrite((dir / "images" / name.str()).string(), stored))
-          inputError("--out: cannot write " + (dir / "images" / name.str()).string());
+        try {
+          image::writeCameraImage((dir / "images" / name.str()).string(), stored);
+        } catch (const image::ImageIoError& e) {
+          inputError(std::string("--out: cannot write a frame: ") + e.what());
+        }
       }
       const auto& t = f.truth;
       visible += t.pupil_visible ? 1 : 0;

@@ -1,7 +1,7 @@
 #include "devices/bench/live_bench.h"
 
 #include "devices/camera/camera_enumeration.h"
-#include "devices/camera/opencv_camera.h"
+#include "devices/camera/v4l2_camera.h"
 #include "devices/camera/virtual_camera.h"
 #include "devices/transport/libusb_transport.h"
 
@@ -27,7 +27,7 @@ LiveBench::LiveBench(const Scene& scene, LiveBenchOptions o) : clock_(o.clock) {
   std::shared_ptr<Camera> cam;
   if (!all_virtual_) {
     const auto cams = enumerateV4l2();
-    if (o.v4l2_index || !cams.empty()) cam = std::make_shared<OpenCvCamera>(o.v4l2_index.value_or(cams.front().index));
+    if (o.v4l2_index || !cams.empty()) cam = makeV4l2Camera(o.v4l2_index.value_or(cams.front().index));
   }
   if (!cam) {
     optics_ = std::make_unique<VirtualOptics>(scene, o.camera_model, benchPoseSource(*bench_));

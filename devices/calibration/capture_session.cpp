@@ -13,8 +13,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "devices/bench/bench.h"
 #include "devices/stage/stage_binding.h"
 #include "model/color/color_calibration.h"
@@ -139,11 +137,10 @@ cv::Mat CaptureSession::image(const std::string& id) const {
   if (!r || folder_.empty()) return {};
   const std::string path = (folder_ / r->image).string();
   try {
-    image::checkImageFile(path);  // regular, bounded, header <= 50 Mpixel: before OpenCV decodes
+    return image::readCameraImage(path);  // regular, bounded, header <= 50 Mpixel, then decoded
   } catch (const image::ImageIoError&) {
-    return {};  // as an unreadable file: no frame
+    return {};  // an unreadable file: no frame
   }
-  return cv::imread(path, cv::IMREAD_GRAYSCALE);
 }
 
 namespace {
@@ -235,8 +232,13 @@ const CaptureRecord& CaptureSession::capture(std::size_t index, BenchRig& rig) {
   }
   if (rig.pose) r.pose = rig.pose(c.frame.exposure_start_s);
   r.image = fileNameFor(index, step.id);
-  if (!folder_.empty() && !cv::imwrite((folder_ / r.image).string(), c.frame.image))
-    throw std::runtime_error("cannot write " + (folder_ / r.image).string());
+  if (!folder_.empty()) {
+    try {
+      image::writeCameraImage((folder_ / r.image).string(), c.frame.image);
+    } catch (const image::ImageIoError& e) {
+      throw std::runtime_error(std::string("cannot write the frame: ") + e.what());
+    }
+  }
   frames_[step.id] = c.frame.image;
   records_.push_back(r);
   save();

@@ -11,10 +11,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include "model/color/srgb.h"
+#include "model/image/image_codec.h"
 #include "model/io/output_file.h"
 
 namespace fovea::image {
@@ -53,48 +51,65 @@ void checkFile(const std::string& path) {
   if (!problem.empty()) throw ImageIoError(path + ": " + problem);
 }
 
-// The header's pixel count, before any pixel is decoded.
-void checkSpec(const std::string& path, const OIIO::ImageSpec& spec) {
-  const double pixels = static_cast<double>(spec.width) * spec.height * std::max(1, spec.depth);
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw ImageIoError(path + ": image has no pixels");
+// The header's pixel count, before any pixel is decoded ("" when acceptable).
+std::string specProblem(const ImageHeader& h) {
+  const double pixels = static_cast<double>(h.width) * h.height * std::max(1, h.depth);
+  if (h.width <= 0 || h.height <= 0 || h.channels <= 0) return "image has no pixels";
   if (pixels > kMaxImagePixels)
-    throw ImageIoError(path + ": the header declares " + std::to_string(spec.width) + " x " +
-                       std::to_string(spec.height) + " pixels, more than the limit of 50 Mpixel");
+    return "the header declares " + std::to_string(h.width) + " x " + std::to_string(h.height) +
+           " pixels, more than the limit of 50 Mpixel";
+  return {};
+}
+
+// Checks the file, then decodes its first `max_channels` channels as float (header in `h`).
+std::vector<float> decode(const std::string& path, int max_channels, ImageHeader& h) {
+  checkFile(path);
+  std::vector<float> pixels;
+  const std::string problem = imageCodec().read(path, specProblem, max_channels, true, h, pixels);
+  if (!problem.empty()) throw ImageIoError(path + ": " + problem);
+  return pixels;
+}
+
+// Encodes through the codec and, when it encoded to memory, writes by the one writer (atomic,
+// checked, fsync'ed: a failed write leaves the existing file as it was); a format without memory
+// output writes directly.
+void encode(const std::string& path, int width, int height, int channels, SampleType file_type, SampleType data_type,
+            const void* data) {
+  if (const auto why = outputPathProblem(path)) throw ImageIoError(path + ": " + *why);
+  std::vector<unsigned char> bytes;
+  bool in_memory = false;
+  const std::string problem =
+      imageCodec().write(path, width, height, channels, file_type, data_type, data, bytes, in_memory);
+  if (!problem.empty()) throw ImageIoError(path + ": " + problem);
+  if (!in_memory) return;
+  try {
+    writeOutputFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  } catch (const OutputError& e) {
+    throw ImageIoError(e.what());
+  }
 }
 
 }  // namespace
 
 void checkImageFile(const std::string& path) {
   checkFile(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ImageIoError(path + ": unsupported or unreadable image: " + OIIO::geterror());
-  checkSpec(path, in->spec());
-  in->close();
+  ImageHeader h;
+  std::vector<float> none;
+  const std::string problem = imageCodec().read(path, specProblem, 0, false, h, none);
+  if (!problem.empty()) throw ImageIoError(path + ": " + problem);
 }
 
 cv::Mat readLinearRgb(const std::string& path) {
-  checkFile(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ImageIoError(path + ": unsupported or unreadable image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  checkSpec(path, spec);
-  const int w = spec.width, h = spec.height;
-  const int nc = std::min(spec.nchannels, 3);  // RGB or grey: alpha and extra channels are not read
-  std::vector<float> pixels(static_cast<std::size_t>(w) * h * nc);
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw ImageIoError(path + ": cannot decode the image: " + in->geterror());
-  if (in->has_error()) throw ImageIoError(path + ": cannot decode the image: " + in->geterror());
-  const bool isFloat = spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
-                       spec.format.basetype == OIIO::TypeDesc::DOUBLE;
-  in->close();
-  // Lookup table for the sRGB decode of integer images.
-  cv::Mat out(h, w, CV_32FC3);
-  for (int y = 0; y < h; ++y) {
+  ImageHeader h;
+  const std::vector<float> pixels = decode(path, 3, h);  // RGB or grey: alpha and extra channels are not read
+  const int w = h.width, nc = std::min(h.channels, 3);
+  cv::Mat out(h.height, w, CV_32FC3);
+  for (int y = 0; y < h.height; ++y) {
     auto* row = out.ptr<cv::Vec3f>(y);
     for (int x = 0; x < w; ++x) {
       const float* p = &pixels[(static_cast<std::size_t>(y) * w + x) * nc];
       cv::Vec3f v = nc >= 3 ? cv::Vec3f(p[0], p[1], p[2]) : cv::Vec3f(p[0], p[0], p[0]);
-      if (!isFloat)
+      if (!h.is_float)
         for (int c = 0; c < 3; ++c) v[c] = color::srgbToLinear(v[c]);
       for (int c = 0; c < 3; ++c)
         if (!std::isfinite(v[c])) throw ImageIoError(path + ": image holds non-finite pixel values");
@@ -106,20 +121,9 @@ cv::Mat readLinearRgb(const std::string& path) {
 
 void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bit) {
   if (img.type() != CV_32FC3) throw ImageIoError(path + ": internal: expected a float RGB image");
-  if (const auto why = outputPathProblem(path)) throw ImageIoError(path + ": " + *why);
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw ImageIoError(path + ": no image format for this file name: " + OIIO::geterror());
-  // Encoded in memory, then written by the one writer (atomic, checked, fsync'ed: a failed
-  // write leaves the existing file as it was); a format without memory output writes directly.
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
   const std::string ext = std::filesystem::path(path).extension().string();
   const bool isFloat = ext == ".exr" || ext == ".EXR" || ext == ".hdr";
-  const OIIO::TypeDesc type = isFloat       ? OIIO::TypeDesc::FLOAT
-                              : sixteen_bit ? OIIO::TypeDesc::UINT16
-                                            : OIIO::TypeDesc::UINT8;
-  OIIO::ImageSpec spec(img.cols, img.rows, 3, type);
+  const SampleType type = isFloat ? SampleType::f32 : sixteen_bit ? SampleType::u16 : SampleType::u8;
   std::vector<float> data(static_cast<std::size_t>(img.cols) * img.rows * 3);
   for (int y = 0; y < img.rows; ++y) {
     const auto* row = img.ptr<cv::Vec3f>(y);
@@ -129,16 +133,33 @@ void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bi
         data[(static_cast<std::size_t>(y) * img.cols + x) * 3 + c] = isFloat ? v : color::linearToSrgb(v);
       }
   }
-  if (!out->open(path, spec)) throw ImageIoError(path + ": cannot open for writing: " + out->geterror());
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, data.data()))
-    throw ImageIoError(path + ": cannot write the image: " + out->geterror());
-  if (!out->close()) throw ImageIoError(path + ": cannot finish the file: " + out->geterror());
-  if (!in_memory) return;
-  try {
-    writeOutputFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-  } catch (const OutputError& e) {
-    throw ImageIoError(e.what());
+  encode(path, img.cols, img.rows, 3, type, SampleType::f32, data.data());
+}
+
+cv::Mat readCameraImage(const std::string& path) {
+  ImageHeader h;
+  const std::vector<float> pixels = decode(path, 3, h);
+  const int nc = std::min(h.channels, 3);
+  cv::Mat out(h.height, h.width, CV_8UC1);
+  for (int y = 0; y < h.height; ++y) {
+    auto* row = out.ptr<std::uint8_t>(y);
+    for (int x = 0; x < h.width; ++x) {
+      const float* p = &pixels[(static_cast<std::size_t>(y) * h.width + x) * nc];
+      // Colour files to grey with cv::IMREAD_GRAYSCALE's weights (ITU-R BT.601), samples as stored.
+      const double v = nc >= 3 ? 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] : p[0];
+      if (!std::isfinite(v)) throw ImageIoError(path + ": image holds non-finite pixel values");
+      row[x] = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+    }
   }
+  return out;
+}
+
+void writeCameraImage(const std::string& path, const cv::Mat& image) {
+  if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U))
+    throw ImageIoError(path + ": internal: expected a one-channel 8- or 16-bit camera image");
+  const cv::Mat dense = image.isContinuous() ? image : image.clone();
+  const SampleType type = image.depth() == CV_8U ? SampleType::u8 : SampleType::u16;
+  encode(path, image.cols, image.rows, 1, type, type, dense.data);
 }
 
 }  // namespace fovea::image

@@ -1,7 +1,8 @@
 #pragma once
 // Image files for the preview through OpenImageIO: any format it reads (PNG, JPEG, TIFF,
 // EXR, ...), converted to linear-light float RGB (the displays add light, so blending
-// happens in linear light), and written back sRGB-encoded.
+// happens in linear light), and written back sRGB-encoded; and the bench's camera frames
+// (grey, as captured). OpenImageIO is loaded on the first call (model/image/image_codec.h).
 
 #include <cstddef>
 #include <stdexcept>
@@ -24,7 +25,7 @@ inline constexpr std::size_t kMaxImageFileBytes = std::size_t{512} << 20;
 inline constexpr double kMaxImagePixels = 50e6;
 
 // The checks above on the file and its header, without decoding: throws ImageIoError
-// "PATH: problem". For readers other than readLinearRgb (cv::imread of capture folders).
+// "PATH: problem". For readers other than readLinearRgb and readCameraImage.
 void checkImageFile(const std::string& path);
 
 // CV_32FC3 (R, G, B order), linear light in [0, 1]. 8/16-bit and other integer files are
@@ -37,5 +38,12 @@ cv::Mat readLinearRgb(const std::string& path);
 // checked) when the format can write to memory (PNG, JPEG, TIFF, EXR, ...), else directly.
 // Throws ImageIoError.
 void writeLinearRgb(const std::string& path, const cv::Mat& linear_rgb, bool sixteen_bit = false);
+
+// A camera frame file as 8-bit grey (CV_8UC1): grey files as stored (16-bit ones scaled to 8),
+// colour ones by cv::IMREAD_GRAYSCALE's weights. The checks above first. Throws ImageIoError.
+cv::Mat readCameraImage(const std::string& path);
+// Writes a one-channel CV_8U or CV_16U camera frame as is (PNG, TIFF, ... by the file name),
+// through the one writer like writeLinearRgb. Throws ImageIoError.
+void writeCameraImage(const std::string& path, const cv::Mat& image);
 
 }  // namespace fovea::image

@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "devices/camera/camera_enumeration.h"
-#include "devices/camera/opencv_camera.h"
+#include "devices/camera/v4l2_camera.h"
 #include "devices/camera/virtual_camera.h"
 #include "devices/stage/stage.h"
 #include "devices/virtual/virtual_transport.h"
@@ -26,6 +26,16 @@ double measuredSquareX(const cv::Mat& img) {
   cv::Mat mask = img > 128;
   const cv::Moments m = cv::moments(mask, true);
   return m.m00 > 0 ? m.m10 / m.m00 - 3.5 : -1;  // centroid -> left edge
+}
+}  // namespace
+
+namespace {
+// Whether a shared object whose file name contains `name` is mapped into this process.
+bool mapped(const std::string& name) {
+  std::ifstream maps("/proc/self/maps");
+  for (std::string line; std::getline(maps, line);)
+    if (line.find(name) != std::string::npos) return true;
+  return false;
 }
 }  // namespace
 
@@ -127,17 +137,35 @@ class TestCameras : public QObject {
     QVERIFY(enumerateV4l2((root / "missing").string()).empty());
   }
 
-  void missingV4l2CameraFailsClearly() {
-    OpenCvCamera cam(63);
+  void v4l2ModuleIsLoadedOnlyForARealCamera() {
+    // Start-up loads no videoio (issue 25); a module that is not there is a clear error.
+    QVERIFY2(!mapped("libopencv_videoio"), "videoio loaded before any camera was made");
+    qputenv("FOVEA_V4L2_CAMERA_MODULE", "/nonexistent/libfovea_v4l2_camera.so");
     try {
-      cam.open();
+      (void)makeV4l2Camera(63);
+      QFAIL("made a camera without its module");
+    } catch (const DeviceError& e) {
+      QVERIFY(e.kind() == DeviceError::Kind::NotFound);
+      QVERIFY2(std::string(e.what()).find("cannot load the V4L2 camera module /nonexistent/libfovea_v4l2_camera.so") !=
+                   std::string::npos,
+               e.what());
+    }
+    qunsetenv("FOVEA_V4L2_CAMERA_MODULE");
+    QVERIFY(!mapped("libopencv_videoio"));
+  }
+
+  void missingV4l2CameraFailsClearly() {
+    const std::shared_ptr<Camera> cam = makeV4l2Camera(63);
+    QVERIFY(mapped("libopencv_videoio"));  // the module came with it
+    try {
+      cam->open();
       QFAIL("opened /dev/video63");
     } catch (const DeviceError& e) {
       QVERIFY(e.kind() == DeviceError::Kind::NotFound);
       QVERIFY(std::string(e.what()).find("/dev/video63") != std::string::npos);
     }
-    QVERIFY(!cam.isOpen());
-    QVERIFY_THROWS_EXCEPTION(DeviceError, cam.grab());
+    QVERIFY(!cam->isOpen());
+    QVERIFY_THROWS_EXCEPTION(DeviceError, cam->grab());
   }
 };
 

@@ -1,4 +1,4 @@
-#include "devices/camera/opencv_camera.h"
+#include "devices/camera/v4l2/opencv_camera.h"
 
 #include "devices/transport/device_error.h"
 
@@ -83,3 +83,8 @@ void OpenCvCamera::setGain(double g) {
 }
 
 }  // namespace fovea::devices
+
+// The module's one entry point (devices/camera/v4l2_camera.h).
+extern "C" fovea::devices::Camera* fovea_v4l2_camera_create(int index, const char* name) {
+  return new fovea::devices::OpenCvCamera(index, name != nullptr ? std::string(name) : std::string());
+}
