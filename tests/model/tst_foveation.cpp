@@ -55,6 +55,7 @@ class TestFoveation : public QObject {
     const double fov = 2 * std::atan(21.9 * 15.55 / 1600.0) * 180 / std::numbers::pi;
     QVERIFY(std::abs(fov - 24.03) < 0.01);
     QVERIFY(std::abs(a.foveal_fov_deg[0] - fov) < 1e-12);
+    QVERIFY(std::abs(a.foveal_fov_deg[1] - 13.66) < 0.005);  // docs/preview.md: 24.03° x 13.66°
     QVERIFY(std::abs(a.fovealCpd() - 960 / fov) < 1e-12);
     QVERIFY(std::abs(a.peripheralCpd() - 640 / 40.0) < 1e-12);
   }
