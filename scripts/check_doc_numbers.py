@@ -16,10 +16,10 @@ a string such as a lens part, which --static matches as one word);
                                      the numbers: the full run is that release step, docs/platform.md)
 
 CTest runs --static as docs.numbers_manifest and `--run -k RE` on a fast subset (trace, exact
-sweeps, selectivity, blend-profile, resolution at zero gaze, optimize-lens, calibrate, one
-compare-shift; ~15 s) as docs.numbers_run_fast (tests/CMakeLists.txt holds the regex). The slow
-commands (tolerance, closed loop, pupil benchmarks, fits, dense sweeps, the other eye-box runs)
-run only in the full --run.
+sweeps, selectivity, blend-profile, resolution at zero gaze, optimize-lens, one compare-shift;
+10-20 s) as docs.numbers_run_fast (tests/CMakeLists.txt holds the regex). The slow commands
+(tolerance, closed loop, calibrate, pupil benchmarks, fits, dense sweeps, the other eye-box
+runs) run only in the full --run.
 
 Exit code 0 when everything holds, 1 when something does not (each failure printed), 2 for a
 malformed manifest.
