@@ -61,7 +61,7 @@ class TestAngularResolution : public QObject {
     QVERIFY(std::abs(mid.eccentricity_deg) < 1e-9);
     QVERIFY(mid.foveal_cpd.has_value());
     QVERIFY(std::abs(*mid.foveal_cpd - expected) < 1e-9);
-    // Field of the micro-OLED image: +-atan(M w / 2 / d_f) = +-11.9 deg.
+    // Field of the micro-OLED image: +-atan(M w / 2 / d_f) = +-12.0 deg.
     const double half = std::atan(21.9 * 15.55 / 2 / 800.0) / kDeg;
     QVERIFY(std::abs(r.foveal_field_deg[1] - half) < 1e-9 && std::abs(r.foveal_field_deg[0] + half) < 1e-9);
     QCOMPARE(*mid.optical_limit_model_cpd, 60.0);

@@ -221,6 +221,14 @@ class TestFit : public QObject {
       QVERIFY2(std::abs(p.fitted - truth[j].second) < *p.uncertainty, p.parameter.path.c_str());
     }
     QVERIFY(f.warnings.empty());
+    // docs/fitting.md prints chi2 3120 in 91 evaluations and the uncertainties +-0.031 mm, +-7e-5,
+    // +-5e-5, +-2.5 um: held to those digits (the final chi2, ~3e-9, is rounding noise: not held).
+    QCOMPARE(f.evaluations, 91);
+    QVERIFY2(std::abs(f.chi2_initial - 3120) < 5, qPrintable(QString::number(f.chi2_initial)));
+    const double printed[] = {0.031, 7e-5, 5e-5, 2.5}, half_digit[] = {5e-4, 5e-6, 5e-6, 0.05};
+    for (std::size_t j = 0; j < truth.size(); ++j)
+      QVERIFY2(std::abs(*f.parameters[j].uncertainty - printed[j]) < half_digit[j],
+               qPrintable(QString::number(*f.parameters[j].uncertainty, 'g', 6)));
     QCOMPARE(parameterValue(f.fitted_scene, "hoe.size_mm[1]"), f.parameters[0].fitted);
     const nlohmann::json j = fitResultJson(f, o);
     QCOMPARE(j["parameters"].size(), std::size_t(4));

@@ -51,6 +51,18 @@ class TestFocusStage : public QObject {
         t.sensitivity_near_d_per_mm, t.sensitivity_far_d_per_mm);
     QVERIFY(std::abs(t.range_d - (1000.0 / 300 - 1000.0 / 2500)) < 1e-12);
     QVERIFY(t.travel_mm > 0 && t.travel_mm < 25);
+    // docs/gaze-tracking.md's focus-stage table, held to its digits: f 36.84 mm; panel at
+    // 32.419 / 35.160 / 36.301 mm for 30 / 80 / 250 cm; 0.771 / 0.741 D/mm; 3.88 mm for 2.93 D.
+    const double u80 = panelForImageDistance(m, 800);
+    qInfo("panel for 80 cm: %.4f mm", u80);
+    QVERIFY(std::abs(m.focal_length_mm - 36.84) < 5e-3);
+    QVERIFY(std::abs(t.panel_near_mm - 32.419) < 5e-4);
+    QVERIFY(std::abs(u80 - 35.160) < 5e-4);
+    QVERIFY(std::abs(t.panel_far_mm - 36.301) < 5e-4);
+    QVERIFY(std::abs(std::abs(t.sensitivity_near_d_per_mm) - 0.771) < 5e-4);
+    QVERIFY(std::abs(std::abs(t.sensitivity_far_d_per_mm) - 0.741) < 5e-4);
+    QVERIFY(std::abs(t.travel_mm - 3.88) < 5e-3);
+    QVERIFY(std::abs(t.range_d - 2.93) < 5e-3);
     // Average sensitivity is the range over the travel.
     QVERIFY(t.range_d / t.travel_mm > std::min(t.sensitivity_near_d_per_mm, t.sensitivity_far_d_per_mm) * 0.999);
     QVERIFY(t.range_d / t.travel_mm < std::max(t.sensitivity_near_d_per_mm, t.sensitivity_far_d_per_mm) * 1.001);
@@ -82,6 +94,12 @@ class TestFocusStage : public QObject {
       QVERIFY(worst_thin < 1e-4);
       QVERIFY(worst_full < 0.01);
       QVERIFY(worst_marginal < 0.05);
+      if (s.name == scene_.name) {
+        // docs/gaze-tracking.md prints 6.6e-6, 0.0083 and 0.017 D for the prototype: held to those digits.
+        QVERIFY(std::abs(worst_thin - 6.6e-6) < 5e-8);
+        QVERIFY(std::abs(worst_full - 0.0083) < 5e-5);
+        QVERIFY(std::abs(worst_marginal - 0.017) < 5e-4);
+      }
     }
   }
 };

@@ -55,6 +55,7 @@ class TestFoveation : public QObject {
     const double fov = 2 * std::atan(21.9 * 15.55 / 1600.0) * 180 / std::numbers::pi;
     QVERIFY(std::abs(fov - 24.03) < 0.01);
     QVERIFY(std::abs(a.foveal_fov_deg[0] - fov) < 1e-12);
+    QVERIFY(std::abs(a.foveal_fov_deg[1] - 13.66) < 0.005);  // docs/preview.md: 24.03° x 13.66°
     QVERIFY(std::abs(a.fovealCpd() - 960 / fov) < 1e-12);
     QVERIFY(std::abs(a.peripheralCpd() - 640 / 40.0) < 1e-12);
   }
@@ -167,6 +168,9 @@ class TestFoveation : public QObject {
           hs.mean_flip, hs.p95_flip, ss.pixels);
     QVERIFY(ss.pixels > 1000);
     QVERIFY(ss.mean_flip < hs.mean_flip);
+    // docs/preview.md prints 0.028 blended against 0.036 for the hard switch: held to those digits.
+    QVERIFY2(std::abs(ss.mean_flip - 0.028) < 5e-4, qPrintable(QString::number(ss.mean_flip, 'g', 6)));
+    QVERIFY2(std::abs(hs.mean_flip - 0.036) < 5e-4, qPrintable(QString::number(hs.mean_flip, 'g', 6)));
   }
 
   void imageFiles() {

@@ -51,6 +51,11 @@ class TestRetinalPsf : public QObject {
     QVERIFY(relaxed.power_d > 58 && relaxed.power_d < 62);  // Navarro 1985: 60.4 D
     QVERIFY(relaxed.entrance_pupil_mm > 2.8 && relaxed.entrance_pupil_mm < 3.3);
     QVERIFY(relaxed.axial_length_mm > 23.8 && relaxed.axial_length_mm < 24.2);
+    // docs/physics.md prints 60.39 D, 3.042 mm, 24.012 mm and 16.558 mm/rad: held to those digits.
+    QVERIFY(std::abs(relaxed.power_d - 60.39) < 5e-3);
+    QVERIFY(std::abs(relaxed.entrance_pupil_mm - 3.042) < 5e-4);
+    QVERIFY(std::abs(relaxed.axial_length_mm - 24.012) < 5e-4);
+    QVERIFY(std::abs(relaxed.retina_mm_per_rad - 16.558) < 5e-4);
     QCOMPARE(relaxed.pupil_to_retina.A + 1.0, 1.0);  // emmetropic by construction
     for (double d : {0.4, 1.25, 2.0, 3.3, 4.0}) {
       const SchematicEyeState e = navarroEye(d);
@@ -62,6 +67,7 @@ class TestRetinalPsf : public QObject {
     // Chromatic difference of refraction 460..660 nm (Thibos 1992: ~1.2 D).
     const double lca = chromaticRefractionD(660) - chromaticRefractionD(460);
     QVERIFY(lca > 1.1 && lca < 1.4);
+    QVERIFY(std::abs(lca - 1.2) < 0.05);  // docs/physics.md: Rx(660) - Rx(460) = 1.2 D
   }
 
   void airyFirstZeroAndFwhmInFocus() {
@@ -73,6 +79,9 @@ class TestRetinalPsf : public QObject {
       qInfo("%g nm: first zero %.4f lambda/D (1.2197), FWHM %.4f lambda/D (1.0290)", wl, zero / unit, fwhm / unit);
       QVERIFY(std::abs(zero / (1.2197 * unit) - 1) < 0.01);
       QVERIFY(std::abs(fwhm / (1.0290 * unit) - 1) < 0.01);
+      // docs/physics.md prints 1.2230 and 1.0300 lambda/D: held to those digits.
+      QVERIFY(std::abs(zero / unit - 1.2230) < 5e-5);
+      QVERIFY(std::abs(fwhm / unit - 1.0300) < 5e-5);
     }
   }
 
@@ -92,6 +101,9 @@ class TestRetinalPsf : public QObject {
           dd, dd * 1e-3 * 6.25 / 2 / 550e-6, ee80, std::sqrt(0.8) * radius, 100 * err, ee50,
           std::sqrt(0.5) * 2 * radius);
       if (dd >= 4.0) QVERIFY(std::abs(err) < 0.03);
+      // docs/physics.md prints -4.4, -3.0, -1.4 and -0.5 %: held to those digits.
+      const double printed = dd == 1.0 ? -4.4 : dd == 2.0 ? -3.0 : dd == 4.0 ? -1.4 : -0.5;
+      QVERIFY(std::abs(100 * err - printed) < 0.05);
       QVERIFY(std::abs(err) <= last_error + 1e-3);
       last_error = std::abs(err);
     }
@@ -176,6 +188,9 @@ class TestRetinalPsf : public QObject {
       const double c = image::speckleContrast(f);
       qInfo("speckle N=%d: contrast %.4f vs %.4f", n, c, 1 / std::sqrt(n));
       QVERIFY(std::abs(c * std::sqrt(n) - 1) < 0.05);
+      // docs/physics.md prints 1.0006, 0.5768, 0.4458, 0.2588: held to those digits.
+      const double printed = n == 1 ? 1.0006 : n == 3 ? 0.5768 : n == 5 ? 0.4458 : 0.2588;
+      QVERIFY2(std::abs(c - printed) < 5e-5, qPrintable(QString::number(c, 'g', 6)));
     }
   }
 
