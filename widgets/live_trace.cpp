@@ -10,6 +10,7 @@
 #include "model/analysis/hoe_travel.h"
 #include "model/analysis/trace_fov.h"
 #include "model/physics/projector_rays.h"
+#include "model/vector_state.h"
 
 namespace fovea::widgets {
 
@@ -160,6 +161,7 @@ bool LiveTrace::waitForIdle(int timeout_ms) {
 }
 
 std::shared_ptr<LiveTraceResult> LiveTrace::run(const Job& job, Cache& cache, const std::atomic<quint64>& newest) {
+  clearUpperVectorState();  // a pool thread that ran Qt code (model/vector_state.h)
   QElapsedTimer timer;
   timer.start();
   const bool coarse = job.detail == TraceDetail::Coarse;

@@ -24,6 +24,7 @@
 #include "model/image/retina_image.h"
 #include "model/image/test_target.h"
 #include "model/scene/scene_compare.h"
+#include "model/vector_state.h"
 #include "widgets/dialog_start.h"
 #include "widgets/scene_document.h"
 
@@ -68,6 +69,7 @@ class PreviewWorker : public QObject {
   explicit PreviewWorker(PreviewPanel* panel) : panel_(panel) {}
 
   void configure(const Scene& scene, bool blend) {
+    clearUpperVectorState();  // queued calls run Qt code on this thread (model/vector_state.h)
     scene_ = scene;
     compositor_ = std::make_unique<image::FoveatedCompositor>(scene, blend);
     if (target_.empty()) {
@@ -128,6 +130,7 @@ class PreviewWorker : public QObject {
 
   void render(std::array<double, 2> gaze, bool seam, int generation, std::optional<double> accommodation_d,
               bool blend) {
+    clearUpperVectorState();
     PreviewFrame f;
     f.generation = generation;
     f.error = error_;

@@ -25,6 +25,7 @@
 #include "app/studio/main_window.h"
 #include "app/studio/report_document.h"
 #include "model/scene/scene_io.h"
+#include "model/vector_state.h"
 #include "widgets/analyses/analyses_panel.h"
 #include "widgets/autosave.h"
 #include "widgets/dialog_start.h"
@@ -244,6 +245,7 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   std::optional<ReportData> data;
   QString failure;
   QThread* worker = QThread::create([&, cancel, permille] {
+    clearUpperVectorState();  // inherited from the GUI thread (model/vector_state.h)
     StudyControl c;
     c.cancel = cancel.get();
     c.on_progress = [permille](double f) { permille->store(static_cast<int>(f * 1000)); };

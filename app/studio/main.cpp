@@ -24,6 +24,7 @@
 #include "app/studio/report_mode.h"
 #include "app/studio/window_capture.h"
 #include "fovea/version.h"
+#include "model/vector_state.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/software_gl.h"
@@ -50,6 +51,10 @@ int main(int argc, char** argv) {
   // VTK's OpenGL2 backend needs a 3.2+ core profile, set before the QApplication exists.
   fovea::viz::installDefaultSurfaceFormat();
   QApplication app(argc, argv);
+  // Qt leaves the GUI thread's upper AVX state dirty; threads started from it inherit it
+  // (model/vector_state.h).
+  fovea::clearUpperVectorState();
+  fovea::clearUpperVectorStateOnTbbThreads();
   QApplication::setOrganizationName("FoveatedARStudio");
   QApplication::setApplicationName("fovea-studio");
   QApplication::setApplicationVersion(FOVEA_VERSION_STRING);

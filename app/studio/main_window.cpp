@@ -24,6 +24,7 @@
 #include "app/studio/undo_shortcuts.h"
 #include "app/studio/window_capture.h"
 #include "model/scene/scene_io.h"
+#include "model/vector_state.h"
 #include "viz/scene_view.h"
 #include "widgets/bench/devices_panel.h"
 #include "widgets/dialog_start.h"
@@ -53,6 +54,10 @@ const char* kSceneFilter = "Scene files (*.json);;All files (*)";
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   initStudioResources();
+  // TBB workers start from the GUI thread's dirty AVX state: cleared as each joins
+  // (model/vector_state.h; also for the GUI tests, which make windows without main()).
+  clearUpperVectorState();
+  clearUpperVectorStateOnTbbThreads();
   // Before any field exists: the wheel changes a spin box, combo or slider of any dock or
   // dialog only while it has the focus (widgets/wheel_guard.h).
   widgets::installWheelGuard();

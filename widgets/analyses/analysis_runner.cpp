@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "model/scene/scene_io.h"
+#include "model/vector_state.h"
 
 namespace fovea::widgets {
 
@@ -37,6 +38,7 @@ bool AnalysisRunner::start(const QString& id, const Scene& scene, const Analysis
                                                  const StudyControl& c) { return runAnalysis(a, s, p, c); });
 
   worker_ = QThread::create([this, generation, cancelFlag, lastPermille, base, snapshot, evaluate]() mutable {
+    clearUpperVectorState();  // inherited from the GUI thread (model/vector_state.h)
     QElapsedTimer clock;
     clock.start();
     StudyControl control;
