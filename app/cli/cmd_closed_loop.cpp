@@ -298,6 +298,9 @@ void install(CLI::App& app) {
       bo.seed_right = a->seed;
       bo.seed_left = a->seed + 1000003u;
       const auto fixations = fixationsFrom(a->fixations, a->seed);
+      if (scene.binocular && scene.binocular->left)
+        std::cerr << "closed-loop: binocular mode \"explicit\": the loop's left eye runs on the mirror image of the "
+                     "scene's (right) train, not on the file's left train\n";
       devices::BinocularResult br;
       try {
         // The loop mirrors the scene's (right) train itself: it gets the right eye's scene.

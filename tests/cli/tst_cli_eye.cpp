@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "model/image/image_io.h"
+#include "model/scene/eye_scene.h"
+#include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
@@ -356,6 +358,33 @@ class TestCliEye : public QObject {
     const auto r = cliText({"validate", QString::fromStdString(bad.string())});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.out.contains("bad-ipd.json: binocular.ipd_mm: must be in [40, 90], got 120"), qPrintable(r.out));
+  }
+
+  void explicitLeftTrainValidatesAndTraces() {
+    // Binocular mode "explicit": a left train written out equal to the mirror validates and
+    // gives mode mirror's numbers for both eyes; a malformed left train is refused by name.
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    const auto loaded = fovea::loadSceneFile(kBino.toStdString());
+    QVERIFY(loaded.ok());
+    const fovea::Scene expl = fovea::explicitBinocularScene(*loaded.scene);
+    const QString path = writeText(dir / "explicit.json", fovea::serializeScene(expl));
+    const auto ok = cliText({"validate", path});
+    QVERIFY2(ok.code == 0, qPrintable(ok.out + ok.err));
+    QVERIFY2(ok.out.contains("binocular (explicit, IPD 63 mm)"), qPrintable(ok.out));
+    const QStringList common{"--gaze-deg", "-12,4", "--rays", "1500", "--json"};
+    const auto a = cliText(QStringList{"trace", kBino} + common);
+    const auto b = cliText(QStringList{"trace", path} + common);
+    QVERIFY2(a.code == 0 && b.code == 0, qPrintable(a.err + b.err));
+    QCOMPARE(b.j(), a.j());  // both eyes, every number
+    QVERIFY(b.j()["eyes"]["left"] != b.j()["eyes"]["right"]);
+    fovea::Scene bad = expl;
+    bad.binocular->left->hoe.size_mm[1] = std::nan("");
+    const QString badPath = writeText(dir / "explicit-bad.json", fovea::serializeScene(bad));
+    const auto r = cliText({"validate", badPath});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.out.contains("explicit-bad.json: binocular.left.hoe.size_mm[1]: must be a number, got null"),
+             qPrintable(r.out));
+    QCOMPARE(cliText(QStringList{"trace", badPath} + common).code, 1);
   }
 
   void closedLoopTakesTheScenesIpd() {
