@@ -164,11 +164,13 @@ void install(CLI::App& app) {
       usageError("--shard: a shard runs one eye of a binocular scene: give --eye left or right");
     if (runs.size() != 1 && !a->slurm_dir.empty())
       usageError("--slurm: a job runs one eye of a binocular scene: give --eye left or right");
-    for (const EyeRun& run : runs) try {
+    for (const EyeRun& run : runs) {
+      try {
         checkToleranceSpecPaths(spec, run.scene, a->spec);
       } catch (const std::invalid_argument& e) {
         inputError(eyePrefix(run) + e.what());
       }
+    }
     if (!a->slurm_dir.empty()) {
       if (!a->shard.empty()) usageError("--shard and --slurm exclude each other (each array task runs a shard)");
       SlurmJob job;
