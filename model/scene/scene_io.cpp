@@ -539,8 +539,11 @@ template <class T>
 ojson writeElements(const ojson& unknown, const std::string& key, const FieldTable<T>& table,
                     const std::vector<T>& list, const std::string& parent_pointer = "") {
   ojson out = ojson::array();
-  for (std::size_t i = 0; i < list.size(); ++i)
-    out.push_back(writeElement(unknown, parent_pointer + "/" + key + "/" + std::to_string(i), table, list[i]));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    std::string pointer = parent_pointer;
+    pointer.append("/").append(key).append("/").append(std::to_string(i));
+    out.push_back(writeElement(unknown, pointer, table, list[i]));
+  }
   return out;
 }
 
