@@ -17,6 +17,7 @@
 #include "model/analysis/analysis_json.h"
 #include "model/image/image_io.h"
 #include "model/image/retina_image.h"
+#include "model/io/save_temporaries.h"
 
 namespace fovea::cli {
 namespace cmd_retina_image {  // one per command file: fovea-cli compiles in unity batches
