@@ -94,6 +94,7 @@ void install(CLI::App& app) {
           "--write-scene: the fitted numbers of a binocular scene are written for the scene's own (right) train: "
           "give --eye right (the left train is its mirror image)");
     std::vector<nlohmann::json> docs;
+    docs.reserve(runs.size());
     for (const EyeRun& run : runs) docs.push_back(runStudy(def, run.scene, values));
     if (!a->write_scene.empty()) {
       try {
