@@ -8,11 +8,12 @@
 // latency added before the command (the same tracked frames).
 //
 // fovea-cli closed-loop SCENE --binocular --fixations FILE|N [--ipd MM] [--seed S]
-//                         [--stage-model M] [--focus-stage-model M] [--fps F] [--json]
+//                         [--stage-model M] [--focus-stage-model M] [--fps F]
+//                         [--detector classical|learned|auto] [--json]
 // The binocular loop with focus (devices/bench/binocular_loop.h): both eyes (the left one on
-// the mirrored train) fixate points in depth and direction; vergence from both trackers drives
-// the focus stages. FILE: {"fixations": [{"distance_cm", "direction_deg": [yaw, pitch] or yaw,
-// "hold_ms"}]}; N: that many random fixations (30-250 cm) drawn with the seed.
+// the mirrored train) fixate points in depth and direction; vergence from both trackers (each
+// calibrated and tracking with --detector) drives the focus stages. FILE: {"fixations": [{"distance_cm",
+// "direction_deg": [yaw, pitch] or yaw, "hold_ms"}]}; N: that many random fixations (30-250 cm) drawn with the seed.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -270,8 +271,6 @@ void install(CLI::App& app) {
   cmd->callback([a, ipd_option] {
     const auto kind = gaze::parseDetectorKind(a->detector);
     if (!kind) usageError("--detector: '" + a->detector + "' is not one of " + gaze::kDetectorChoices);
-    if (a->binocular && *kind != gaze::PupilDetectorKind::Classical)
-      usageError("closed-loop: --detector is not available with --binocular (classical only)");
     if (*kind != gaze::PupilDetectorKind::Classical) {
       try {
         gaze::requireLearnedModel();
@@ -287,6 +286,7 @@ void install(CLI::App& app) {
     if (a->binocular) {
       devices::BinocularOptions bo;
       bo.loop.camera_fps = a->fps;
+      bo.loop.detector = *kind;  // both eye trackers (and their calibrations)
       if (bo.loop.exposure_s + bo.loop.readout_s > 1.0 / bo.loop.camera_fps)
         bo.loop.exposure_s = 0.5 / bo.loop.camera_fps, bo.loop.readout_s = 0.4 / bo.loop.camera_fps;
       if (!a->stage_model.empty()) bo.loop.stage_model = a->stage_model;
@@ -298,6 +298,9 @@ void install(CLI::App& app) {
       bo.seed_right = a->seed;
       bo.seed_left = a->seed + 1000003u;
       const auto fixations = fixationsFrom(a->fixations, a->seed);
+      if (scene.binocular && scene.binocular->left)
+        std::cerr << "closed-loop: binocular mode \"explicit\": the loop's left eye runs on the mirror image of the "
+                     "scene's (right) train, not on the file's left train\n";
       devices::BinocularResult br;
       try {
         // The loop mirrors the scene's (right) train itself: it gets the right eye's scene.
@@ -310,6 +313,7 @@ void install(CLI::App& app) {
       out["scene"] = scene.name;
       out["seed"] = a->seed;
       out["binocular"] = true;
+      out["detector"] = gaze::detectorName(*kind);
       out["camera"] = {{"fps", bo.loop.camera_fps}, {"exposure_ms", bo.loop.exposure_s * 1000}};
       if (a->json) {
         printJson(out);

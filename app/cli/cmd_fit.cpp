@@ -3,12 +3,15 @@
 //   [--write-scene OUT.json] --json: fits scene numbers to target observables (docs/fitting.md).
 // The options are those of the registry's "fit" analysis (model/analysis/fit_analysis.cpp),
 // written by hand because --free takes several values (each may also hold several specs
-// separated by spaces, as the studio's "Copy CLI" writes them).
+// separated by spaces, as the studio's "Copy CLI" writes them). --eye left|right|both: each eye
+// of a binocular scene (app/cli/eye_option.h); --write-scene only with --eye right (the fitted
+// numbers are the scene's own train; the left train is its mirror image).
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/eye_option.h"
 #include "app/cli/study_cli.h"
 #include "model/analysis/fit_analysis.h"
 #include "model/io/save_temporaries.h"
@@ -71,7 +74,8 @@ void install(CLI::App& app) {
   cmd->add_option("--max-evals", a->max_evals, def.parameter("max-evals")->help);
   auto* write_scene = cmd->add_option("--write-scene", a->write_scene, "write the fitted scene to this file");
   cmd->add_flag("--json", a->json, "print the fit document (JSON)");
-  cmd->callback([a, &def, write_scene] {
+  const auto eye = addEyeOption(cmd);
+  cmd->callback([a, &def, write_scene, eye] {
     std::string free;
     for (const auto& f : a->free) free += (free.empty() ? "" : " ") + f;
     nlohmann::json values{
@@ -83,19 +87,28 @@ void install(CLI::App& app) {
         {"max-evals", a->max_evals}};
     for (const auto& p : analysis::validateValues(def, values)) usageError(p.text("--"));
     const Scene scene = loadSceneOrExit(a->scene);
+    const std::vector<EyeRun> runs = eyeRuns(scene, *eye, a->scene);
     checkOutputOption(write_scene, a->write_scene);
-    const nlohmann::json out = runStudy(def, scene, values);
+    if (!a->write_scene.empty() && (runs.size() != 1 || runs.front().side == EyeSide::Left))
+      usageError(
+          "--write-scene: the fitted numbers of a binocular scene are written for the scene's own (right) train: "
+          "give --eye right (the left train is its mirror image)");
+    std::vector<nlohmann::json> docs;
+    docs.reserve(runs.size());
+    for (const EyeRun& run : runs) docs.push_back(runStudy(def, run.scene, values));
     if (!a->write_scene.empty()) {
       try {
-        saveSceneFileAtomic(analysis::sceneWithFittedValues(scene, out), a->write_scene);
+        // The right eye's paths are the scene's own: its block is kept.
+        saveSceneFileAtomic(analysis::sceneWithFittedValues(scene, docs.front()), a->write_scene);
       } catch (const std::exception& e) {
         inputError("--write-scene: " + std::string(e.what()));
       }
     }
-    if (a->json)
-      printJson(out);
-    else
-      printTable(out);
+    if (a->json) return printJson(combineEyeDocuments(runs, docs));
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (runs[i].side) std::cout << eyePrefix(runs[i]) << "\n";
+      printTable(docs[i]);
+    }
   });
 }
 

@@ -1,8 +1,11 @@
 // fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--follow-gaze]
-//                 [--tolerance-trials N [--tolerance-spec FILE]] [--json]
+//                 [--tolerance-trials N [--tolerance-spec FILE]] [--eye left|right|both] [--json]
 // The design report of a scene: title page with the scene summary, 3-D views, the bench at
 // each gaze, retina maps, the analyses' plots and key numbers, and with --tolerance-trials the
-// Tolerance section (app/studio/report_document.h, report_tolerance.h).
+// Tolerance section (app/studio/report_document.h, report_tolerance.h). A binocular scene: the
+// report of one eye (--eye left|right: the manifest's "eye"), or by default (--eye both) the right
+// eye's with a "Both eyes" section and the manifest's "eyes": {"left": {"gazes": [...]},
+// "right": {...}}, each eye's FOV, efficiency and x_p per chosen gaze (app/studio/report_data.h).
 //
 // Why this command drives `fovea-studio --report` instead of linking the GUI: the report's
 // 3-D figures need VTK's OpenGL rendering inside a Qt window, i.e. an X display (Xvfb when
@@ -25,6 +28,7 @@
 #include <memory>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/eye_option.h"
 #include "model/io/json_input.h"
 #include "model/io/save_temporaries.h"
 
@@ -124,7 +128,8 @@ void install(CLI::App& app) {
   cmd->add_flag("--json", a->json,
                 "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\",\"gaze_figures\","
                 "\"sections\"}");
-  cmd->callback([a] {
+  const auto eye = addEyeOption(cmd);
+  cmd->callback([a, eye] {
     const std::string ext = lower(std::filesystem::path(a->out).extension().string());
     if (ext != ".pdf" && ext != ".html" && ext != ".htm") usageError("--out: the file must end in .pdf or .html");
     if (auto why = cannotWriteFile(a->out)) usageError("--out: cannot write '" + a->out + "': " + *why);
@@ -135,7 +140,8 @@ void install(CLI::App& app) {
     }
     if (!a->tolerance_spec.empty() && a->tolerance_trials == 0)
       usageError("--tolerance-spec needs --tolerance-trials N");
-    loadSceneOrExit(a->scene);  // exit 1 with every problem before starting the studio
+    // Exit 1 with every problem before starting the studio; --eye on a monocular scene: exit 2.
+    eyeRuns(loadSceneOrExit(a->scene), *eye, a->scene);
 
     const std::string studio = findStudio();
     if (studio.empty())
@@ -156,6 +162,7 @@ void install(CLI::App& app) {
     argv.push_back("--rays");
     argv.push_back(std::to_string(a->rays));
     if (a->follow_gaze) argv.push_back("--follow-gaze");
+    if (!eye->empty()) argv.push_back("--report-eye=" + *eye);
     if (a->tolerance_trials > 0) {
       argv.push_back("--report-tolerance");
       argv.push_back(std::to_string(a->tolerance_trials));

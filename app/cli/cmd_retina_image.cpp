@@ -3,19 +3,87 @@
 // Issue 29: the image on both displays -> the retinal image in visual angle (linear RGB,
 // written sRGB-encoded), with the line-of-sight spot and resolution of each display
 // (model/image/retina_image.h, model/analysis/retinal_psf.h; docs/physics.md section 6).
+// --eye left|right|both: each eye of a binocular scene (app/cli/eye_option.h); with both eyes the
+// right eye's image is written to OUT and the left eye's next to it, OUT's name with "-left"
+// before the extension; each eye's document names its file in "image_out".
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/eye_option.h"
 #include "model/analysis/analysis_json.h"
 #include "model/image/image_io.h"
 #include "model/image/retina_image.h"
+#include "model/io/save_temporaries.h"
 
 namespace fovea::cli {
 namespace cmd_retina_image {  // one per command file: fovea-cli compiles in unity batches
 namespace {
+
+// Renders one eye (or the monocular scene), writes its image to `file`; the JSON document.
+nlohmann::json renderOne(const EyeRun& run, const std::string& file, const cv::Mat& target,
+                         const image::RetinaImageOptions& o, bool json) {
+  const auto t0 = std::chrono::steady_clock::now();
+  image::RetinaImageResult r;
+  try {
+    r = image::renderRetinaImage(run.scene, target, o);
+  } catch (const std::invalid_argument& e) {
+    inputError(e.what());
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  try {
+    image::writeLinearRgb(file, r.image);
+  } catch (const image::ImageIoError& e) {
+    inputError(e.what());
+  }
+  nlohmann::json j;
+  const bool have_p = !r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid;
+  j["peripheral"] = have_p ? spotMetricsJson(r.peripheral[r.peripheral_reference].metrics) : nlohmann::json(nullptr);
+  j["foveal"] = r.foveal.empty() ? nlohmann::json(nullptr) : spotMetricsJson(r.foveal[r.foveal_reference].metrics);
+  j["speckle_contrast"] = r.speckle_contrast ? nlohmann::json(*r.speckle_contrast) : nlohmann::json(nullptr);
+  j["power_in_pupil"] = r.power_in_pupil;
+  j["power_on_retina"] = r.power_on_retina;
+  j["accommodation_d"] = o.accommodation_d;
+  j["gaze_deg"] = {o.gaze_deg[0], o.gaze_deg[1]};
+  // Additions.
+  j["hoe_shift_mm"] = {o.hoe_shift_mm[0], o.hoe_shift_mm[1]};
+  j["speckle_expected"] = r.speckle_expected ? nlohmann::json(*r.speckle_expected) : nlohmann::json(nullptr);
+  j["speckle_patterns"] = o.speckle_patterns;
+  j["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
+  j["power_off_canvas"] = r.power_off_canvas;
+  j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
+  nlohmann::json per = nlohmann::json::array();
+  for (const auto& p : r.peripheral) per.push_back(peripheralSpotJson(p));
+  j["peripheral_per_wavelength"] = per;
+  nlohmann::json fov = nlohmann::json::array();
+  for (const auto& f : r.foveal) fov.push_back(fovealSpotJson(f));
+  j["foveal_per_primary"] = fov;
+  j["rays_in_pupil"] = r.rays_in_pupil;
+  j["pixels_per_degree"] = r.pixels_per_degree;
+  j["size"] = {r.image.cols, r.image.rows};
+  j["render_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  if (run.side) j["image_out"] = file;
+  if (json) return j;
+  std::ostringstream os;
+  os << eyePrefix(run) << "retinal image " << file << " (" << r.image.cols << "x" << r.image.rows << "), accommodation "
+     << o.accommodation_d << " D\n";
+  if (have_p) {
+    const auto& m = r.peripheral[r.peripheral_reference].metrics;
+    os << "peripheral: spot " << m.fwhm_arcmin << " arcmin, MTF50 " << m.mtf50_cpd << " cpd, MTF10 " << m.mtf10_cpd
+       << " cpd\n";
+  }
+  if (!r.foveal.empty()) {
+    const auto& m = r.foveal[r.foveal_reference].metrics;
+    os << "foveal: spot " << m.fwhm_arcmin << " arcmin, MTF50 " << m.mtf50_cpd << " cpd, MTF10 " << m.mtf10_cpd
+       << " cpd\n";
+  }
+  os << "power in pupil " << r.power_in_pupil << ", on retina " << r.power_on_retina << "\n";
+  printText(os.str());
+  return j;
+}
 
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("retina-image",
@@ -38,7 +106,8 @@ void install(CLI::App& app) {
   cmd->add_option("--rays", a->rays, "traced rays per laser (default 20000)");
   cmd->add_flag("--no-blend", a->noBlend, "hard switch at eps_o instead of the B.2.3 blend");
   cmd->add_flag("--json", a->json, "print the JSON result");
-  cmd->callback([a, out] {
+  const auto eye = addEyeOption(cmd);
+  cmd->callback([a, out, eye] {
     checkOutputOption(out, a->out);
     image::RetinaImageOptions o;
     const auto g = parseNumberList(a->gaze, "--gaze-deg", 1, 2);
@@ -61,71 +130,24 @@ void install(CLI::App& app) {
       usageError("--rays: a whole number within 100..1000000, got '" + a->rays + "'");
     o.rays = static_cast<int>(rays);
     o.blend = !a->noBlend;
-    const Scene scene = loadSceneOrExit(a->scene);
+    const std::vector<EyeRun> runs = eyeRuns(loadSceneOrExit(a->scene), *eye, a->scene);
     cv::Mat target;
     try {
       target = image::readLinearRgb(a->image);
     } catch (const image::ImageIoError& e) {
       inputError(e.what());
     }
-    const auto t0 = std::chrono::steady_clock::now();
-    image::RetinaImageResult r;
-    try {
-      r = image::renderRetinaImage(scene, target, o);
-    } catch (const std::invalid_argument& e) {
-      inputError(e.what());
+    std::vector<nlohmann::json> docs;
+    for (const EyeRun& run : runs) {
+      std::string file = a->out;
+      if (runs.size() > 1 && run.side == EyeSide::Left) {
+        const std::filesystem::path p(a->out);
+        file = (p.parent_path() / (p.stem().string() + "-left" + p.extension().string())).string();
+        if (auto why = cannotWriteFile(file)) usageError("--out: cannot write the left eye's '" + file + "': " + *why);
+      }
+      docs.push_back(renderOne(run, file, target, o, a->json));
     }
-    const auto t1 = std::chrono::steady_clock::now();
-    try {
-      image::writeLinearRgb(a->out, r.image);
-    } catch (const image::ImageIoError& e) {
-      inputError(e.what());
-    }
-    nlohmann::json j;
-    const bool have_p = !r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid;
-    j["peripheral"] = have_p ? spotMetricsJson(r.peripheral[r.peripheral_reference].metrics) : nlohmann::json(nullptr);
-    j["foveal"] = r.foveal.empty() ? nlohmann::json(nullptr) : spotMetricsJson(r.foveal[r.foveal_reference].metrics);
-    j["speckle_contrast"] = r.speckle_contrast ? nlohmann::json(*r.speckle_contrast) : nlohmann::json(nullptr);
-    j["power_in_pupil"] = r.power_in_pupil;
-    j["power_on_retina"] = r.power_on_retina;
-    j["accommodation_d"] = o.accommodation_d;
-    j["gaze_deg"] = {o.gaze_deg[0], o.gaze_deg[1]};
-    // Additions.
-    j["hoe_shift_mm"] = {o.hoe_shift_mm[0], o.hoe_shift_mm[1]};
-    j["speckle_expected"] = r.speckle_expected ? nlohmann::json(*r.speckle_expected) : nlohmann::json(nullptr);
-    j["speckle_patterns"] = o.speckle_patterns;
-    j["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
-    j["power_off_canvas"] = r.power_off_canvas;
-    j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
-    nlohmann::json per = nlohmann::json::array();
-    for (const auto& p : r.peripheral) per.push_back(peripheralSpotJson(p));
-    j["peripheral_per_wavelength"] = per;
-    nlohmann::json fov = nlohmann::json::array();
-    for (const auto& f : r.foveal) fov.push_back(fovealSpotJson(f));
-    j["foveal_per_primary"] = fov;
-    j["rays_in_pupil"] = r.rays_in_pupil;
-    j["pixels_per_degree"] = r.pixels_per_degree;
-    j["size"] = {r.image.cols, r.image.rows};
-    j["render_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    if (a->json) {
-      printJson(j);
-      return;
-    }
-    std::ostringstream os;
-    os << "retinal image " << a->out << " (" << r.image.cols << "x" << r.image.rows << "), accommodation "
-       << o.accommodation_d << " D\n";
-    if (have_p) {
-      const auto& m = r.peripheral[r.peripheral_reference].metrics;
-      os << "peripheral: spot " << m.fwhm_arcmin << " arcmin, MTF50 " << m.mtf50_cpd << " cpd, MTF10 " << m.mtf10_cpd
-         << " cpd\n";
-    }
-    if (!r.foveal.empty()) {
-      const auto& m = r.foveal[r.foveal_reference].metrics;
-      os << "foveal: spot " << m.fwhm_arcmin << " arcmin, MTF50 " << m.mtf50_cpd << " cpd, MTF10 " << m.mtf10_cpd
-         << " cpd\n";
-    }
-    os << "power in pupil " << r.power_in_pupil << ", on retina " << r.power_on_retina << "\n";
-    printText(os.str());
+    if (a->json) printJson(combineEyeDocuments(runs, docs));
   });
 }
 

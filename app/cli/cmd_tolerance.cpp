@@ -2,7 +2,8 @@
 // tolerancing of the design (docs/tolerancing.md): yield against the spec's pass criterion,
 // the distribution of every figure, variance-based sensitivity indices and the inverse.
 // --slurm DIR writes a Slurm job array (one shard per task) and its merge step; --submit runs
-// it with sbatch, follows it with squeue/sacct and merges the parts.
+// it with sbatch, follows it with squeue/sacct and merges the parts. --eye left|right|both: each
+// eye of a binocular scene (app/cli/eye_option.h; a shard or a Slurm job runs one eye).
 #include <unistd.h>
 
 #include <chrono>
@@ -16,6 +17,7 @@
 #include <thread>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/eye_option.h"
 #include "app/cli/slurm_job.h"
 #include "model/analysis/tolerance_run.h"
 #include "model/analysis/tolerance_spec.h"
@@ -28,7 +30,7 @@ namespace cmd_tolerance {  // one per command file: fovea-cli compiles in unity 
 namespace {
 
 struct Args {
-  std::string scene, spec, shard, slurm_dir, tasks;
+  std::string scene, spec, shard, slurm_dir, tasks, eye;
   unsigned long long trials = 100, seed = 1;
   int threads = 0, shards = 4, poll_seconds = 2, timeout_seconds = 3600;
   bool json = false, submit = false;
@@ -150,16 +152,24 @@ void install(CLI::App& app) {
   cmd->add_option("--timeout-seconds", a->timeout_seconds, "with --submit: give up after (default 3600)")
       ->check(CLI::Range(1, 10000000));
   cmd->add_flag("--json", a->json, "print JSON");
-  cmd->callback([a] {
+  const auto eye = addEyeOption(cmd);
+  cmd->callback([a, eye] {
+    a->eye = *eye;
     if (!a->tasks.empty() && a->tasks.find_first_not_of("0123456789,-") != std::string::npos)
       usageError("--tasks: expected a list like 1,3 or 0-2");
     if (a->submit && a->slurm_dir.empty()) usageError("--submit needs --slurm DIR");
     const ToleranceSpec spec = loadSpec(a->spec);
-    const Scene scene = loadSceneOrExit(a->scene);
-    try {
-      checkToleranceSpecPaths(spec, scene, a->spec);
-    } catch (const std::invalid_argument& e) {
-      inputError(e.what());
+    const std::vector<EyeRun> runs = eyeRuns(loadSceneOrExit(a->scene), a->eye, a->scene);
+    if (runs.size() != 1 && !a->shard.empty())
+      usageError("--shard: a shard runs one eye of a binocular scene: give --eye left or right");
+    if (runs.size() != 1 && !a->slurm_dir.empty())
+      usageError("--slurm: a job runs one eye of a binocular scene: give --eye left or right");
+    for (const EyeRun& run : runs) {
+      try {
+        checkToleranceSpecPaths(spec, run.scene, a->spec);
+      } catch (const std::invalid_argument& e) {
+        inputError(eyePrefix(run) + e.what());
+      }
     }
     if (!a->slurm_dir.empty()) {
       if (!a->shard.empty()) usageError("--shard and --slurm exclude each other (each array task runs a shard)");
@@ -171,6 +181,7 @@ void install(CLI::App& app) {
       job.trials = a->trials;
       job.seed = a->seed;
       job.shards = a->shards;
+      job.eye = a->eye;
       try {
         writeSlurmJob(job);
       } catch (const std::exception& e) {
@@ -192,34 +203,40 @@ void install(CLI::App& app) {
     if (a->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, a->threads);
     int k = 0, n = 1;
     if (!a->shard.empty()) std::tie(k, n) = parseShard(a->shard);
-    ToleranceRunInfo info;
-    info.scene_name = scene.name;
-    info.scene_digest = sceneDigest(scene);
-    info.seed = a->seed;
-    info.trials = a->trials;
-    try {
-      info.nominal = nominalFigures(scene, spec);
-    } catch (const std::invalid_argument& e) {
-      inputError(std::string("tolerance: the nominal scene: ") + e.what());
+    std::vector<nlohmann::json> docs;
+    for (const EyeRun& run : runs) {
+      const Scene& scene = run.scene;
+      ToleranceRunInfo info;
+      info.scene_name = scene.name;
+      info.scene_digest = sceneDigest(scene);
+      info.seed = a->seed;
+      info.trials = a->trials;
+      try {
+        info.nominal = nominalFigures(scene, spec);
+      } catch (const std::invalid_argument& e) {
+        inputError("tolerance: the nominal scene: " + eyePrefix(run) + e.what());
+      }
+      Progress progress("tolerance");
+      StudyControl control;
+      control.on_progress = [&progress](double f) { progress.update(f); };
+      const auto trials = runToleranceTrials(scene, spec, a->seed, shardRange(a->trials, k, n), control);
+      if (!trials.ok()) inputError("tolerance did not complete");
+      if (!a->shard.empty()) {
+        const nlohmann::json part = tolerancePartJson(spec, info, k, n, *trials.value);
+        if (a->json)
+          printJson(part, /*compact=*/true);
+        else
+          std::cout << "shard " << k << "/" << n << ": " << trials.value->size()
+                    << " trials (use --json for the part)\n";
+        return;
+      }
+      docs.push_back(toleranceResultJson(spec, info, *trials.value));
     }
-    Progress progress("tolerance");
-    StudyControl control;
-    control.on_progress = [&progress](double f) { progress.update(f); };
-    const auto run = runToleranceTrials(scene, spec, a->seed, shardRange(a->trials, k, n), control);
-    if (!run.ok()) inputError("tolerance did not complete");
-    if (!a->shard.empty()) {
-      const nlohmann::json part = tolerancePartJson(spec, info, k, n, *run.value);
-      if (a->json)
-        printJson(part, /*compact=*/true);
-      else
-        std::cout << "shard " << k << "/" << n << ": " << run.value->size() << " trials (use --json for the part)\n";
-      return;
+    if (a->json) return printJson(combineEyeDocuments(runs, docs));
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (runs[i].side) std::cout << eyePrefix(runs[i]) << "\n";
+      printSummary(docs[i]);
     }
-    const nlohmann::json r = toleranceResultJson(spec, info, *run.value);
-    if (a->json)
-      printJson(r);
-    else
-      printSummary(r);
   });
 }
 

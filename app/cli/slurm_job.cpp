@@ -59,8 +59,9 @@ void writeSlurmJob(const SlurmJob& job) {
     << "set -e\n"
     << "K=\"$SLURM_ARRAY_TASK_ID\"\n"
     << quote(job.executable) << " tolerance " << (job.scene.empty() ? "" : quote(job.scene) + " ") << "--spec "
-    << quote(job.spec) << " --trials " << job.trials << " --seed " << job.seed << " --shard \"$K/" << job.shards
-    << "\" --threads " << job.threads_per_task << " --json > " << quote(job.dir) << "/part-\"$K\".json.tmp\n"
+    << quote(job.spec) << (job.eye.empty() ? std::string() : " --eye " + job.eye) << " --trials " << job.trials
+    << " --seed " << job.seed << " --shard \"$K/" << job.shards << "\" --threads " << job.threads_per_task
+    << " --json > " << quote(job.dir) << "/part-\"$K\".json.tmp\n"
     << "mv " << quote(job.dir) << "/part-\"$K\".json.tmp " << quote(job.dir) << "/part-\"$K\".json\n";
   writeFile(sbatchPath(job), s.str(), true);
   std::ostringstream m;

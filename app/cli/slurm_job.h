@@ -12,6 +12,7 @@ struct SlurmJob {
   std::string executable;  // absolute path of fovea-cli
   std::string scene;       // absolute path, or empty for the embedded scene
   std::string spec;        // absolute path
+  std::string eye;         // --eye of every task (one eye of a binocular scene), or empty
   unsigned long long trials = 0, seed = 0;
   int shards = 4;
   int threads_per_task = 1;

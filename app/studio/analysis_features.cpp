@@ -234,7 +234,8 @@ constexpr int kReportProgressSteps = 1200;
 }  // namespace
 
 bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& requested, QString* error, int* pages,
-                                    int* figures, QList<GazeFigureStats>* gazeFigures, QStringList* sections) {
+                                    int* figures, QList<GazeFigureStats>* gazeFigures, QStringList* sections,
+                                    nlohmann::json* eyes) {
   ReportOptions options = requested;
   if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
     options.follow_gaze = true;
@@ -300,7 +301,7 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   if (!failure.isEmpty()) return fail(failure);
   if (!data) return fail(tr("cancelled"));
   // A tolerance result of this very scene from the analyses panel gives the Tolerance section.
-  const std::string sceneText = serializeScene(scene);
+  const std::string sceneText = serializeScene(data->scene);  // the left eye's own for a left-eye report
   if (data->tolerance.is_null())
     if (const auto r = analyses_->lastResult("tolerance"); r && r->json && r->sceneText == sceneText)
       data->tolerance = *r->json;
@@ -328,6 +329,11 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   if (sections) {
     sections->clear();
     for (const ReportSection& sec : content.sections) *sections << sec.heading;
+  }
+  if (eyes) {
+    *eyes = nullptr;
+    if (!content.eye.isEmpty()) *eyes = {{"eye", content.eye.toStdString()}};
+    if (content.eyes.is_object()) *eyes = {{"eyes", content.eyes}};
   }
   window_->messageLog()->info(tr("Report saved to %1 (%n figure(s))", "", content.figureCount()).arg(path));
   for (const QString& p : data->problems) window_->messageLog()->warning(tr("report: %1").arg(p));

@@ -51,9 +51,11 @@ class AnalysisFeatures : public QObject {
   // "HOE follows gaze" of the gaze panel applies to the report's traces too. `gazeFigures`
   // gets what each "bench at the gaze" figure drew, `sections` the headings of the report's
   // sections. A tolerance result of the Analyses panel for this scene gives the Tolerance section.
+  // `eyes` gets, for a binocular scene, the manifest's "eye" ("left"/"right": a report of that
+  // eye) or "eyes" (each eye's key numbers, ReportData::eyes) as an object; else null.
   bool exportReport(const QString& path, const ReportOptions& options, QString* error = nullptr, int* pages = nullptr,
                     int* figures = nullptr, QList<GazeFigureStats>* gazeFigures = nullptr,
-                    QStringList* sections = nullptr);
+                    QStringList* sections = nullptr, nlohmann::json* eyes = nullptr);
 
   void showPreferences();
   void exportReportDialog();

@@ -96,7 +96,11 @@ int main(int argc, char** argv) {
       "report-tolerance", "With --report: add the Tolerance section from N trials (default 0: none).", "N", "0");
   QCommandLineOption reportToleranceSpecOpt(
       "report-tolerance-spec", "With --report-tolerance: the tolerance spec (default: the shipped one).", "FILE");
+  QCommandLineOption reportEyeOpt(
+      "report-eye", "With --report on a binocular scene: the eye the report is of, left, right or both (default).",
+      "EYE");
   parser.addOption(reportOpt);
+  parser.addOption(reportEyeOpt);
   parser.addOption(reportToleranceOpt);
   parser.addOption(reportToleranceSpecOpt);
   parser.addOption(gazeOpt);
@@ -201,7 +205,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays, trials,
-                                        parser.value(reportToleranceSpecOpt));
+                                        parser.value(reportToleranceSpecOpt), parser.value(reportEyeOpt));
   }
   if (!screenshot) {
     window.show();

@@ -11,6 +11,7 @@
 #include "model/image/retina_image.h"
 #include "model/image/test_target.h"
 #include "model/physics/projector_rays.h"
+#include "model/scene/eye_scene.h"
 #include "widgets/analyses/analysis_catalog.h"
 
 namespace fovea::studio {
@@ -103,16 +104,22 @@ std::optional<ReportRetinaImage> reportRetinaImage(const Scene& scene, std::arra
 
 }  // namespace
 
-std::optional<ReportData> computeReportData(const Scene& scene, const QString& scenePath, ReportOptions options,
+std::optional<ReportData> computeReportData(const Scene& loaded, const QString& scenePath, ReportOptions options,
                                             const StudyControl& outer) {
+  // A binocular scene: the analyses run on one eye's train (eye_scene.h), the right's unless "left".
+  const bool leftOnly = loaded.binocular && options.eye == "left";
+  const bool bothEyes = loaded.binocular && !leftOnly && options.eye != "right";
+  const bool gazesGiven = !options.gazes_deg.isEmpty();
+  const Scene scene = loaded.binocular ? eyeScene(loaded, leftOnly ? EyeSide::Left : EyeSide::Right) : loaded;
   // With the tolerance analysis the other analyses take the first 60 % of the progress.
   const double share = options.tolerance ? 0.6 : 1.0;
   StudyControl control;
   control.cancel = outer.cancel;
   if (outer.on_progress) control.on_progress = [&outer, share](double f) { outer.on_progress(share * f); };
   ReportData d;
-  d.scene = scene;
+  d.scene = leftOnly ? scene : loaded;
   d.scenePath = scenePath;
+  if (loaded.binocular && !bothEyes) d.eye = leftOnly ? "left" : "right";
   if (options.gazes_deg.isEmpty()) options.gazes_deg = {scene.eye.gaze_deg};
   d.options = options;
   bool cancelled = false;
@@ -153,6 +160,48 @@ std::optional<ReportData> computeReportData(const Scene& scene, const QString& s
     t.grid = projectorGrid(scene.projector, o.rays);
     d.traces << t;
     progress(0.2 * (i + 1) / n);
+  }
+
+  // Both eyes of a binocular scene: each eye's trace at the chosen gazes (each eye's own gaze
+  // when none was chosen), with its x_p.
+  if (bothEyes) {
+    d.eyes = nlohmann::json::object();
+    for (const EyeSide side : {EyeSide::Left, EyeSide::Right}) {
+      const Scene es = eyeScene(loaded, side);
+      const QList<std::array<double, 2>> gazes = gazesGiven ? options.gazes_deg : QList{es.eye.gaze_deg};
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& gaze : gazes) {
+        if (control.cancelled()) return std::nullopt;
+        std::array<double, 2> xp{NAN, NAN};
+        try {
+          xp = hoeTravel(es, gaze, sceneXpRule(es)).shift_mm;
+        } catch (const std::exception& e) {
+          d.problems << QString("%1 eye: HOE shift at gaze %2,%3: %4")
+                            .arg(eyeSideName(side))
+                            .arg(gaze[0])
+                            .arg(gaze[1])
+                            .arg(e.what());
+        }
+        const std::array<double, 2> shift =
+            options.follow_gaze && std::isfinite(xp[0]) ? xp : std::array<double, 2>{0, 0};
+        AnalysisParams p = defaultParameters(*findAnalysis("trace"), options.rays);
+        p["gaze-yaw"] = gaze[0];
+        p["gaze-pitch"] = gaze[1];
+        p["hoe-shift-x"] = shift[0];
+        p["hoe-shift-y"] = shift[1];
+        QStringList problems;
+        auto j = step("trace", es, p, control, 0.2, 0.2, problems, &cancelled);
+        if (cancelled) return std::nullopt;
+        for (const QString& problem : problems) d.problems << QString("%1 eye: %2").arg(eyeSideName(side), problem);
+        if (!j) continue;
+        list.push_back({{"gaze_deg", {gaze[0], gaze[1]}},
+                        {"fov_deg", j->value("fov_deg", nlohmann::json())},
+                        {"mean_efficiency", j->value("mean_efficiency", nlohmann::json())},
+                        {"x_p_mm", std::isfinite(xp[0]) ? nlohmann::json{xp[0], xp[1]} : nlohmann::json()},
+                        {"hoe_shift_mm", {shift[0], shift[1]}}});
+      }
+      d.eyes[eyeSideName(side)] = {{"gazes", list}};
+    }
   }
 
   // Gaze sweep over the scene's design gaze range (40 %).

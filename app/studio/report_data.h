@@ -6,6 +6,11 @@
 // Kogelnik-vs-RCWA error/time map and, when requested, the tolerance analysis. Every analysis goes through the studio's
 // analysis catalogue (the same numbers as fovea-cli and the analyses panel; cached studies are reused). An analysis
 // that fails is recorded in `problems` and left out of the report.
+//
+// A binocular scene (model/scene/eye_scene.h): the report is of one eye's train, the right
+// eye's (the scene's own) unless `eye` is "left"; with both eyes (`eye` empty or "both") it also
+// holds each eye's key numbers at the chosen gazes (`eyes`: FOV, efficiency, x_p), the same
+// numbers `fovea-cli trace --eye both` gives.
 
 #include <QImage>
 #include <QList>
@@ -36,6 +41,8 @@ struct ReportOptions {
   int tolerance_trials = 100;
   QString tolerance_spec;  // empty: the shipped default spec
   int tolerance_seed = 1;
+  // A binocular scene's eye: "left", "right" or "both"; empty: both. Ignored for a monocular scene.
+  QString eye;
 };
 
 struct GazeTrace {
@@ -58,7 +65,7 @@ struct ReportRetinaImage {
 };
 
 struct ReportData {
-  Scene scene;
+  Scene scene;  // the scene the views show: the loaded one, or the left eye's train for eye "left"
   QString scenePath;
   ReportOptions options;
   QList<GazeTrace> traces;
@@ -66,6 +73,13 @@ struct ReportData {
   nlohmann::json tolerance;                                       // null unless requested or given
   std::optional<ReportRetinaImage> retinaImage;                   // nothing when it failed
   QStringList problems;
+  // A binocular scene: "left" or "right" when the report is of that one eye, else empty; with
+  // both eyes `eyes` = {"left": {"gazes": [...]}, "right": {...}}, one entry per chosen gaze
+  // {"gaze_deg", "fov_deg": {horizontal, vertical, diagonal}, "mean_efficiency", "x_p_mm",
+  // "hoe_shift_mm"} (the trace's exact FOV; x_p the FOV-maximising HOE shift, applied only with
+  // follow_gaze). Null otherwise.
+  QString eye;
+  nlohmann::json eyes;
 };
 
 // Parses "10" or "10,-5" (yaw[,pitch] in degrees); false on anything else.

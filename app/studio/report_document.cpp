@@ -135,6 +135,37 @@ QString keyNumbersHtml(const ReportData& d, const DisplayUnits& u) {
   return h + "</table>";
 }
 
+// Both eyes of a binocular scene: each eye's FOV, efficiency and x_p at the chosen gazes.
+ReportSection bothEyesSection(const ReportData& d, const DisplayUnits& u) {
+  QString h = kTable;
+  h += "<tr><th align='left'>Eye</th><th align='left'>Gaze</th><th align='right'>Retinal FOV</th>"
+       "<th align='right'>Mean efficiency</th><th align='right'>x_p</th></tr>";
+  for (const char* side : {"left", "right"}) {
+    const nlohmann::json& eye = d.eyes.value(side, nlohmann::json::object());
+    for (const auto& e : eye.value("gazes", nlohmann::json::array())) {
+      const auto& f = e.value("fov_deg", nlohmann::json::object());
+      const std::array<double, 2> gz{jsonNumberAt(e, "gaze_deg", 0), jsonNumberAt(e, "gaze_deg", 1)};
+      h += QString(
+               "<tr><td>%1</td><td>%2</td><td align='right'><b>%3 × %4 %5</b> (diag. %6)</td>"
+               "<td align='right'>%7</td><td align='right'>(%8, %9) %10</td></tr>")
+               .arg(side, gazeText(gz, u), g(u.angleFromDeg(jsonNumber(f, {"horizontal"}))),
+                    g(u.angleFromDeg(jsonNumber(f, {"vertical"}))), u.angleSymbol(),
+                    g(u.angleFromDeg(jsonNumber(f, {"diagonal"}))), pct(jsonNumber(e, {"mean_efficiency"})),
+                    g(u.lengthFromMm(jsonNumberAt(e, "x_p_mm", 0))), g(u.lengthFromMm(jsonNumberAt(e, "x_p_mm", 1))))
+               .arg(u.lengthSymbol());
+    }
+  }
+  h += "</table>";
+  const QString intro =
+      QString(
+          "The scene is binocular (IPD %1): its train is the right eye's, the left eye's its mirror image about "
+          "the mid-plane. Each eye traced at the chosen gazes (a gaze in the bench frame: the same direction for "
+          "both eyes), with the FOV-maximising HOE shift x_p of that eye (applied only when the HOE follows "
+          "the gaze); the rest of the report is the right eye's.")
+          .arg(u.length(d.scene.binocular ? d.scene.binocular->ipd_mm : NAN));
+  return ReportSection{"Both eyes", intro + h, {}};
+}
+
 QImage capture3d(viz::SceneView* view) {
   QImage img = view->renderToImage();
   return img.isNull() ? img : opaqueFramebuffer(img);  // colours as on screen (window_capture.h)
@@ -230,10 +261,13 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   c.sceneName = QString::fromStdString(d.scene.name);
   c.scenePath = d.scenePath;
   c.title = d.options.title.isEmpty() ? QString("Design report: %1").arg(c.sceneName) : d.options.title;
+  if (!d.eye.isEmpty() && d.options.title.isEmpty()) c.title += QString(" (%1 eye)").arg(d.eye);
   c.created = QDateTime::currentDateTime();
   c.sceneTableHtml = sceneSummaryTableHtml(d.scene, u);
   c.keyNumbersHtml = keyNumbersHtml(d, u);
   c.problems = d.problems;
+  c.eye = d.eye;
+  c.eyes = d.eyes;
 
   viz::SceneView* view = window.sceneView();
   // Printed figures: light background, no handles or selection box (restored at the end).
@@ -259,6 +293,8 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   }
   overlay->clear();  // the standard views: the bench alone
   view->setScene(d.scene);
+
+  if (d.eyes.is_object()) c.sections << bothEyesSection(d, u);
 
   ReportSection views{"3-D views", "The bench at its real size and pose, from the standard angles.", {}};
   const struct {

@@ -3,7 +3,8 @@
 // the studio's 3-D view, then written as PDF (QTextDocument laid out page by page on a
 // QPdfWriter, A4, numbered pages) or as one self-contained HTML file (every image embedded as
 // a base64 data URI). Sections: title page with the scene summary table; key numbers (FOV,
-// eye box, HOE travel, efficiencies, resolution); 3-D views from the standard angles; the
+// eye box, HOE travel, efficiencies, resolution); for both eyes of a binocular scene a "Both eyes"
+// section (each eye's FOV, efficiency and x_p, ReportData::eyes); 3-D views from the standard angles; the
 // bench at each chosen gaze; retina maps; plots; tolerance (report_tolerance.h) when a tolerance
 // result is there; each figure numbered and captioned.
 
@@ -57,6 +58,8 @@ struct ReportContent {
   QList<ReportSection> sections;
   QStringList problems;  // analyses that could not be computed
   QList<GazeFigureStats> gazeFigures;
+  QString eye;          // ReportData::eye
+  nlohmann::json eyes;  // ReportData::eyes
   int figureCount() const;
 };
 

@@ -15,18 +15,28 @@
 #include "app/studio/main_window.h"
 #include "app/studio/report_data.h"
 #include "widgets/message_log.h"
+#include "widgets/scene_document.h"
 
 namespace fovea::studio {
 
 int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays, int toleranceTrials,
-                  const QString& toleranceSpec) {
+                  const QString& toleranceSpec, const QString& eye) {
   QTextStream err(stderr);
   const QString ext = QFileInfo(out).suffix().toLower();
   if (ext != "pdf" && ext != "html" && ext != "htm") {
     err << "fovea-studio: --report: the file must end in .pdf or .html, got \"" << out << "\"\n";
     return 2;
   }
+  if (!eye.isEmpty() && eye != "left" && eye != "right" && eye != "both") {
+    err << "fovea-studio: --report-eye: expected left, right or both, got \"" << eye << "\"\n";
+    return 2;
+  }
+  if (!eye.isEmpty() && !window.document()->scene().binocular) {
+    err << "fovea-studio: --report-eye " << eye << ": the scene is monocular (no \"binocular\" block)\n";
+    return 2;
+  }
   ReportOptions options;
+  options.eye = eye;
   options.rays = rays;
   options.tolerance = toleranceTrials > 0;
   options.tolerance_trials = std::max(1, toleranceTrials);
@@ -51,7 +61,9 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
   int pages = 0, figures = 0;
   QList<GazeFigureStats> gazeFigures;
   QStringList sections;
-  if (!window.analysisFeatures()->exportReport(out, options, &error, &pages, &figures, &gazeFigures, &sections)) {
+  nlohmann::json eyes;
+  if (!window.analysisFeatures()->exportReport(out, options, &error, &pages, &figures, &gazeFigures, &sections,
+                                               &eyes)) {
     err << "fovea-studio: the report was not written: " << error << "\n";
     return 1;
   }
@@ -69,13 +81,18 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
                             {"rays_low", s.overlay.rays_low},
                             {"overlay_pixels", s.overlay_pixels},
                             {"retina_cells", s.retina_cells}};
-  const QJsonObject manifest{{"out", QFileInfo(out).absoluteFilePath()},
-                             {"format", ext == "htm" ? QString("html") : ext},
-                             {"pages", ext == "pdf" ? QJsonValue(pages) : QJsonValue()},
-                             {"figures", figures},
-                             {"problems", problems},
-                             {"gaze_figures", gazeJson},
-                             {"sections", QJsonArray::fromStringList(sections)}};
+  QJsonObject manifest{{"out", QFileInfo(out).absoluteFilePath()},
+                       {"format", ext == "htm" ? QString("html") : ext},
+                       {"pages", ext == "pdf" ? QJsonValue(pages) : QJsonValue()},
+                       {"figures", figures},
+                       {"problems", problems},
+                       {"gaze_figures", gazeJson},
+                       {"sections", QJsonArray::fromStringList(sections)}};
+  if (eyes.is_object())  // "eye" or "eyes" (report_data.h)
+    for (auto it = eyes.begin(); it != eyes.end(); ++it)
+      manifest.insert(
+          QString::fromStdString(it.key()),
+          QJsonDocument::fromJson(QByteArray::fromStdString(nlohmann::json::array({it.value()}).dump())).array().at(0));
   QTextStream(stdout) << QJsonDocument(manifest).toJson(QJsonDocument::Indented);
   return 0;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // `fovea-studio [SCENE] --report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]
-// [--report-tolerance N [--report-tolerance-spec FILE]]`: the
+// [--report-tolerance N [--report-tolerance-spec FILE]] [--report-eye left|right|both]`: the
 // headless report (what `fovea-cli report` drives). The window is shown (an X display, e.g.
 // Xvfb, gives VTK its OpenGL context), the analyses are computed, the report is written and
 // a JSON manifest {"out","format","pages","figures","problems","gaze_figures","sections"} is
@@ -15,7 +15,9 @@ namespace fovea::studio {
 
 class MainWindow;
 
+// `eye` (--report-eye): "left", "right" or "both" of a binocular scene, empty: both; the
+// manifest then has "eye" (one eye) or "eyes" (each eye's key numbers, report_data.h).
 int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays, int toleranceTrials = 0,
-                  const QString& toleranceSpec = {});
+                  const QString& toleranceSpec = {}, const QString& eye = {});
 
 }  // namespace fovea::studio

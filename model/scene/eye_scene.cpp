@@ -75,11 +75,52 @@ Scene mirroredScene(const Scene& scene, double mid_plane_x_mm) {
   return m;
 }
 
+namespace {
+
+// The scene with its train replaced by `t` (mode "explicit"): the left train's unknown keys
+// (kept under /binocular/left/...) become the eye scene's own, the right train's are dropped.
+Scene withTrain(const Scene& scene, const OpticalTrain& t) {
+  Scene out = scene;
+  out.projector = t.projector;
+  out.hoe = t.hoe;
+  out.hoe_layers = t.hoe_layers;
+  out.eye = t.eye;
+  out.foveal_display = t.foveal_display;
+  out.lens = t.lens;
+  out.foveation = t.foveation;
+  out.stages = t.stages;
+  const std::string left = "/binocular/left";
+  nlohmann::ordered_json unknown = nlohmann::ordered_json::object();
+  for (auto it = scene.unknown.begin(); it != scene.unknown.end(); ++it) {
+    const std::string& pointer = it.key();
+    if (pointer.rfind(left + "/", 0) == 0)
+      unknown[pointer.substr(left.size())] = it.value();
+    else if (pointer == left || pointer == "/" || pointer.rfind("/view", 0) == 0)  // the root, not a train's
+      for (auto kv = it->begin(); kv != it->end(); ++kv)
+        unknown[pointer == left ? "/" : pointer][kv.key()] = kv.value();
+  }
+  out.unknown = std::move(unknown);
+  return out;
+}
+
+}  // namespace
+
 Scene eyeScene(const Scene& scene, EyeSide side) {
   const double mid_plane_x_mm = midPlaneX(scene);  // throws for a monocular scene
-  Scene eye = side == EyeSide::Left ? mirroredScene(scene, mid_plane_x_mm) : scene;
+  Scene eye = side == EyeSide::Right  ? scene
+              : scene.binocular->left ? withTrain(scene, *scene.binocular->left)
+                                      : mirroredScene(scene, mid_plane_x_mm);
   eye.binocular.reset();
   return eye;
+}
+
+Scene explicitBinocularScene(const Scene& scene) {
+  const Scene left = eyeScene(scene, EyeSide::Left);  // throws for a monocular scene
+  Scene out = scene;
+  out.binocular->mode = "explicit";
+  out.binocular->left = OpticalTrain{left.projector,      left.hoe,  left.hoe_layers, left.eye,
+                                     left.foveal_display, left.lens, left.foveation,  left.stages};
+  return out;
 }
 
 }  // namespace fovea

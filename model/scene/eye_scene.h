@@ -2,7 +2,8 @@
 // One eye of a binocular scene as a monocular scene (issue 30).
 //
 // A binocular scene (scene.h, "binocular" block) holds one optical train, the right eye's, in
-// the bench frame (+x temporal for the right eye). The left train is its mirror image about
+// the bench frame (+x temporal for the right eye); mode "explicit" also holds the left eye's
+// train as written. In mode "mirror" the left train is the right one's mirror image about
 // the head's mid-sagittal plane x = x_m, which lies half the interpupillary distance nasal of
 // the right eye's rotation centre c_x (scene_geometry.h placeEye):
 //   x_m = c_x - ipd_mm / 2,   c_x = hoe.position_mm[0] + eye.lateral_offset_mm[0].
@@ -45,9 +46,15 @@ std::optional<EyeSide> eyeSideFromName(const std::string& name);
 double midPlaneX(const Scene& scene);
 
 // The monocular scene of one eye of a binocular scene: the right eye's is the scene without
-// its "binocular" block, the left eye's its mirror image (above), also without the block.
+// its "binocular" block, the left eye's its mirror image (above) or, in mode "explicit", the
+// scene with the block's left train in place of its own, also without the block.
 // Throws std::invalid_argument when the scene has no "binocular" block.
 Scene eyeScene(const Scene& scene, EyeSide side);
+
+// The binocular scene in mode "explicit" whose left train is its left eye's train now (the
+// mirror image for mode "mirror"): the same eyes, the left one written out. Throws
+// std::invalid_argument for a monocular scene.
+Scene explicitBinocularScene(const Scene& scene);
 
 // The mirror image of `scene` about the plane x = mid_plane_x_mm (the rules above); the
 // binocular block, notes and unknown keys are kept as they are.

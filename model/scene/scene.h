@@ -175,13 +175,30 @@ struct ViewState {
   bool operator==(const ViewState&) const = default;
 };
 
+// One eye's optical train: the elements of a scene that belong to one eye (binocular mode
+// "explicit" holds the left eye's this way; the scene's own are the right eye's).
+struct OpticalTrain {
+  Projector projector;
+  Hoe hoe;
+  std::vector<HoeLayer> hoe_layers;
+  Eye eye;
+  FovealDisplay foveal_display;
+  BeamShapingLens lens;
+  Foveation foveation;
+  std::vector<StageBinding> stages;
+  bool operator==(const OpticalTrain&) const = default;
+};
+
 // A binocular scene (optional top-level "binocular" block, format version 2). The scene's own
-// optical train is the right eye's (+x is temporal for a right eye, above); the left train is
-// its mirror image about the head's mid-sagittal plane, which lies ipd_mm / 2 nasal (towards
-// -x) of the right eye's rotation centre (model/scene/eye_scene.h).
+// optical train is the right eye's (+x is temporal for a right eye, above). Mode "mirror": the
+// left train is its mirror image about the head's mid-sagittal plane, which lies ipd_mm / 2
+// nasal (towards -x) of the right eye's rotation centre (model/scene/eye_scene.h). Mode
+// "explicit": the left train is `left`, as written in the file (bench frame), with the same
+// elements as the scene's (as many HOE layers, the same stage axes).
 struct Binocular {
-  std::string mode = "mirror";  // the only mode so far: the left train mirrors the right
-  double ipd_mm = 63.0;         // interpupillary distance (adult mean, Dodgson 2004)
+  std::string mode = "mirror";       // "mirror" or "explicit"
+  double ipd_mm = 63.0;              // interpupillary distance (adult mean, Dodgson 2004)
+  std::optional<OpticalTrain> left;  // mode "explicit" only: the left eye's train
   bool operator==(const Binocular&) const = default;
 };
 

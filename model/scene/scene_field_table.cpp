@@ -277,8 +277,9 @@ FieldTable<Binocular> makeBinocular() {
   t.group("Binocular");
   t.text<&B::mode>("mode", kOpt, "Binocular mode",
                    "mirror: the left eye's train is the mirror image of the scene's (right) train about the "
-                   "mid-plane, ipd_mm / 2 nasal of the right eye's rotation centre",
-                   {"mirror"});
+                   "mid-plane, ipd_mm / 2 nasal of the right eye's rotation centre; explicit: the block's \"left\" "
+                   "holds the left eye's train",
+                   {"mirror", "explicit"});
   t.add<&B::ipd_mm>("ipd_mm", "mm", Range::closed(40, 90), kOpt, {"Interpupillary distance"},
                     "distance between the eyes' rotation centres (63 mm: the adult mean)");
   return t;

@@ -296,19 +296,20 @@ void readElement(Reader& r, const ojson& j, const std::string& path, const std::
 }
 
 // An array of elements ("hoe_layers", "stages"): each must be an object.
+// (Paths and pointers under `root`'s: the scene's top level, or the left train of a binocular block.)
 template <class T>
 void readElements(Reader& r, Reader::Obj& root, const std::string& key, Presence presence, const FieldTable<T>& table,
                   std::vector<T>& out) {
   const ojson* list = root.array(key, presence == Presence::Required);
   if (!list) return;
   for (std::size_t i = 0; i < list->size(); ++i) {
-    const std::string path = key + "[" + std::to_string(i) + "]";
+    const std::string path = root.at(key) + "[" + std::to_string(i) + "]";
     if (!(*list)[i].is_object()) {
       r.error(path, "must be an object, got " + Reader::typeName((*list)[i]));
       continue;
     }
     T element;
-    readElement(r, (*list)[i], path, "/" + key + "/" + std::to_string(i), table, element);
+    readElement(r, (*list)[i], path, root.pointer() + "/" + key + "/" + std::to_string(i), table, element);
     out.push_back(element);
   }
 }
@@ -316,7 +317,68 @@ void readElements(Reader& r, Reader::Obj& root, const std::string& key, Presence
 template <class T>
 void readObjectElement(Reader& r, Reader::Obj& root, const std::string& key, Presence presence,
                        const FieldTable<T>& table, T& obj) {
-  if (const ojson* j = root.object(key, presence == Presence::Required)) readElement(r, *j, key, "/" + key, table, obj);
+  if (const ojson* j = root.object(key, presence == Presence::Required))
+    readElement(r, *j, root.at(key), root.pointer() + "/" + key, table, obj);
+}
+
+// The elements of one eye's optical train from `o` (the scene's top level or a left train):
+// the same keys, presence and rules for both.
+void readTrain(Reader& r, Reader::Obj& o, Projector& projector, Hoe& hoe, std::vector<HoeLayer>& hoe_layers, Eye& eye,
+               FovealDisplay& foveal_display, BeamShapingLens& lens, Foveation& foveation,
+               std::vector<StageBinding>& stages) {
+  readObjectElement(r, o, "projector", Presence::Required, projectorFields(), projector);
+  readObjectElement(r, o, "hoe", Presence::Required, hoeFields(), hoe);
+  if (const ojson* layers = o.get("hoe_layers", false); layers && layers->is_array() && layers->empty())
+    r.error(o.at("hoe_layers"), "must contain at least one layer");
+  readElements(r, o, "hoe_layers", Presence::Required, hoeLayerFields(), hoe_layers);
+  readObjectElement(r, o, "eye", Presence::Required, eyeFields(), eye);
+  readObjectElement(r, o, "foveal_display", Presence::Required, fovealDisplayFields(), foveal_display);
+  readObjectElement(r, o, "beam_shaping_lens", Presence::Optional, lensFields(), lens);
+  readObjectElement(r, o, "foveation", Presence::Optional, foveationFields(), foveation);
+  readElements(r, o, "stages", Presence::Optional, stageFields(), stages);
+}
+
+// The "binocular" block (issue 30): its fields, and in mode "explicit" the left train, which
+// must have the scene's elements (as many HOE layers, the same stage axes in the same order).
+void readBinocular(Reader& r, const ojson& j, const Scene& scene, Binocular& out) {
+  Reader::Obj o(r, j, "binocular", "/binocular");
+  readEntries(r, o, "binocular", binocularFields(), out, 0, "");
+  const ojson* left = o.object("left", false);
+  if (out.mode != "explicit") {
+    if (left)
+      r.error("binocular.left",
+              "a left train needs mode \"explicit\" (mode \"" + out.mode + "\" derives the left eye's train)");
+    return;
+  }
+  if (!o.get("left", false)) {
+    r.error("binocular.left", "missing required field (mode \"explicit\": the left eye's optical train)");
+    return;
+  }
+  if (!left) return;  // not an object: reported
+  OpticalTrain t;
+  {
+    Reader::Obj lo(r, *left, "binocular.left", "/binocular/left");
+    readTrain(r, lo, t.projector, t.hoe, t.hoe_layers, t.eye, t.foveal_display, t.lens, t.foveation, t.stages);
+    // Only a complete train is compared (a missing list was reported above).
+    if (lo.get("hoe_layers", false) && !t.hoe_layers.empty() && t.hoe_layers.size() != scene.hoe_layers.size())
+      r.error("binocular.left.hoe_layers", "the left train has " + std::to_string(t.hoe_layers.size()) +
+                                               " HOE layer(s), the scene's (right) train " +
+                                               std::to_string(scene.hoe_layers.size()) +
+                                               ": both eyes' trains have the same elements");
+    if (t.stages.size() != scene.stages.size()) {
+      r.error("binocular.left.stages",
+              "the left train has " + std::to_string(t.stages.size()) + " stage axes, the scene's (right) train " +
+                  std::to_string(scene.stages.size()) + ": both eyes' trains have the same elements");
+    } else {
+      for (std::size_t i = 0; i < t.stages.size(); ++i)
+        if (t.stages[i].element != scene.stages[i].element || t.stages[i].axis != scene.stages[i].axis)
+          r.error("binocular.left.stages[" + std::to_string(i) + "]",
+                  "drives " + t.stages[i].element + " " + t.stages[i].axis + ", the scene's stages[" +
+                      std::to_string(i) + "] " + scene.stages[i].element + " " + scene.stages[i].axis +
+                      ": both eyes' trains have the same stage axes in the same order");
+    }
+  }
+  out.left = std::move(t);
 }
 
 }  // namespace
@@ -352,21 +414,13 @@ SceneLoadResult parseScene(std::string_view text, const std::string& source) {
     }
     o.string("name", scene.name, false);
     if (const ojson* n = o.get("notes", false)) scene.notes = *n;
-    readObjectElement(r, o, "projector", Presence::Required, projectorFields(), scene.projector);
-    readObjectElement(r, o, "hoe", Presence::Required, hoeFields(), scene.hoe);
-    if (const ojson* layers = o.get("hoe_layers", false); layers && layers->is_array() && layers->empty())
-      r.error("hoe_layers", "must contain at least one layer");
-    readElements(r, o, "hoe_layers", Presence::Required, hoeLayerFields(), scene.hoe_layers);
-    readObjectElement(r, o, "eye", Presence::Required, eyeFields(), scene.eye);
-    readObjectElement(r, o, "foveal_display", Presence::Required, fovealDisplayFields(), scene.foveal_display);
-    readObjectElement(r, o, "beam_shaping_lens", Presence::Optional, lensFields(), scene.lens);
-    readObjectElement(r, o, "foveation", Presence::Optional, foveationFields(), scene.foveation);
-    readElements(r, o, "stages", Presence::Optional, stageFields(), scene.stages);
+    readTrain(r, o, scene.projector, scene.hoe, scene.hoe_layers, scene.eye, scene.foveal_display, scene.lens,
+              scene.foveation, scene.stages);
     readObjectElement(r, o, "view", Presence::Optional, viewFields(), scene.view);
     if (const ojson* b = o.object("binocular", false)) {  // issue 30: present = a binocular scene
       Binocular binocular;
-      readElement(r, *b, "binocular", "/binocular", binocularFields(), binocular);
-      scene.binocular = binocular;
+      readBinocular(r, *b, scene, binocular);
+      scene.binocular = std::move(binocular);
     }
   }
   if (result.errors.empty()) result.scene = std::move(scene);
@@ -483,11 +537,28 @@ ojson writeElement(const ojson& unknown, const std::string& pointer, const Field
 
 template <class T>
 ojson writeElements(const ojson& unknown, const std::string& key, const FieldTable<T>& table,
-                    const std::vector<T>& list) {
+                    const std::vector<T>& list, const std::string& parent_pointer = "") {
   ojson out = ojson::array();
-  for (std::size_t i = 0; i < list.size(); ++i)
-    out.push_back(writeElement(unknown, "/" + key + "/" + std::to_string(i), table, list[i]));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    std::string pointer = parent_pointer;
+    pointer.append("/").append(key).append("/").append(std::to_string(i));
+    out.push_back(writeElement(unknown, pointer, table, list[i]));
+  }
   return out;
+}
+
+// One eye's train into `out` (the scene's root or a left train's object), in the scene's order.
+void writeTrain(ojson& out, const ojson& u, const std::string& p, const Projector& projector, const Hoe& hoe,
+                const std::vector<HoeLayer>& hoe_layers, const Eye& eye, const FovealDisplay& foveal_display,
+                const BeamShapingLens& lens, const Foveation& foveation, const std::vector<StageBinding>& stages) {
+  out["projector"] = writeElement(u, p + "/projector", projectorFields(), projector);
+  out["hoe"] = writeElement(u, p + "/hoe", hoeFields(), hoe);
+  out["hoe_layers"] = writeElements(u, "hoe_layers", hoeLayerFields(), hoe_layers, p);
+  out["eye"] = writeElement(u, p + "/eye", eyeFields(), eye);
+  out["foveal_display"] = writeElement(u, p + "/foveal_display", fovealDisplayFields(), foveal_display);
+  out["beam_shaping_lens"] = writeElement(u, p + "/beam_shaping_lens", lensFields(), lens);
+  out["foveation"] = writeElement(u, p + "/foveation", foveationFields(), foveation);
+  out["stages"] = writeElements(u, "stages", stageFields(), stages, p);
 }
 
 }  // namespace
@@ -500,17 +571,20 @@ std::string serializeScene(const Scene& s) {
   root["version"] = s.binocular ? Scene::kFormatVersion : Scene::kMonocularFormatVersion;
   root["name"] = s.name;
   if (!s.notes.is_null()) root["notes"] = s.notes;
-  root["projector"] = writeElement(u, "/projector", projectorFields(), s.projector);
-  root["hoe"] = writeElement(u, "/hoe", hoeFields(), s.hoe);
-  root["hoe_layers"] = writeElements(u, "hoe_layers", hoeLayerFields(), s.hoe_layers);
-  root["eye"] = writeElement(u, "/eye", eyeFields(), s.eye);
-  root["foveal_display"] = writeElement(u, "/foveal_display", fovealDisplayFields(), s.foveal_display);
-  root["beam_shaping_lens"] = writeElement(u, "/beam_shaping_lens", lensFields(), s.lens);
-  root["foveation"] = writeElement(u, "/foveation", foveationFields(), s.foveation);
-  root["stages"] = writeElements(u, "stages", stageFields(), s.stages);
+  writeTrain(root, u, "", s.projector, s.hoe, s.hoe_layers, s.eye, s.foveal_display, s.lens, s.foveation, s.stages);
   // Newer, optional state: left out while it holds only defaults (older files stay as they are).
   if (ojson view = writeElement(u, "/view", viewFields(), s.view); !view.empty()) root["view"] = view;
-  if (s.binocular) root["binocular"] = writeElement(u, "/binocular", binocularFields(), *s.binocular);
+  if (s.binocular) {
+    ojson b = writeElement(u, "/binocular", binocularFields(), *s.binocular);
+    if (const auto& t = s.binocular->left) {
+      ojson left = ojson::object();
+      writeTrain(left, u, "/binocular/left", t->projector, t->hoe, t->hoe_layers, t->eye, t->foveal_display, t->lens,
+                 t->foveation, t->stages);
+      appendUnknown(left, u, "/binocular/left");
+      b["left"] = std::move(left);
+    }
+    root["binocular"] = std::move(b);
+  }
   appendUnknown(root, u, "/");
   return root.dump(2) + "\n";
 }

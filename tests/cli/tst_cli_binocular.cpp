@@ -1,5 +1,6 @@
 // fovea-cli closed-loop --binocular contract: every key of the issue-30 JSON (fixations,
-// summary, latency_budget_ms), a fixation file, usage and input errors; the monocular
+// summary, latency_budget_ms), a fixation file, usage and input errors, --detector on both eye
+// trackers; the monocular
 // command's keys unchanged beside it (tst_cli_track.cpp).
 #include <QtTest>
 #include "tests/test_paths.h"
@@ -103,6 +104,36 @@ class TestCliBinocular : public QObject {
     QVERIFY(f["time_to_0_25d_ms"].is_number());
     QVERIFY(f["time_to_0_25d_ms"].get<double>() <= 300);
     QVERIFY(std::abs(f["final_focus_error_d"].get<double>()) < 0.25);
+  }
+
+  void detectorOnBothTrackers() {
+    // --detector learned: both eyes' calibrations and trackers use the learned detector. On the
+    // classic renderer's frames it is the less accurate one (calibration accuracy 1.55-1.57 deg
+    // per eye against the classical 0.23 deg; the vergence's closed-form SD 0.25 D against
+    // 0.02 D), so the focus takes longer (650 ms against 35 ms) but ends within 0.25 D.
+    const std::string file = (tmpDir() / "fixation-detector.json").string();
+    std::ofstream(file) << R"({"fixations": [{"distance_cm": 30, "direction_deg": [5, 0], "hold_ms": 700}]})";
+    const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", file.c_str(), "--fps", "60",
+                       "--stage-model", "DDSM50", "--detector", "learned", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    checkContract(j, 1);
+    QCOMPARE(j["detector"].get<std::string>(), std::string("learned"));
+    for (const char* e : {"left", "right"}) {
+      const double accuracy = j["eyes"][e]["calibration"]["accuracy_deg"].get<double>();
+      QVERIFY2(accuracy > 0.8 && accuracy < 3.0, e);  // the learned detector's, not the classical 0.23 deg
+      QCOMPARE(j["eyes"][e]["frames"]["tracked"], j["eyes"][e]["frames"]["captured"]);
+    }
+    QVERIFY(j["vergence"]["closed_form_sigma_d"].get<double>() > 0.1);
+    QVERIFY(std::abs(j["fixations"][0]["final_focus_error_d"].get<double>()) < 0.25);
+    // A bad --detector: exit 2; a missing model: exit 1 naming its path, before any frame.
+    QCOMPARE(cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", "1", "--detector", "neural"}).code, 2);
+    fovea::testing::CliCall call;
+    call.env.insert("FOVEA_PUPIL_MODEL", "/nonexistent/models/pupil-net.onnx");
+    const Run missing = fovea::testing::runFoveaCli(
+        {"closed-loop", kScene.c_str(), "--binocular", "--fixations", "1", "--detector", "auto"}, call);
+    QCOMPARE(missing.code, 1);
+    QVERIFY2(missing.err.contains("/nonexistent/models/pupil-net.onnx"), missing.err.constData());
   }
 };
 

@@ -1,4 +1,5 @@
-// fovea-cli --eye left|right|both on trace, sweep, compare-shift, selectivity and resolution (issue 30;
+// fovea-cli --eye left|right|both on trace, sweep, compare-shift, selectivity, resolution, tolerance,
+// fit and retina-image (issue 30;
 // app/cli/eye_option.h): a monocular scene's documents unchanged and --eye refused on it; a
 // binocular scene's "eyes" with each eye's usual document; mirrored eyes give equal numbers;
 // validate on the binocular example and on a bad block.
@@ -13,6 +14,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/image/image_io.h"
+#include "model/scene/eye_scene.h"
+#include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
@@ -29,6 +33,23 @@ std::set<std::string> keysOf(const nlohmann::json& j) {
 double num(const nlohmann::json& j) {
   return j.get<double>();
 }
+QString writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return QString::fromStdString(path.string());
+}
+// |a - b| <= tol * max(|a|, |b|, 1).
+bool near(double a, double b, double tol) {
+  return std::abs(a - b) <= tol * std::max({std::abs(a), std::abs(b), 1.0});
+}
+// A tolerance spec whose one parameter, the HOE's distance along z, is mirror-invariant, over
+// the symmetric gazes -10, 0, 10 deg: the mirrored eyes' trials are mirror images.
+const char* kMirrorSymmetricSpec = R"({
+  "format": "fovea-tolerance",
+  "parameters": [{"name": "HOE z", "path": "hoe.position_mm[2]", "distribution": "normal", "sigma": 0.5}],
+  "gaze": {"axis": "yaw", "from_deg": -10, "to_deg": 10, "step_deg": 10},
+  "compensator": "fixed", "wavelength_nm": 532, "pass": {"fov_min_deg": {"min": 89}},
+  "target_yield": 0.9, "fov_tolerance_deg": 0.05
+})";
 }  // namespace
 
 class TestCliEye : public QObject {
@@ -200,6 +221,130 @@ class TestCliEye : public QObject {
     QVERIFY(j["eyes"]["left"] != j["eyes"]["right"]);  // 5 deg is temporal for one eye, nasal for the other
   }
 
+  void tolerancePerEye() {
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    const QString spec = writeText(dir / "tol-mirror.json", kMirrorSymmetricSpec);
+    const QStringList common{"--spec", spec, "--trials", "8", "--seed", "3", "--json"};
+    const auto mono = cliText(QStringList{"tolerance", kMono} + common);
+    QVERIFY2(mono.code == 0, qPrintable(mono.err));
+    QVERIFY(!mono.j().contains("eyes") && !mono.j().contains("eye"));
+    const auto refused = cliText(QStringList{"tolerance", kMono, "--eye", "left"} + common);
+    QCOMPARE(refused.code, 2);
+    QVERIFY2(refused.err.contains("--eye left: ") && refused.err.contains("monocular scene"), qPrintable(refused.err));
+    const auto both = cliText(QStringList{"tolerance", kBino} + common);
+    QVERIFY2(both.code == 0, qPrintable(both.err));
+    const auto j = both.j();
+    QCOMPARE(keysOf(j["eyes"]), (std::set<std::string>{"left", "right"}));
+    const auto& left = j["eyes"]["left"];
+    const auto& right = j["eyes"]["right"];
+    // The right eye is the prototype's train: the monocular numbers (its own scene digest aside).
+    for (const char* k : {"nominal", "yield", "figures", "sensitivity", "trials"}) QCOMPARE(right[k], mono.j()[k]);
+    QCOMPARE(right["yield"], j["yield"]);
+    // Mirrored eyes, a mirror-invariant spec: the same nominal figures and distributions
+    // (the edge FOV to its 0.005 deg tolerance; equal seen), the same yield (8 trials, 3 with
+    // FOV >= 89 deg).
+    QVERIFY(num(right["nominal"]["fov_min_deg"]) > 89.0);
+    for (const char* k : {"fov_min_deg", "fov_zero_gaze_deg"}) {
+      QVERIFY2(std::abs(num(left["nominal"][k]) - num(right["nominal"][k])) < 0.005, k);
+      QVERIFY2(std::abs(num(left["figures"][k]["mean"]) - num(right["figures"][k]["mean"])) < 0.005, k);
+    }
+    QVERIFY(num(right["figures"]["fov_min_deg"]["std"]) > 0.5);  // the HOE's z moves the FOV
+    for (const char* k : {"eyebox_mm", "mean_efficiency"})
+      QVERIFY2(near(num(left["nominal"][k]), num(right["nominal"][k]), 1e-12), k);
+    QCOMPARE(left["yield"]["passed"], right["yield"]["passed"]);
+    QCOMPARE(num(right["yield"]["passed"]), 3.0);
+    QVERIFY(left["scene_digest"] != right["scene_digest"]);  // each eye's own train
+    // One eye: its document and "eye"; a shard or a Slurm job runs one eye only.
+    const auto one = cliText(QStringList{"tolerance", kBino, "--eye", "left"} + common);
+    QCOMPARE(one.code, 0);
+    QCOMPARE(one.j()["eye"], nlohmann::json("left"));
+    QCOMPARE(one.j()["figures"], left["figures"]);
+    const auto shard = cliText(QStringList{"tolerance", kBino, "--shard", "0/2"} + common);
+    QCOMPARE(shard.code, 2);
+    QVERIFY2(shard.err.contains("--shard") && shard.err.contains("--eye left or right"), qPrintable(shard.err));
+    const QString job = QString::fromStdString((dir / "tol-job").string());
+    const auto slurm = cliText({"tolerance", kBino, "--spec", spec, "--trials", "8", "--slurm", job, "--eye", "left"});
+    QVERIFY2(slurm.code == 0, qPrintable(slurm.err));
+    QVERIFY(fovea::testing::readFileText(dir / "tol-job" / "tolerance.sbatch").find(" --eye left --trials 8") !=
+            std::string::npos);
+    QCOMPARE(cliText({"tolerance", kBino, "--spec", spec, "--slurm", job}).code, 2);
+  }
+
+  void fitPerEye() {
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    const QString targets = writeText(dir / "fit-targets.json", R"({"format": "fovea-fit-targets", "version": 1,
+      "targets": [
+        {"id": "fov-h", "observable": "fov_deg", "shift": "none", "wavelength_nm": 532, "value": 89.5, "sigma": 0.05},
+        {"id": "eff", "observable": "mean_efficiency", "shift": "none", "wavelength_nm": 532, "value": 0.76,
+         "sigma": 0.002}]})");
+    const QStringList common{"--targets",   targets, "--free", "hoe_layers[1].n1=+-0.004", "--starts", "1",
+                             "--max-evals", "30",    "--json"};
+    QCOMPARE(cliText(QStringList{"fit", kMono, "--eye", "right"} + common).code, 2);
+    const auto both = cliText(QStringList{"fit", kBino} + common);
+    QVERIFY2(both.code == 0, qPrintable(both.err));
+    const auto j = both.j();
+    const auto& left = j["eyes"]["left"];
+    const auto& right = j["eyes"]["right"];
+    QCOMPARE(j["parameters"], right["parameters"]);
+    // Mirrored eyes at gaze 0: the same fit (n1 0.015 -> 0.014658, the efficiency target met).
+    const double n1 = num(right["parameters"][0]["fitted"]);
+    QVERIFY2(n1 > 0.0145 && n1 < 0.0148, qPrintable(QString::number(n1, 'g', 10)));
+    QVERIFY2(near(num(left["parameters"][0]["fitted"]), n1, 1e-9), qPrintable(QString::fromStdString(j.dump())));
+    QVERIFY(near(num(left["parameters"][0]["uncertainty"]), num(right["parameters"][0]["uncertainty"]), 1e-6));
+    QVERIFY(near(num(left["chi2"]), num(right["chi2"]), 1e-9));
+    for (std::size_t i = 0; i < 2; ++i)
+      QVERIFY(near(num(left["targets"][i]["model"]), num(right["targets"][i]["model"]), 1e-9));
+    QVERIFY(std::abs(num(right["targets"][1]["model"]) - 0.76) < 1e-4);
+    // --write-scene: the scene's own (right) train only; the binocular block kept.
+    const QString out = QString::fromStdString((dir / "fitted-bino.json").string());
+    const auto leftWrite = cliText(QStringList{"fit", kBino, "--eye", "left", "--write-scene", out} + common);
+    QCOMPARE(leftWrite.code, 2);
+    QVERIFY2(leftWrite.err.contains("--write-scene") && leftWrite.err.contains("--eye right"),
+             qPrintable(leftWrite.err));
+    const auto rightWrite = cliText(QStringList{"fit", kBino, "--eye", "right", "--write-scene", out} + common);
+    QVERIFY2(rightWrite.code == 0, qPrintable(rightWrite.err));
+    QCOMPARE(rightWrite.j()["eye"], nlohmann::json("right"));
+    const auto written = nlohmann::json::parse(fovea::testing::readFileText(out.toStdString()));
+    QCOMPARE(written["binocular"]["mode"], nlohmann::json("mirror"));
+    QVERIFY(near(num(written["hoe_layers"][1]["n1"]), n1, 1e-12));
+  }
+
+  void retinaImagePerEye() {
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    const auto image = dir / "uniform.png";
+    fovea::image::writeLinearRgb(image.string(), cv::Mat(277, 480, CV_32FC3, cv::Scalar(0.2, 0.2, 0.2)));
+    const QString img = QString::fromStdString(image.string());
+    const auto out = [&](const char* name) { return QString::fromStdString((dir / name).string()); };
+    const QStringList common{"--image", img, "--rays", "2000", "--json"};
+    QCOMPARE(cliText(QStringList{"retina-image", kMono, "--out", out("m.png"), "--eye", "left"} + common).code, 2);
+    std::filesystem::remove(dir / "both-left.png");
+    const auto both =
+        cliText(QStringList{"retina-image", kBino, "--out", out("both.png"), "--gaze-deg", "5,2"} + common);
+    QVERIFY2(both.code == 0, qPrintable(both.err));
+    const auto j = both.j();
+    QCOMPARE(keysOf(j["eyes"]), (std::set<std::string>{"left", "right"}));
+    // The right eye's image at --out, the left eye's beside it.
+    QCOMPARE(j["eyes"]["right"]["image_out"], nlohmann::json(out("both.png").toStdString()));
+    QCOMPARE(j["eyes"]["left"]["image_out"], nlohmann::json(out("both-left.png").toStdString()));
+    QCOMPARE(fovea::image::readLinearRgb((dir / "both-left.png").string()).cols, 480);
+    // Mirrored eyes: the left eye at (-5, 2) deg is the right one at (5, 2): the line-of-sight
+    // spots to 1e-9, the power of a uniform image to 1e-6 (the canvas' pixel grid).
+    const auto l = cliText(
+        QStringList{"retina-image", kBino, "--eye", "left", "--out", out("l.png"), "--gaze-deg", "-5,2"} + common);
+    QVERIFY2(l.code == 0, qPrintable(l.err));
+    const auto a = l.j();
+    const auto& b = j["eyes"]["right"];
+    QCOMPARE(a["eye"], nlohmann::json("left"));
+    QCOMPARE(a["rays_in_pupil"], b["rays_in_pupil"]);
+    QVERIFY(num(b["rays_in_pupil"]) > 1000);
+    for (const char* d : {"peripheral", "foveal"})
+      for (const char* k : {"spot_fwhm_arcmin", "cpd_mtf50", "cpd_mtf10"})
+        QVERIFY2(near(num(a[d][k]), num(b[d][k]), 1e-9), k);
+    QVERIFY(num(b["foveal"]["cpd_mtf50"]) > 10.0);
+    QVERIFY(near(num(a["power_in_pupil"]), num(b["power_in_pupil"]), 1e-6));
+    QVERIFY(num(b["power_in_pupil"]) > 0);
+  }
+
   void validateBinocularScenes() {
     const auto ok = cliText({"validate", kBino});
     QVERIFY2(ok.code == 0, qPrintable(ok.err));
@@ -213,6 +358,33 @@ class TestCliEye : public QObject {
     const auto r = cliText({"validate", QString::fromStdString(bad.string())});
     QCOMPARE(r.code, 1);
     QVERIFY2(r.out.contains("bad-ipd.json: binocular.ipd_mm: must be in [40, 90], got 120"), qPrintable(r.out));
+  }
+
+  void explicitLeftTrainValidatesAndTraces() {
+    // Binocular mode "explicit": a left train written out equal to the mirror validates and
+    // gives mode mirror's numbers for both eyes; a malformed left train is refused by name.
+    const auto dir = fovea::testing::testTmpDir("cli_eye");
+    const auto loaded = fovea::loadSceneFile(kBino.toStdString());
+    QVERIFY(loaded.ok());
+    const fovea::Scene expl = fovea::explicitBinocularScene(*loaded.scene);
+    const QString path = writeText(dir / "explicit.json", fovea::serializeScene(expl));
+    const auto ok = cliText({"validate", path});
+    QVERIFY2(ok.code == 0, qPrintable(ok.out + ok.err));
+    QVERIFY2(ok.out.contains("binocular (explicit, IPD 63 mm)"), qPrintable(ok.out));
+    const QStringList common{"--gaze-deg", "-12,4", "--rays", "1500", "--json"};
+    const auto a = cliText(QStringList{"trace", kBino} + common);
+    const auto b = cliText(QStringList{"trace", path} + common);
+    QVERIFY2(a.code == 0 && b.code == 0, qPrintable(a.err + b.err));
+    QCOMPARE(b.j(), a.j());  // both eyes, every number
+    QVERIFY(b.j()["eyes"]["left"] != b.j()["eyes"]["right"]);
+    fovea::Scene bad = expl;
+    bad.binocular->left->hoe.size_mm[1] = std::nan("");
+    const QString badPath = writeText(dir / "explicit-bad.json", fovea::serializeScene(bad));
+    const auto r = cliText({"validate", badPath});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.out.contains("explicit-bad.json: binocular.left.hoe.size_mm[1]: must be a number, got null"),
+             qPrintable(r.out));
+    QCOMPARE(cliText(QStringList{"trace", badPath} + common).code, 1);
   }
 
   void closedLoopTakesTheScenesIpd() {

@@ -1,7 +1,8 @@
 // `fovea-cli report` (driving `fovea-studio --report`): the PDF's page count and embedded
 // images checked with poppler-utils (pdfinfo, pdfimages -list) against the manifest, the
 // self-contained HTML's base64 images decoded, the gaze figures' ray fans counted (manifest
-// and pixels against the plain top view), and the argument / scene errors' exit codes.
+// and pixels against the plain top view), a binocular scene's "Both eyes" section and manifest
+// "eyes", and the argument / scene errors' exit codes.
 #include <QtTest>
 #include "tests/test_paths.h"
 
@@ -234,6 +235,51 @@ class TestReport : public QObject {
     const Run t = run(tool("pdftotext"), {pdf, "-"});
     QCOMPARE(t.code, 0);
     QVERIFY2(t.out.contains("Tolerance") && t.out.contains("Wilson") && t.out.contains("HOE x"), qPrintable(t.out));
+  }
+
+  // A binocular scene (issue 30): by default the right eye's report plus the "Both eyes" section and
+  // the manifest's "eyes", each eye's FOV, efficiency and x_p at the chosen gazes; mirrored gazes
+  // give mirrored numbers. --eye on a monocular scene is refused before the studio starts.
+  void binocularReportHasBothEyes() {
+    const QString bino = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json";
+    const QString html = tmpDir() + "/binocular-report.html";
+    const Run r = run(FOVEA_CLI_PATH,
+                      {"report", bino, "--out", html, "--gaze-deg=-10", "--gaze-deg", "10", "--rays", "100", "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const nlohmann::json m = nlohmann::json::parse(r.out.toStdString());
+    QVERIFY2(m["problems"].empty(), r.out.toUtf8().constData());
+    QVERIFY(!m.contains("eye"));
+    QCOMPARE(m["sections"][0], nlohmann::json("Both eyes"));
+    QCOMPARE(m["figures"].get<int>(), expectedFigures(2));  // the section is a table, no figure
+    const auto& left = m["eyes"]["left"]["gazes"];
+    const auto& right = m["eyes"]["right"]["gazes"];
+    QCOMPARE(left.size(), std::size_t(2));
+    QCOMPARE(right.size(), std::size_t(2));
+    QCOMPARE(left[0]["gaze_deg"], nlohmann::json({-10.0, 0.0}));
+    // The left eye at -10 deg is the right eye at +10 deg: the FOV to the edge finder's 0.005 deg
+    // (1e-11 seen), x_p negated (1.638 mm; 1.489 mm at the other, nasal, gaze), efficiencies equal.
+    for (int i = 0; i < 2; ++i) {
+      const auto& a = left[i];
+      const auto& b = right[1 - i];
+      for (const char* k : {"horizontal", "vertical", "diagonal"})
+        QVERIFY2(std::abs(a["fov_deg"][k].get<double>() - b["fov_deg"][k].get<double>()) < 0.005, k);
+      QVERIFY(std::abs(a["x_p_mm"][0].get<double>() + b["x_p_mm"][0].get<double>()) < 1e-9);
+      QVERIFY(std::abs(a["mean_efficiency"].get<double>() - b["mean_efficiency"].get<double>()) < 1e-12);
+      QCOMPARE(a["hoe_shift_mm"][0].get<double>(), 0.0);  // x_p applied only with --follow-gaze
+    }
+    QVERIFY(right[1]["fov_deg"]["horizontal"].get<double>() > 80.0);
+    const double xp = right[1]["x_p_mm"][0].get<double>();
+    QVERIFY2(xp > 1.5 && xp < 1.8, qPrintable(QString::number(xp)));
+    QVERIFY(std::abs(std::abs(right[0]["x_p_mm"][0].get<double>()) - xp) > 0.05);  // temporal != nasal
+    QFile f(html);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QString text = QString::fromUtf8(f.readAll());
+    QVERIFY(text.contains("<h2>Both eyes</h2>") && text.contains("IPD 63 mm"));
+    QVERIFY(text.contains("<td>left</td>") && text.contains("<td>right</td>"));
+
+    const Run mono = run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.pdf", "--eye", "left"});
+    QCOMPARE(mono.code, 2);
+    QVERIFY2(mono.err.contains("monocular scene"), qPrintable(mono.err));
   }
 
   void argumentAndSceneErrors() {

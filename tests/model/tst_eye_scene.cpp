@@ -1,6 +1,8 @@
 // Binocular scenes (issue 30): the "binocular" block of the scene file (loader, writer,
 // validator), the monocular scene of each eye (model/scene/eye_scene.h), and mirror symmetry:
-// the left eye at a yaw-mirrored gaze gives the right eye's numbers, lateral ones negated.
+// the left eye at a yaw-mirrored gaze gives the right eye's numbers, lateral ones negated;
+// mode "explicit" (a left train in the file): loading, round trip, malformed trains refused,
+// and a left train equal to the mirror giving mode mirror's numbers.
 #include <QtTest>
 #include "tests/test_paths.h"
 
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -111,9 +114,9 @@ class TestEyeScene : public QObject {
     auto errors = errorsOf(prototypeWith("\"binocular\": {\"ipd_mm\": 30}"));
     QCOMPARE(errors.size(), std::size_t{1});
     QCOMPARE(errors[0], std::string("b.json: binocular.ipd_mm: must be in [40, 90], got 30"));
-    errors = errorsOf(prototypeWith("\"binocular\": {\"mode\": \"explicit\", \"ipd_mm\": \"63\"}"));
+    errors = errorsOf(prototypeWith("\"binocular\": {\"mode\": \"stereo\", \"ipd_mm\": \"63\"}"));
     QCOMPARE(errors.size(), std::size_t{2});
-    QCOMPARE(errors[0], std::string("b.json: binocular.mode: must be one of mirror, got \"explicit\""));
+    QCOMPARE(errors[0], std::string("b.json: binocular.mode: must be one of mirror, explicit, got \"stereo\""));
     QCOMPARE(errors[1], std::string("b.json: binocular.ipd_mm: must be a number, got a string"));
     errors = errorsOf(prototypeWith("\"binocular\": [63]"));
     QCOMPARE(errors.size(), std::size_t{1});
@@ -297,6 +300,124 @@ class TestEyeScene : public QObject {
       QVERIFY(std::abs((*a)["eyebox_mm"].get<double>() - (*b)["eyebox_mm"].get<double>()) < kTol);
     }
     qInfo("largest FOV difference between the mirrored eyes: dense %.3g deg, edges %.3g deg", worst[0], worst[1]);
+  }
+
+  void explicitLeftTrainLoadsAndRoundTrips() {
+    const Scene mirror = binocularPrototype();
+    const Scene expl = explicitBinocularScene(mirror);
+    QCOMPARE(expl.binocular->mode, std::string("explicit"));
+    QVERIFY(expl.binocular->left.has_value());
+    const std::string text = serializeScene(expl);
+    QVERIFY(text.find("\"mode\": \"explicit\"") != std::string::npos && text.find("\"left\": {") != std::string::npos);
+    QVERIFY(text.find("\"version\": 2,") != std::string::npos);
+    // Loads as written, without warnings, and saves byte for byte.
+    SceneLoadResult r = parseScene(text, "explicit.json");
+    QVERIFY2(r.ok(), joined(r.errors).c_str());
+    QCOMPARE(r.warnings.size(), std::size_t{0});
+    QVERIFY(*r.scene == expl);
+    QCOMPARE(serializeScene(*r.scene), text);
+    QVERIFY(validateScene(*r.scene).empty());
+    // Its eyes: the right one the scene's train, the left one the train as written (here the
+    // mirror image, so mode mirror's left eye).
+    QVERIFY(eyeScene(*r.scene, EyeSide::Right) == eyeScene(mirror, EyeSide::Right));
+    QVERIFY(eyeScene(*r.scene, EyeSide::Left) == eyeScene(mirror, EyeSide::Left));
+    // A left train of its own: moved 1 mm and with a thicker layer, the left eye has them.
+    Scene own = expl;
+    own.binocular->left->hoe.pose.position_mm[0] -= 1.0;
+    own.binocular->left->hoe_layers[0].thickness_um = 20.0;
+    const Scene reloaded = parsedOrFail(serializeScene(own), "own.json");
+    const Scene left = eyeScene(reloaded, EyeSide::Left);
+    QCOMPARE(left.hoe.pose.position_mm[0], -64.0);
+    QCOMPARE(left.hoe_layers[0].thickness_um, 20.0);
+    QCOMPARE(eyeScene(reloaded, EyeSide::Right).hoe_layers[0].thickness_um, mirror.hoe_layers[0].thickness_um);
+    // An unknown key inside the left train is kept where it was and becomes the left eye's.
+    std::string withKey = serializeScene(expl);
+    const auto at = withKey.find("\"left\": {") + std::string("\"left\": {").size();
+    withKey.insert(at, "\n      \"comment\": \"as built\",");
+    SceneLoadResult k = parseScene(withKey, "k.json");
+    QVERIFY2(k.ok(), joined(k.errors).c_str());
+    QCOMPARE(k.warnings.size(), std::size_t{1});
+    QVERIFY(serializeScene(*k.scene).find("\"comment\": \"as built\"") != std::string::npos);
+    QCOMPARE(eyeScene(*k.scene, EyeSide::Left).unknown["/"]["comment"], nlohmann::ordered_json("as built"));
+  }
+
+  void malformedLeftTrainIsRefused() {
+    const Scene expl = explicitBinocularScene(binocularPrototype());
+    const std::string good = serializeScene(expl);
+    nlohmann::ordered_json base = nlohmann::ordered_json::parse(good);
+    const auto errorsWith = [&](const std::function<void(nlohmann::ordered_json&)>& change) {
+      nlohmann::ordered_json j = base;
+      change(j);
+      return errorsOf(j.dump(2) + "\n");
+    };
+    // Mode explicit without a left train; a left train in mode mirror.
+    auto e = errorsWith([](auto& j) { j["binocular"].erase("left"); });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left: missing required field (mode \"explicit\": the left "
+                                    "eye's optical train)\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["mode"] = "mirror"; });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left: a left train needs mode \"explicit\" (mode \"mirror\" "
+                                    "derives the left eye's train)\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["left"] = 3; });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left: must be an object, got a number (3)\n"));
+    // A missing element, a missing field, a NaN (JSON null), a value out of range: each named.
+    e = errorsWith([](auto& j) { j["binocular"]["left"].erase("eye"); });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left.eye: missing required field\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["left"]["projector"].erase("fov_deg"); });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left.projector.fov_deg: missing required field\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["left"]["hoe"]["position_mm"][0] = nullptr; });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left.hoe.position_mm[0]: must be a number, got null\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["left"]["hoe_layers"][1]["n1"] = nullptr; });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left.hoe_layers[1].n1: must be a number, got null\n"));
+    Scene nan = expl;
+    nan.binocular->left->eye.relief_mm = std::nan("");
+    QCOMPARE(joined(validateScene(nan)), std::string("binocular.left.eye.relief_mm: must be a number, got null\n"));
+    // Other elements than the scene's train: fewer layers, another stage axis, no stages.
+    e = errorsWith([](auto& j) { j["binocular"]["left"]["hoe_layers"].erase(2); });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left.hoe_layers: the left train has 2 HOE layer(s), the "
+                                    "scene's (right) train 3: both eyes' trains have the same elements\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["left"]["hoe_layers"] = nlohmann::ordered_json::array(); });
+    QCOMPARE(joined(e), std::string("b.json: binocular.left.hoe_layers: must contain at least one layer\n"));
+    e = errorsWith([](auto& j) { j["binocular"]["left"]["stages"][0]["axis"] = "z"; });
+    QCOMPARE(e.size(), std::size_t{1});
+    QVERIFY2(e[0].rfind("b.json: binocular.left.stages[0]: drives hoe z, the scene's stages[0] hoe x", 0) == 0,
+             e[0].c_str());
+    e = errorsWith([](auto& j) { j["binocular"]["left"].erase("stages"); });
+    QCOMPARE(e.size(), std::size_t{1});
+    QVERIFY2(e[0].rfind("b.json: binocular.left.stages: the left train has 0 stage axes, the scene's (right) train ",
+                        0) == 0,
+             e[0].c_str());
+  }
+
+  void explicitMirrorTrainGivesMirrorNumbers() {
+    // A left train written out equal to the mirror gives mode mirror's numbers: the trace and
+    // the sweep of the left eye (dense FOV) are the same documents.
+    const Scene mirror = binocularPrototype();
+    const Scene expl = parsedOrFail(serializeScene(explicitBinocularScene(mirror)), "explicit.json");
+    const auto* trace = analysis::findAnalysisDefinition("trace");
+    const auto* sweep = analysis::findAnalysisDefinition("sweep");
+    QVERIFY(trace && sweep);
+    nlohmann::json t = analysis::defaultValues(*trace);
+    t["rays"] = 2000;
+    t["gaze-yaw"] = -12.0;
+    t["gaze-pitch"] = 4.0;
+    const auto a = trace->run(eyeScene(mirror, EyeSide::Left), t, {});
+    const auto b = trace->run(eyeScene(expl, EyeSide::Left), t, {});
+    QVERIFY(a && b);
+    QCOMPARE(*b, *a);
+    QVERIFY((*a)["fov_deg"]["horizontal"].get<double>() > 25.0);  // 29.3 deg: the HOE unshifted at -12 deg
+    QVERIFY((*a)["rays_in_pupil"].get<int>() > 500);
+    nlohmann::json v = analysis::defaultValues(*sweep);
+    v["gaze-from"] = -10.0;
+    v["gaze-to"] = 10.0;
+    v["gaze-step"] = 10.0;
+    v["rays"] = 1000;
+    v["fov-method"] = "dense";
+    const auto c = sweep->run(eyeScene(mirror, EyeSide::Left), v, {});
+    const auto d = sweep->run(eyeScene(expl, EyeSide::Left), v, {});
+    QVERIFY(c && d);
+    QCOMPARE((*d)["samples"], (*c)["samples"]);
+    QCOMPARE((*d)["eyebox_mm"], (*c)["eyebox_mm"]);
+    QVERIFY(std::abs((*c)["samples"][0]["hoe_shift_mm"].get<double>()) > 0.5);
   }
 };
 
