@@ -24,6 +24,14 @@ inline std::filesystem::path testTmpDir(const std::string& name, bool fresh = fa
   return dir;
 }
 
+// Whether a shared object whose file name contains `name` is mapped into this process.
+inline bool mappedInProcess(const std::string& name) {
+  std::ifstream maps("/proc/self/maps");
+  for (std::string line; std::getline(maps, line);)
+    if (line.find(name) != std::string::npos) return true;
+  return false;
+}
+
 // The file's bytes ("" when it cannot be read: the caller's comparison then fails).
 inline std::string readFileText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -29,15 +29,7 @@ double measuredSquareX(const cv::Mat& img) {
 }
 }  // namespace
 
-namespace {
-// Whether a shared object whose file name contains `name` is mapped into this process.
-bool mapped(const std::string& name) {
-  std::ifstream maps("/proc/self/maps");
-  for (std::string line; std::getline(maps, line);)
-    if (line.find(name) != std::string::npos) return true;
-  return false;
-}
-}  // namespace
+using fovea::testing::mappedInProcess;
 
 class TestCameras : public QObject {
   Q_OBJECT
@@ -139,7 +131,7 @@ class TestCameras : public QObject {
 
   void v4l2ModuleIsLoadedOnlyForARealCamera() {
     // Start-up loads no videoio (issue 25); a module that is not there is a clear error.
-    QVERIFY2(!mapped("libopencv_videoio"), "videoio loaded before any camera was made");
+    QVERIFY2(!mappedInProcess("libopencv_videoio"), "videoio loaded before any camera was made");
     qputenv("FOVEA_V4L2_CAMERA_MODULE", "/nonexistent/libfovea_v4l2_camera.so");
     try {
       (void)makeV4l2Camera(63);
@@ -151,12 +143,12 @@ class TestCameras : public QObject {
                e.what());
     }
     qunsetenv("FOVEA_V4L2_CAMERA_MODULE");
-    QVERIFY(!mapped("libopencv_videoio"));
+    QVERIFY(!mappedInProcess("libopencv_videoio"));
   }
 
   void missingV4l2CameraFailsClearly() {
     const std::shared_ptr<Camera> cam = makeV4l2Camera(63);
-    QVERIFY(mapped("libopencv_videoio"));  // the module came with it
+    QVERIFY(mappedInProcess("libopencv_videoio"));  // the module came with it
     try {
       cam->open();
       QFAIL("opened /dev/video63");

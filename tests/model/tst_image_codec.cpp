@@ -14,15 +14,9 @@
 
 using namespace fovea;
 
-namespace {
-// Whether a shared object whose file name contains `name` is mapped into this process.
-bool mapped(const std::string& name) {
-  std::ifstream maps("/proc/self/maps");
-  for (std::string line; std::getline(maps, line);)
-    if (line.find(name) != std::string::npos) return true;
-  return false;
-}
+using fovea::testing::mappedInProcess;
 
+namespace {
 std::string tmp(const std::string& file) {
   return (fovea::testing::testTmpDir("image_codec") / file).string();
 }
@@ -34,7 +28,7 @@ class TestImageCodec : public QObject {
  private slots:
   // First: no image has been read or written in this process yet.
   void loadedOnFirstUseAndAMissingModuleIsNamed() {
-    QVERIFY2(!mapped("libOpenImageIO"), "OpenImageIO loaded at start-up");
+    QVERIFY2(!mappedInProcess("libOpenImageIO"), "OpenImageIO loaded at start-up");
     qputenv("FOVEA_IMAGE_CODEC", "/nonexistent/libfovea_image_codec.so");
     cv::Mat frame(4, 5, CV_8UC1, cv::Scalar(7));
     try {
@@ -48,7 +42,7 @@ class TestImageCodec : public QObject {
     QVERIFY(!std::filesystem::exists(tmp("never.png")));
     qunsetenv("FOVEA_IMAGE_CODEC");
     image::writeCameraImage(tmp("first.png"), frame);  // the failure was not kept
-    QVERIFY(mapped("libOpenImageIO"));
+    QVERIFY(mappedInProcess("libOpenImageIO"));
     QCOMPARE(cv::countNonZero(image::readCameraImage(tmp("first.png")) != frame), 0);
   }
 
