@@ -19,4 +19,5 @@ std::shared_ptr<Camera> makeV4l2Camera(int index, const std::string& name = {});
 
 }  // namespace fovea::devices
 
-extern "C" fovea::devices::Camera* fovea_v4l2_camera_create(int index, const char* name);
+extern "C" fovea::devices::Camera* fovea_v4l2_camera_create(
+    int index, const char* name);  // NOLINT(readability-identifier-naming): C ABI name

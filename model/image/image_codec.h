@@ -20,7 +20,7 @@ struct ImageHeader {
   bool is_float = false;  // float, half or double samples (linear light by convention)
 };
 
-enum class SampleType { u8, u16, f32 };
+enum class SampleType { U8, U16, F32 };
 
 struct ImageCodecApi {
   int version = 1;
@@ -45,4 +45,5 @@ const ImageCodecApi& imageCodec();
 }  // namespace fovea::image
 
 // The module's one entry point.
-extern "C" const fovea::image::ImageCodecApi* fovea_image_codec_api();
+extern "C" const fovea::image::ImageCodecApi*
+fovea_image_codec_api();  // NOLINT(readability-identifier-naming): C ABI name

@@ -123,7 +123,7 @@ void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bi
   if (img.type() != CV_32FC3) throw ImageIoError(path + ": internal: expected a float RGB image");
   const std::string ext = std::filesystem::path(path).extension().string();
   const bool isFloat = ext == ".exr" || ext == ".EXR" || ext == ".hdr";
-  const SampleType type = isFloat ? SampleType::f32 : sixteen_bit ? SampleType::u16 : SampleType::u8;
+  const SampleType type = isFloat ? SampleType::F32 : sixteen_bit ? SampleType::U16 : SampleType::U8;
   std::vector<float> data(static_cast<std::size_t>(img.cols) * img.rows * 3);
   for (int y = 0; y < img.rows; ++y) {
     const auto* row = img.ptr<cv::Vec3f>(y);
@@ -133,7 +133,7 @@ void writeLinearRgb(const std::string& path, const cv::Mat& img, bool sixteen_bi
         data[(static_cast<std::size_t>(y) * img.cols + x) * 3 + c] = isFloat ? v : color::linearToSrgb(v);
       }
   }
-  encode(path, img.cols, img.rows, 3, type, SampleType::f32, data.data());
+  encode(path, img.cols, img.rows, 3, type, SampleType::F32, data.data());
 }
 
 cv::Mat readCameraImage(const std::string& path) {
@@ -158,7 +158,7 @@ void writeCameraImage(const std::string& path, const cv::Mat& image) {
   if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U))
     throw ImageIoError(path + ": internal: expected a one-channel 8- or 16-bit camera image");
   const cv::Mat dense = image.isContinuous() ? image : image.clone();
-  const SampleType type = image.depth() == CV_8U ? SampleType::u8 : SampleType::u16;
+  const SampleType type = image.depth() == CV_8U ? SampleType::U8 : SampleType::U16;
   encode(path, image.cols, image.rows, 1, type, type, dense.data);
 }
 

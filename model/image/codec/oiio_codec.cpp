@@ -12,11 +12,11 @@ namespace {
 
 OIIO::TypeDesc typeOf(SampleType t) {
   switch (t) {
-    case SampleType::u8:
+    case SampleType::U8:
       return OIIO::TypeDesc::UINT8;
-    case SampleType::u16:
+    case SampleType::U16:
       return OIIO::TypeDesc::UINT16;
-    case SampleType::f32:
+    case SampleType::F32:
       break;
   }
   return OIIO::TypeDesc::FLOAT;
