@@ -1,11 +1,10 @@
 #include <dlfcn.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <mutex>
 
 #include "devices/camera/v4l2_camera.h"
 #include "devices/transport/device_error.h"
+#include "model/io/module_loader.h"
 
 namespace fovea::devices {
 namespace {
@@ -13,28 +12,15 @@ namespace {
 using Create = Camera* (*)(int, const char*);
 
 #ifndef FOVEA_V4L2_CAMERA_BUILTIN
-// The folder of the shared object this function is in (libfovea_devices.so): the module is
-// built and installed beside it.
-std::filesystem::path devicesLibraryFolder() {
-  Dl_info info{};
-  if (::dladdr(reinterpret_cast<void*>(&devicesLibraryFolder), &info) == 0 || info.dli_fname == nullptr) return {};
-  return std::filesystem::path(info.dli_fname).parent_path();
-}
-
 Create loadModule() {
-  const char* given = std::getenv("FOVEA_V4L2_CAMERA_MODULE");
-  const std::string path = given != nullptr && *given != '\0'
-                               ? std::string(given)
-                               : (devicesLibraryFolder() / "libfovea_v4l2_camera.so").string();
-  void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // kept for the process's life
-  if (handle == nullptr) {
-    const char* why = ::dlerror();
-    throw DeviceError(DeviceError::Kind::NotFound,
-                      "cannot load the V4L2 camera module " + path + ": " + (why != nullptr ? why : "unknown error"));
-  }
-  auto create = reinterpret_cast<Create>(::dlsym(handle, "fovea_v4l2_camera_create"));
+  // Beside libfovea_devices.so (this function's library), where it is built and installed.
+  const LoadedModule m = openModuleBeside(reinterpret_cast<const void*>(&loadModule), "FOVEA_V4L2_CAMERA_MODULE",
+                                          "libfovea_v4l2_camera.so");
+  if (m.handle == nullptr)
+    throw DeviceError(DeviceError::Kind::NotFound, "cannot load the V4L2 camera module " + m.path + ": " + m.error);
+  auto create = reinterpret_cast<Create>(::dlsym(m.handle, "fovea_v4l2_camera_create"));
   if (create == nullptr)
-    throw DeviceError(DeviceError::Kind::NotFound, "the V4L2 camera module " + path + " has no camera entry point");
+    throw DeviceError(DeviceError::Kind::NotFound, "the V4L2 camera module " + m.path + " has no camera entry point");
   return create;
 }
 #endif
