@@ -14,13 +14,20 @@ Which units: with --all, every unit below the folders. Otherwise only what chang
 base commit (see choose_base): each changed .cpp's own unit, and for each changed header one
 unit that reads it (its sibling .cpp, else the first unit whose dependency log names it), so
 every changed file is looked at once and a header's findings are reported through that unit
-(HeaderFilterRegex). A change of .clang-tidy or an unknown base means all
-units. What the changed-files pass can miss (an unchanged .cpp whose findings appear only with
+(HeaderFilterRegex). With --dependents, every unit that reads a changed file instead. A
+change of .clang-tidy or an unknown base means all units. What the changed-files pass can miss (an unchanged .cpp whose findings appear only with
 a changed header) is what `scripts/lint.sh --all` is for: before a release and weekly
 (.ci/weekly). Measured on two cores with an empty cache: 9-53 s per unit, ~35 min for all of
 model/ (docs/platform.md, "Timings").
 
-Usage: tidy_cached.py --build build/default [--jobs N] [--cache DIR] [--all | --base REV] FOLDER...
+Recording (--record FILE): a unit's clang-tidy result depends only on its inputs (above), so
+"every unit clean at commit C" holds at HEAD when every unit whose inputs changed since C is
+clean at HEAD. The record is written after a clean --all pass, or after a clean --dependents
+pass whose base is the recorded commit itself (not after a changed-files pass: it looks at a
+changed header through one unit only). lint.sh --record checks the tree is committed.
+
+Usage: tidy_cached.py --build build/default [--jobs N] [--cache DIR] [--all | --base REV]
+                      [--dependents] [--record FILE] FOLDER...
 Exit status 1 when any unit has a finding (checks are errors), 0 otherwise.
 """
 import argparse
@@ -88,13 +95,9 @@ def choose_base(explicit):
         mb = git("merge-base", "HEAD", upstream)
         if mb and mb != head:
             return mb, "merge base with the upstream branch"
-    try:
-        with open(os.path.join(ROOT, "scripts", "tidy-clean-commit")) as f:
-            rec = f.read().split()[0]
-        return git("rev-parse", "--verify", "--quiet", rec + "^{commit}"), \
-            "last full clean pass (scripts/tidy-clean-commit)"
-    except (OSError, IndexError):
-        return None, "no recorded clean pass"
+    rec = recorded_clean_commit()
+    return (rec, "last recorded clean pass (scripts/tidy-clean-commit)") if rec else \
+        (None, "no recorded clean pass")
 
 
 def changed_files(base):
@@ -102,6 +105,20 @@ def changed_files(base):
     out = git("diff", "--name-only", base) or ""
     untracked = git("ls-files", "--others", "--exclude-standard") or ""
     return {p for p in (out + "\n" + untracked).splitlines() if p}
+
+
+def select_dependents(units, deps_of, changed):
+    """Every unit that reads a changed file (its source or any header in its dependency log);
+    a unit without a dependency log (never built) counts as reading everything."""
+    changed_abs = {os.path.join(ROOT, rel) for rel in changed}
+    chosen = []
+    for e in units:
+        inputs = deps_of(e)
+        files = {os.path.normpath(os.path.abspath(e["file"]))}
+        if inputs is None or files & changed_abs or \
+                any(os.path.normpath(p) in changed_abs for p in inputs):
+            chosen.append(e)
+    return chosen
 
 
 def select_changed(units, deps_of, changed):
@@ -163,6 +180,10 @@ def main():
     ap.add_argument("--all", action="store_true", help="every unit, not only the changed files")
     ap.add_argument("--base", default=os.environ.get("FOVEA_TIDY_BASE"),
                     help="commit to diff against (default: see choose_base)")
+    ap.add_argument("--dependents", action="store_true",
+                    help="every unit that reads a changed file, not one per changed file")
+    ap.add_argument("--record", metavar="FILE",
+                    help="write HEAD to FILE when this pass proves every unit clean (see above)")
     ap.add_argument("folders", nargs="+")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
@@ -191,6 +212,8 @@ def main():
         the log names build-tree files relative to the build folder."""
         inputs = deps.get(objects_of(e))
         return None if inputs is None else [p if os.path.isabs(p) else os.path.join(build, p) for p in inputs]
+    # Whether a clean pass proves every unit clean at HEAD (the --record condition above).
+    proves_all = a.all
     if not a.all:
         base, how = choose_base(a.base)
         changed = changed_files(base) if base else None
@@ -198,13 +221,20 @@ def main():
         if changed is None or changed & always:
             why = how if changed is None else "the tidy configuration changed"
             print(f"tidy: all units ({why})")
+            proves_all = True
         else:
             total = len(units)
-            units = select_changed(units, lambda e: inputs_of(e) or [], changed)
+            if a.dependents:
+                units = select_dependents(units, inputs_of, changed)
+                proves_all = base == recorded_clean_commit()
+                look = "read them"
+            else:
+                units = select_changed(units, lambda e: inputs_of(e) or [], changed)
+                look = "look at them"
             print(f"tidy: {len(changed)} files changed since {base[:10]} ({how}); {len(units)} of "
-                  f"{total} units look at them (scripts/lint.sh --all checks every unit)")
+                  f"{total} units {look} (scripts/lint.sh --all checks every unit)")
             if not units:
-                return 0
+                return record(a.record, proves_all)
     os.makedirs(a.cache, exist_ok=True)
     todo, cached = [], 0
     for e in units:
@@ -246,7 +276,33 @@ def main():
             print(f"tidy: {rel}: {'clean' if clean else 'FINDINGS'} ({secs:.1f} s)", flush=True)
     print(f"tidy: {len(units)} units, {cached} unchanged since a clean check, {len(todo)} checked in "
           f"{time.time() - start:.0f} s with {a.jobs} jobs, {len(failed)} with findings")
-    return 1 if failed else 0
+    if failed:
+        return 1
+    return record(a.record, proves_all)
+
+
+def recorded_clean_commit():
+    """The commit in scripts/tidy-clean-commit, resolved (None when missing)."""
+    try:
+        with open(os.path.join(ROOT, "scripts", "tidy-clean-commit")) as f:
+            return git("rev-parse", "--verify", "--quiet", f.read().split()[0] + "^{commit}")
+    except (OSError, IndexError):
+        return None
+
+
+def record(path, proves_all):
+    """After a clean pass: write HEAD to path when the pass proves every unit clean."""
+    if not path:
+        return 0
+    if not proves_all:
+        print("tidy: not recorded: this pass does not prove every unit clean (use --all, or "
+              "--dependents from the recorded commit)")
+        return 0
+    head = git("rev-parse", "HEAD")
+    with open(path, "w") as f:
+        f.write(head + "\n")
+    print(f"tidy: recorded {head[:10]} as a commit at which every unit is clean ({path})")
+    return 0
 
 
 if __name__ == "__main__":
