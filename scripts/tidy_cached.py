@@ -15,8 +15,9 @@ base commit (see choose_base): each changed .cpp's own unit, and for each change
 unit that reads it (its sibling .cpp, else the first unit whose dependency log names it), so
 every changed file is looked at once and a header's findings are reported through that unit
 (HeaderFilterRegex). With --dependents, every unit that reads a changed file instead. A
-change of .clang-tidy or an unknown base means all units. What the changed-files pass can miss (an unchanged .cpp whose findings appear only with
-a changed header) is what `scripts/lint.sh --all` is for: before a release and weekly
+change of .clang-tidy or an unknown base means all units. What the changed-files pass can miss
+(an unchanged .cpp whose findings appear only with a changed header) is what
+`scripts/lint.sh --all` or `--record` is for: before a release and weekly
 (.ci/weekly). Measured on two cores with an empty cache: 9-53 s per unit, ~35 min for all of
 model/ (docs/platform.md, "Timings").
 
@@ -111,14 +112,12 @@ def select_dependents(units, deps_of, changed):
     """Every unit that reads a changed file (its source or any header in its dependency log);
     a unit without a dependency log (never built) counts as reading everything."""
     changed_abs = {os.path.join(ROOT, rel) for rel in changed}
-    chosen = []
-    for e in units:
+
+    def reads_changed(e):
         inputs = deps_of(e)
-        files = {os.path.normpath(os.path.abspath(e["file"]))}
-        if inputs is None or files & changed_abs or \
-                any(os.path.normpath(p) in changed_abs for p in inputs):
-            chosen.append(e)
-    return chosen
+        return inputs is None or any(os.path.normpath(os.path.abspath(p)) in changed_abs
+                                     for p in [e["file"], *inputs])
+    return [e for e in units if reads_changed(e)]
 
 
 def select_changed(units, deps_of, changed):
