@@ -9,6 +9,18 @@ if(FOVEA_SANITIZE)
   target_compile_options(fovea_options INTERFACE -fsanitize=address,undefined
                          -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(fovea_options INTERFACE -fsanitize=address,undefined)
+  # One Eigen heap ABI in both trees: Eigen assumes glibc's malloc 16-byte aligned, but not
+  # when __SANITIZE_ADDRESS__ is defined (Eigen/src/Core/util/Memory.h); it then over-allocates
+  # and offsets every block, so a matrix allocated in a sanitized library and freed by an
+  # unsanitized test executable (or the reverse) is a bad free. ASan's malloc is 16-byte aligned
+  # on x86-64 (alignof(max_align_t), as the C standard asks of malloc), and Eigen's own check of
+  # that (eigen_assert in aligned_malloc, live in this NDEBUG-free tree) stays on.
+  target_compile_definitions(fovea_options INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=1)
+  # A shared library's calls to its own inline and template functions bind to its own
+  # (instrumented) copies, never to the copies an uninstrumented executable exports: the ASan
+  # tree runs the default tree's test executables against its libraries (tests/CMakeLists.txt).
+  target_link_options(fovea_options INTERFACE
+                      $<$<STREQUAL:$<TARGET_PROPERTY:TYPE>,SHARED_LIBRARY>:-Wl,-Bsymbolic-functions>)
 endif()
 target_include_directories(fovea_options INTERFACE ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/generated)
 

@@ -98,9 +98,20 @@ class TestUsbTransport : public QObject {
     env.insert("FOVEA_UMOCKDEV_CHILD", "1");
     // umockdev works by LD_PRELOAD, which an ASan build must be told to accept.
     env.insert("ASAN_OPTIONS", env.value("ASAN_OPTIONS") + ":verify_asan_link_order=0");
+    QStringList command{QCoreApplication::applicationFilePath(), "recordedDeviceEnumerates"};
+    // The ASan tree runs this executable with the ASan runtime preloaded (tests/CMakeLists.txt,
+    // FOVEA_TEST_DRIVERS). umockdev-run itself must not load it (the two preloads' start-up
+    // hangs it); the child gets it back first, ahead of umockdev's own preload.
+    if (env.contains("LD_PRELOAD")) {
+      env.insert("FOVEA_CHILD_PRELOAD", env.value("LD_PRELOAD"));
+      env.remove("LD_PRELOAD");
+      command = QStringList{"/bin/sh", "-c",
+                            R"(LD_PRELOAD="$FOVEA_CHILD_PRELOAD${LD_PRELOAD:+:$LD_PRELOAD}" exec "$@")", "sh"} +
+                command;
+    }
     p.setProcessEnvironment(env);
-    p.start(runner, {"-d", QString(FOVEA_SOURCE_DIR) + "/tests/devices/data/kdc101.umockdev", "--",
-                     QCoreApplication::applicationFilePath(), "recordedDeviceEnumerates"});
+    p.start(runner,
+            QStringList{"-d", QString(FOVEA_SOURCE_DIR) + "/tests/devices/data/kdc101.umockdev", "--"} + command);
     QVERIFY(p.waitForFinished(30000));
     const QByteArray out = p.readAllStandardOutput() + p.readAllStandardError();
     QVERIFY2(p.exitStatus() == QProcess::NormalExit && p.exitCode() == 0, out.constData());
