@@ -7,6 +7,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_analyses {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -185,4 +187,6 @@ class TestCliAnalyses : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliAnalyses)
+
+}  // namespace tst_cli_analyses
 #include "tst_cli_analyses.moc"

@@ -15,6 +15,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_bad_input {
+
 namespace {
 namespace fs = std::filesystem;
 using fovea::testing::CliOutput;
@@ -209,4 +211,6 @@ class TestCliBadInput : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliBadInput)
+
+}  // namespace tst_cli_bad_input
 #include "tst_cli_bad_input.moc"

@@ -13,6 +13,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_binocular {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -138,4 +140,6 @@ class TestCliBinocular : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliBinocular)
+
+}  // namespace tst_cli_binocular
 #include "tst_cli_binocular.moc"

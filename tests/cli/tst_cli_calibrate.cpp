@@ -13,6 +13,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_calibrate {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -65,4 +67,6 @@ class TestCliCalibrate : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliCalibrate)
+
+}  // namespace tst_cli_calibrate
 #include "tst_cli_calibrate.moc"

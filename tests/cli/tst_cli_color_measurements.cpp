@@ -11,6 +11,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_color_measurements {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -162,4 +164,6 @@ class TestCliColorMeasurements : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliColorMeasurements)
+
+}  // namespace tst_cli_color_measurements
 #include "tst_cli_color_measurements.moc"

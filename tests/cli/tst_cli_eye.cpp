@@ -20,6 +20,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_eye {
+
 namespace {
 using fovea::testing::cliText;
 const QString kMono = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
@@ -410,4 +412,6 @@ class TestCliEye : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliEye)
+
+}  // namespace tst_cli_eye
 #include "tst_cli_eye.moc"

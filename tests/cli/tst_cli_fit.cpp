@@ -17,6 +17,8 @@
 #include "model/scene/scene_io.h"
 #include "model/scene/scene_parameters.h"
 
+namespace tst_cli_fit {
+
 using fovea::testing::runFoveaCli;
 
 namespace {
@@ -248,4 +250,6 @@ class TestCliFit : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliFit)
+
+}  // namespace tst_cli_fit
 #include "tst_cli_fit.moc"

@@ -8,6 +8,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_grating {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run runCli(const QStringList& args, const QByteArray& stdin_data = {}) {
@@ -149,4 +151,6 @@ this is not json
 };
 
 QTEST_GUILESS_MAIN(TestCliGrating)
+
+}  // namespace tst_cli_grating
 #include "tst_cli_grating.moc"

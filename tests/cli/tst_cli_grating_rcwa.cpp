@@ -17,6 +17,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_grating_rcwa {
+
 namespace {
 using fovea::testing::CliOutput;
 
@@ -206,4 +208,6 @@ class TestCliGratingRcwa : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliGratingRcwa)
+
+}  // namespace tst_cli_grating_rcwa
 #include "tst_cli_grating_rcwa.moc"

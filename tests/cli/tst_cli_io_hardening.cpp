@@ -21,6 +21,8 @@
 #include "tests/test_files.h"
 #include "tests/tolerance_test_spec.h"
 
+namespace tst_cli_io_hardening {
+
 using fovea::testing::runFoveaCli;
 using fovea::testing::writeTestFile;
 namespace fs = std::filesystem;
@@ -328,4 +330,6 @@ class TestCliIoHardening : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliIoHardening)
+
+}  // namespace tst_cli_io_hardening
 #include "tst_cli_io_hardening.moc"

@@ -8,6 +8,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_numeric_options {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -76,4 +78,6 @@ class TestCliNumericOptions : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliNumericOptions)
+
+}  // namespace tst_cli_numeric_options
 #include "tst_cli_numeric_options.moc"

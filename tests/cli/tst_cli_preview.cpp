@@ -16,6 +16,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_preview {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -295,4 +297,6 @@ class TestCliPreview : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliPreview)
+
+}  // namespace tst_cli_preview
 #include "tst_cli_preview.moc"

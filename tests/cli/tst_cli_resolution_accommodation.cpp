@@ -11,6 +11,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_resolution_accommodation {
+
 using nlohmann::json;
 
 namespace {
@@ -119,4 +121,6 @@ class TestCliResolutionAccommodation : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliResolutionAccommodation)
+
+}  // namespace tst_cli_resolution_accommodation
 #include "tst_cli_resolution_accommodation.moc"

@@ -14,6 +14,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_retina_image {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -104,4 +106,6 @@ class TestCliRetinaImage : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliRetinaImage)
+
+}  // namespace tst_cli_retina_image
 #include "tst_cli_retina_image.moc"

@@ -7,6 +7,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_seed_definitions {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -92,4 +94,6 @@ class TestCliSeedDefinitions : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestCliSeedDefinitions)
+
+}  // namespace tst_cli_seed_definitions
 #include "tst_cli_seed_definitions.moc"

@@ -12,6 +12,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_stage {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -297,4 +299,6 @@ class TestCliStage : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliStage)
+
+}  // namespace tst_cli_stage
 #include "tst_cli_stage.moc"

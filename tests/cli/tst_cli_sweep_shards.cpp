@@ -13,6 +13,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_sweep_shards {
+
 using fovea::testing::CliCall;
 using fovea::testing::runFoveaCli;
 
@@ -110,4 +112,6 @@ class TestCliSweepShards : public QObject {
 };
 
 QTEST_MAIN(TestCliSweepShards)
+
+}  // namespace tst_cli_sweep_shards
 #include "tst_cli_sweep_shards.moc"

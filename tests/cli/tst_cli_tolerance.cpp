@@ -12,6 +12,8 @@
 #include "tests/test_files.h"
 #include "tests/tolerance_test_spec.h"
 
+namespace tst_cli_tolerance {
+
 using fovea::testing::runFoveaCli;
 using fovea::testing::smallToleranceSpec;
 using fovea::testing::writeTestFile;
@@ -101,4 +103,6 @@ class TestCliTolerance : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliTolerance)
+
+}  // namespace tst_cli_tolerance
 #include "tst_cli_tolerance.moc"

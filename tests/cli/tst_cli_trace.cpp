@@ -10,6 +10,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_trace {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run runCli(const QStringList& args) {
@@ -121,4 +123,6 @@ class TestCliTrace : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliTrace)
+
+}  // namespace tst_cli_trace
 #include "tst_cli_trace.moc"

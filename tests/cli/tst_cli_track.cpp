@@ -18,6 +18,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_track {
+
 namespace {
 using Run = fovea::testing::CliOutput;
 Run cli(const QStringList& args) {
@@ -246,4 +248,6 @@ class TestCliTrack : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliTrack)
+
+}  // namespace tst_cli_track
 #include "tst_cli_track.moc"

@@ -12,6 +12,8 @@
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
+namespace tst_cli_validate {
+
 namespace {
 
 struct Run {
@@ -107,4 +109,6 @@ class TestCliValidate : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliValidate)
+
+}  // namespace tst_cli_validate
 #include "tst_cli_validate.moc"

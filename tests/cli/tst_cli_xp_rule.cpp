@@ -15,6 +15,8 @@
 
 #include "tests/cli/cli_process.h"
 
+namespace tst_cli_xp_rule {
+
 using fovea::testing::runFoveaCli;
 
 namespace {
@@ -173,4 +175,6 @@ class TestCliXpRule : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCliXpRule)
+
+}  // namespace tst_cli_xp_rule
 #include "tst_cli_xp_rule.moc"

@@ -10,6 +10,8 @@
 #include "devices/apt/apt_message.h"
 #include "devices/apt/stage_models.h"
 
+namespace tst_apt_codec {
+
 using namespace fovea::apt;
 using Bytes = std::vector<std::uint8_t>;
 
@@ -342,4 +344,6 @@ class TestAptCodec : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestAptCodec)
+
+}  // namespace tst_apt_codec
 #include "tst_apt_codec.moc"

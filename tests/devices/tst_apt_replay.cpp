@@ -11,6 +11,8 @@
 #include "devices/stage/stage.h"
 #include "devices/virtual/virtual_transport.h"
 
+namespace tst_apt_replay {
+
 using namespace fovea::devices;
 namespace apt = fovea::apt;
 
@@ -178,4 +180,6 @@ class TestAptReplay : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestAptReplay)
+
+}  // namespace tst_apt_replay
 #include "tst_apt_replay.moc"

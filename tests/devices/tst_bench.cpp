@@ -12,6 +12,8 @@
 #include "devices/bench/target_follower.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_bench {
+
 using namespace fovea;
 using namespace fovea::devices;
 
@@ -204,4 +206,6 @@ class TestBench : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestBench)
+
+}  // namespace tst_bench
 #include "tst_bench.moc"

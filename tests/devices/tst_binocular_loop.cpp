@@ -11,6 +11,8 @@
 #include "devices/bench/binocular_loop.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_binocular_loop {
+
 using namespace fovea;
 using namespace fovea::devices;
 
@@ -119,4 +121,6 @@ class TestBinocularLoop : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestBinocularLoop)
+
+}  // namespace tst_binocular_loop
 #include "tst_binocular_loop.moc"

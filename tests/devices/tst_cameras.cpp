@@ -15,6 +15,8 @@
 #include "devices/virtual/virtual_transport.h"
 #include "tests/test_files.h"
 
+namespace tst_cameras {
+
 using namespace fovea::devices;
 
 namespace {
@@ -162,4 +164,6 @@ class TestCameras : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestCameras)
+
+}  // namespace tst_cameras
 #include "tst_cameras.moc"

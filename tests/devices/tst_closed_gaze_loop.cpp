@@ -13,6 +13,8 @@
 #include "model/gaze/pupil_detector.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_closed_gaze_loop {
+
 using namespace fovea;
 using namespace fovea::devices;
 
@@ -127,4 +129,6 @@ class TestClosedGazeLoop : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestClosedGazeLoop)
+
+}  // namespace tst_closed_gaze_loop
 #include "tst_closed_gaze_loop.moc"

@@ -15,6 +15,8 @@
 #include "model/analysis/hoe_travel.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_follow_xp {
+
 using namespace fovea;
 using namespace fovea::devices;
 
@@ -47,4 +49,6 @@ class TestFollowXp : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestFollowXp)
+
+}  // namespace tst_follow_xp
 #include "tst_follow_xp.moc"

@@ -9,6 +9,8 @@
 #include "devices/stage/stage_binding.h"
 #include "devices/virtual/virtual_transport.h"
 
+namespace tst_stage_virtual {
+
 using namespace fovea::devices;
 namespace apt = fovea::apt;
 
@@ -500,4 +502,6 @@ class TestStageVirtual : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestStageVirtual)
+
+}  // namespace tst_stage_virtual
 #include "tst_stage_virtual.moc"

@@ -2,6 +2,7 @@
 // bytes removed per max-packet chunk, the baud-rate divisor encoding (AN232B-05 values), and
 // enumeration / opening a missing device failing cleanly.
 #include <QtTest>
+#include "tests/test_batch.h"
 #include "tests/test_paths.h"
 
 #include <mutex>
@@ -9,6 +10,8 @@
 #include "devices/transport/device_error.h"
 #include "devices/transport/ftdi.h"
 #include "devices/transport/libusb_transport.h"
+
+namespace tst_usb_transport {
 
 using namespace fovea::devices;
 using Bytes = std::vector<std::uint8_t>;
@@ -98,7 +101,9 @@ class TestUsbTransport : public QObject {
     env.insert("FOVEA_UMOCKDEV_CHILD", "1");
     // umockdev works by LD_PRELOAD, which an ASan build must be told to accept.
     env.insert("ASAN_OPTIONS", env.value("ASAN_OPTIONS") + ":verify_asan_link_order=0");
-    QStringList command{QCoreApplication::applicationFilePath(), "recordedDeviceEnumerates"};
+    // This test's executable holds other tests too: it is named before the test function.
+    QStringList command{QCoreApplication::applicationFilePath(), fovea::testing::currentTestName(),
+                        "recordedDeviceEnumerates"};
     // The ASan tree runs this executable with the ASan runtime preloaded (tests/CMakeLists.txt,
     // FOVEA_TEST_DRIVERS). umockdev-run itself must not load it (the two preloads' start-up
     // hangs it); the child gets it back first, ahead of umockdev's own preload.
@@ -115,7 +120,7 @@ class TestUsbTransport : public QObject {
     QVERIFY(p.waitForFinished(30000));
     const QByteArray out = p.readAllStandardOutput() + p.readAllStandardError();
     QVERIFY2(p.exitStatus() == QProcess::NormalExit && p.exitCode() == 0, out.constData());
-    QVERIFY2(out.contains("PASS   : TestUsbTransport::recordedDeviceEnumerates()"), out.constData());
+    QVERIFY2(out.contains("PASS   : tst_usb_transport::TestUsbTransport::recordedDeviceEnumerates()"), out.constData());
   }
 
   void openingAMissingControllerNamesIt() {
@@ -134,4 +139,6 @@ class TestUsbTransport : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestUsbTransport)
+
+}  // namespace tst_usb_transport
 #include "tst_usb_transport.moc"

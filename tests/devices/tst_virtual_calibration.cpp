@@ -21,6 +21,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/test_files.h"
 
+namespace tst_virtual_calibration {
+
 using namespace fovea;
 using namespace fovea::devices;
 namespace fs = std::filesystem;
@@ -257,4 +259,6 @@ class TestVirtualCalibration : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestVirtualCalibration)
+
+}  // namespace tst_virtual_calibration
 #include "tst_virtual_calibration.moc"

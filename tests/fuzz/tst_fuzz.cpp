@@ -45,6 +45,8 @@
 #include "tests/test_files.h"
 #include "tests/tolerance_test_spec.h"
 
+namespace tst_fuzz {
+
 using namespace fovea;
 namespace fs = std::filesystem;
 
@@ -694,4 +696,6 @@ class TestFuzz : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestFuzz)
+
+}  // namespace tst_fuzz
 #include "tst_fuzz.moc"

@@ -25,6 +25,8 @@
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
+namespace tst_analyses_panel {
+
 using namespace fovea;
 using namespace fovea::widgets;
 using fovea::testing::AnalysisGate;
@@ -327,4 +329,6 @@ class TestAnalysesPanel : public QObject {
 };
 
 QTEST_MAIN(TestAnalysesPanel)
+
+}  // namespace tst_analyses_panel
 #include "tst_analyses_panel.moc"

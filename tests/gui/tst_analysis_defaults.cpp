@@ -19,6 +19,8 @@
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
+namespace tst_analysis_defaults {
+
 using namespace fovea;
 using namespace fovea::widgets;
 using fovea::testing::prototypeScene;
@@ -185,4 +187,6 @@ class TestAnalysisDefaults : public QObject {
 };
 
 QTEST_MAIN(TestAnalysisDefaults)
+
+}  // namespace tst_analysis_defaults
 #include "tst_analysis_defaults.moc"

@@ -15,6 +15,8 @@
 #include "viz/scene_elements.h"
 #include "viz/scene_view.h"
 
+namespace tst_binocular_view {
+
 using namespace fovea;
 
 namespace {
@@ -90,4 +92,6 @@ class TestBinocularView : public QObject {
 };
 
 QTEST_MAIN(TestBinocularView)
+
+}  // namespace tst_binocular_view
 #include "tst_binocular_view.moc"

@@ -40,6 +40,8 @@
 #include "widgets/message_log.h"
 #include "widgets/scene_document.h"
 
+namespace tst_devices_panel {
+
 using namespace fovea;
 using widgets::DevicesPanel;
 
@@ -372,4 +374,6 @@ class TestDevicesPanel : public QObject {
 };
 
 QTEST_MAIN(TestDevicesPanel)
+
+}  // namespace tst_devices_panel
 #include "tst_devices_panel.moc"

@@ -22,6 +22,8 @@
 #include "widgets/plots/plots_panel.h"
 #include "widgets/scene_document.h"
 
+namespace tst_fit_panel {
+
 using namespace fovea;
 using namespace fovea::widgets;
 using fovea::testing::prototypeScene;
@@ -155,4 +157,6 @@ class TestFitPanel : public QObject {
 };
 
 QTEST_MAIN(TestFitPanel)
+
+}  // namespace tst_fit_panel
 #include "tst_fit_panel.moc"

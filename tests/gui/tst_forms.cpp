@@ -34,6 +34,8 @@
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
 
+namespace tst_forms {
+
 using namespace fovea;
 
 namespace {
@@ -347,4 +349,6 @@ int main(int argc, char** argv) {
   TestForms test;
   return QTest::qExec(&test, argc, argv);
 }
+
+}  // namespace tst_forms
 #include "tst_forms.moc"

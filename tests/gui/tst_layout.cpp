@@ -19,6 +19,8 @@
 #include "widgets/property_editor.h"
 #include "widgets/scene_document.h"
 
+namespace tst_layout {
+
 using namespace fovea;
 
 namespace {
@@ -180,4 +182,6 @@ int main(int argc, char** argv) {
   TestLayout test;
   return QTest::qExec(&test, argc, argv);
 }
+
+}  // namespace tst_layout
 #include "tst_layout.moc"

@@ -32,6 +32,8 @@
 #include "widgets/scene_document.h"
 #include "widgets/scene_tree.h"
 
+namespace tst_main_window {
+
 using namespace fovea;
 
 namespace {
@@ -442,4 +444,6 @@ int main(int argc, char** argv) {
   TestMainWindow test;
   return QTest::qExec(&test, argc, argv);
 }
+
+}  // namespace tst_main_window
 #include "tst_main_window.moc"

@@ -21,6 +21,8 @@
 #include "widgets/live_trace.h"
 #include "widgets/scene_document.h"
 
+namespace tst_one_fov {
+
 using namespace fovea;
 
 namespace {
@@ -121,4 +123,6 @@ class TestOneFov : public QObject {
 };
 
 QTEST_MAIN(TestOneFov)
+
+}  // namespace tst_one_fov
 #include "tst_one_fov.moc"

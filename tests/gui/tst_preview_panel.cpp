@@ -20,6 +20,8 @@
 #include "widgets/preview_panel.h"
 #include "widgets/scene_document.h"
 
+namespace tst_preview_panel {
+
 using namespace fovea;
 
 namespace {
@@ -158,4 +160,6 @@ class TestPreviewPanel : public QObject {
 };
 
 QTEST_MAIN(TestPreviewPanel)
+
+}  // namespace tst_preview_panel
 #include "tst_preview_panel.moc"

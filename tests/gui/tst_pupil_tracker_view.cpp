@@ -14,6 +14,8 @@
 #include "model/scene/scene_io.h"
 #include "widgets/bench/pupil_tracker_view.h"
 
+namespace tst_pupil_tracker_view {
+
 using namespace fovea;
 
 class TestPupilTrackerView : public QObject {
@@ -68,4 +70,6 @@ class TestPupilTrackerView : public QObject {
 };
 
 QTEST_MAIN(TestPupilTrackerView)
+
+}  // namespace tst_pupil_tracker_view
 #include "tst_pupil_tracker_view.moc"

@@ -26,6 +26,8 @@
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
+namespace tst_recovery {
+
 using namespace fovea;
 using namespace fovea::widgets;
 using fovea::testing::prototypeScene;
@@ -228,4 +230,6 @@ class TestRecovery : public QObject {
 };
 
 QTEST_MAIN(TestRecovery)
+
+}  // namespace tst_recovery
 #include "tst_recovery.moc"

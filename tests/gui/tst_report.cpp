@@ -22,6 +22,8 @@
 #include "viz/efficiency_colors.h"
 #include "widgets/analyses/analysis_catalog.h"
 
+namespace tst_report {
+
 namespace {
 
 QString tmpDir() {
@@ -302,4 +304,6 @@ class TestReport : public QObject {
 };
 
 QTEST_MAIN(TestReport)  // the tolerance section renders its plots (Qt Charts needs a QApplication)
+
+}  // namespace tst_report
 #include "tst_report.moc"

@@ -25,6 +25,8 @@
 #include "widgets/message_log.h"
 #include "widgets/preferences.h"
 
+namespace tst_report_export {
+
 using namespace fovea;
 
 namespace {
@@ -198,4 +200,6 @@ int main(int argc, char** argv) {
   TestReportExport test;
   return QTest::qExec(&test, argc, argv);
 }
+
+}  // namespace tst_report_export
 #include "tst_report_export.moc"

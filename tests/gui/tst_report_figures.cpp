@@ -23,6 +23,8 @@
 #include "widgets/live_trace.h"
 #include "widgets/scene_document.h"
 
+namespace tst_report_figures {
+
 using namespace fovea;
 
 namespace {
@@ -161,4 +163,6 @@ class TestReportFigures : public QObject {
 };
 
 QTEST_MAIN(TestReportFigures)
+
+}  // namespace tst_report_figures
 #include "tst_report_figures.moc"

@@ -10,6 +10,8 @@
 
 #include "viz/software_gl.h"
 
+namespace tst_software_gl {
+
 class TestSoftwareGl : public QObject {
   Q_OBJECT
  private:
@@ -58,4 +60,6 @@ class TestSoftwareGl : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestSoftwareGl)
+
+}  // namespace tst_software_gl
 #include "tst_software_gl.moc"

@@ -28,6 +28,8 @@
 #include "widgets/preferences.h"
 #include "widgets/scene_document.h"
 
+namespace tst_tolerance_analysis {
+
 using namespace fovea;
 using namespace fovea::widgets;
 using fovea::testing::prototypeScene;
@@ -216,4 +218,6 @@ class TestToleranceAnalysis : public QObject {
 };
 
 QTEST_MAIN(TestToleranceAnalysis)
+
+}  // namespace tst_tolerance_analysis
 #include "tst_tolerance_analysis.moc"

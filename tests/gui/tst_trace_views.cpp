@@ -41,6 +41,8 @@
 #include "widgets/retina_view.h"
 #include "widgets/scene_document.h"
 
+namespace tst_trace_views {
+
 using namespace fovea;
 
 class TestTraceViews : public QObject {
@@ -478,4 +480,6 @@ int main(int argc, char** argv) {
   TestTraceViews test;
   return QTest::qExec(&test, argc, argv);
 }
+
+}  // namespace tst_trace_views
 #include "tst_trace_views.moc"

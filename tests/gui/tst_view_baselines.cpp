@@ -38,6 +38,8 @@
 #include "widgets/live_trace.h"
 #include "widgets/retina_view.h"
 
+namespace tst_view_baselines {
+
 using namespace fovea;
 
 namespace {
@@ -371,4 +373,6 @@ int main(int argc, char** argv) {
   TestViewBaselines test;
   return QTest::qExec(&test, argc, argv);
 }
+
+}  // namespace tst_view_baselines
 #include "tst_view_baselines.moc"

@@ -9,6 +9,8 @@
 #include "model/units.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_angular_resolution {
+
 using namespace fovea;
 
 namespace {
@@ -126,4 +128,6 @@ class TestAngularResolution : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestAngularResolution)
+
+}  // namespace tst_angular_resolution
 #include "tst_angular_resolution.moc"

@@ -13,6 +13,8 @@
 #include "model/analysis/beam_shaping.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_beam_shaping {
+
 using namespace fovea;
 
 namespace {
@@ -177,4 +179,6 @@ class TestBeamShaping : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestBeamShaping)
+
+}  // namespace tst_beam_shaping
 #include "tst_beam_shaping.moc"

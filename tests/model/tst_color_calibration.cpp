@@ -8,6 +8,8 @@
 #include "model/color/color_calibration.h"
 #include "model/color/colorimetry.h"
 
+namespace tst_color_calibration {
+
 using namespace fovea::color;
 
 namespace {
@@ -242,4 +244,6 @@ class TestColorCalibration : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestColorCalibration)
+
+}  // namespace tst_color_calibration
 #include "tst_color_calibration.moc"

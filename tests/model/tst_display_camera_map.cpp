@@ -18,6 +18,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_display_camera_map {
+
 using namespace fovea;
 
 namespace {
@@ -192,4 +194,6 @@ class TestDisplayCameraMap : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestDisplayCameraMap)
+
+}  // namespace tst_display_camera_map
 #include "tst_display_camera_map.moc"

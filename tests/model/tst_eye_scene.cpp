@@ -25,6 +25,8 @@
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_eye_scene {
+
 using namespace fovea;
 
 namespace {
@@ -422,4 +424,6 @@ class TestEyeScene : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestEyeScene)
+
+}  // namespace tst_eye_scene
 #include "tst_eye_scene.moc"

@@ -20,6 +20,8 @@
 #include "model/scene/scene_parameters.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_fit {
+
 using namespace fovea;
 
 namespace {
@@ -277,4 +279,6 @@ class TestFit : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestFit)
+
+}  // namespace tst_fit
 #include "tst_fit.moc"

@@ -10,6 +10,8 @@
 #include "model/physics/focus_stage.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_focus_stage {
+
 using namespace fovea;
 
 namespace {
@@ -105,4 +107,6 @@ class TestFocusStage : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestFocusStage)
+
+}  // namespace tst_focus_stage
 #include "tst_focus_stage.moc"

@@ -18,6 +18,8 @@
 #include "model/units.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_fov_edges {
+
 using namespace fovea;
 
 namespace {
@@ -182,4 +184,6 @@ class TestFovEdges : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestFovEdges)
+
+}  // namespace tst_fov_edges
 #include "tst_fov_edges.moc"

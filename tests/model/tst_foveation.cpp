@@ -18,6 +18,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_foveation {
+
 using namespace fovea;
 using namespace fovea::image;
 
@@ -219,4 +221,6 @@ class TestFoveation : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestFoveation)
+
+}  // namespace tst_foveation
 #include "tst_foveation.moc"

@@ -10,6 +10,8 @@
 #include "model/gaze/gaze_calibration.h"
 #include "model/gaze/pupil_camera.h"
 
+namespace tst_gaze_calibration {
+
 using namespace fovea::gaze;
 
 namespace {
@@ -197,4 +199,6 @@ class TestGazeCalibration : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestGazeCalibration)
+
+}  // namespace tst_gaze_calibration
 #include "tst_gaze_calibration.moc"

@@ -14,6 +14,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_gaze_studies {
+
 using namespace fovea;
 
 namespace {
@@ -201,4 +203,6 @@ class TestGazeStudies : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestGazeStudies)
+
+}  // namespace tst_gaze_studies
 #include "tst_gaze_studies.moc"

@@ -14,6 +14,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_gaze_studies_traced {
+
 using namespace fovea;
 
 namespace {
@@ -158,4 +160,6 @@ class TestGazeStudiesTraced : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestGazeStudiesTraced)
+
+}  // namespace tst_gaze_studies_traced
 #include "tst_gaze_studies_traced.moc"

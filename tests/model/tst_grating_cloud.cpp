@@ -11,6 +11,8 @@
 #include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_grating_cloud {
+
 using namespace fovea;
 
 class TestGratingCloud : public QObject {
@@ -64,4 +66,6 @@ class TestGratingCloud : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestGratingCloud)
+
+}  // namespace tst_grating_cloud
 #include "tst_grating_cloud.moc"

@@ -11,6 +11,8 @@
 #include "model/analysis/hoe_selectivity.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_hoe_selectivity {
+
 using namespace fovea;
 
 namespace {
@@ -161,4 +163,6 @@ class TestHoeSelectivity : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestHoeSelectivity)
+
+}  // namespace tst_hoe_selectivity
 #include "tst_hoe_selectivity.moc"

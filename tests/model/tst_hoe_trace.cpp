@@ -13,6 +13,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_hoe_trace {
+
 using namespace fovea;
 
 namespace {
@@ -246,4 +248,6 @@ class TestHoeTrace : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestHoeTrace)
+
+}  // namespace tst_hoe_trace
 #include "tst_hoe_trace.moc"

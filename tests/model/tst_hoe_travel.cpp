@@ -15,6 +15,8 @@
 #include "tests/prototype_scene.h"
 #include "tests/sweep_at_gaze.h"
 
+namespace tst_hoe_travel {
+
 using namespace fovea;
 
 namespace {
@@ -132,4 +134,6 @@ class TestHoeTravel : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestHoeTravel)
+
+}  // namespace tst_hoe_travel
 #include "tst_hoe_travel.moc"

@@ -12,6 +12,8 @@
 #include "model/image/image_io.h"
 #include "tests/test_files.h"
 
+namespace tst_image_codec {
+
 using namespace fovea;
 
 using fovea::testing::mappedInProcess;
@@ -94,4 +96,6 @@ class TestImageCodec : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestImageCodec)
+
+}  // namespace tst_image_codec
 #include "tst_image_codec.moc"

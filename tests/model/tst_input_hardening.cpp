@@ -23,6 +23,8 @@
 #include "tests/prototype_scene.h"
 #include "tests/test_files.h"
 
+namespace tst_input_hardening {
+
 using namespace fovea;
 using nlohmann::json;
 
@@ -402,4 +404,6 @@ class TestInputHardening : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestInputHardening)
+
+}  // namespace tst_input_hardening
 #include "tst_input_hardening.moc"

@@ -10,6 +10,8 @@
 
 #include "model/io/json_input.h"
 
+namespace tst_json_input {
+
 using namespace fovea;
 
 namespace {
@@ -145,4 +147,6 @@ class TestJsonInput : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestJsonInput)
+
+}  // namespace tst_json_input
 #include "tst_json_input.moc"

@@ -10,6 +10,8 @@
 #include "model/physics/grating_request.h"
 #include "model/units.h"
 
+namespace tst_kogelnik {
+
 using namespace fovea;
 
 namespace {
@@ -361,4 +363,6 @@ class TestKogelnik : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestKogelnik)
+
+}  // namespace tst_kogelnik
 #include "tst_kogelnik.moc"

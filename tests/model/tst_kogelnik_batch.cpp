@@ -13,6 +13,8 @@
 #include "model/physics/kogelnik.h"
 #include "model/physics/kogelnik_batch.h"
 
+namespace tst_kogelnik_batch {
+
 using namespace fovea;
 
 namespace {
@@ -131,4 +133,6 @@ class TestKogelnikBatch : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestKogelnikBatch)
+
+}  // namespace tst_kogelnik_batch
 #include "tst_kogelnik_batch.moc"

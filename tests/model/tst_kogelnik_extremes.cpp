@@ -10,6 +10,8 @@
 #include "model/physics/grating_request.h"
 #include "model/physics/kogelnik.h"
 
+namespace tst_kogelnik_extremes {
+
 using namespace fovea;
 
 namespace {
@@ -97,4 +99,6 @@ class TestKogelnikExtremes : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestKogelnikExtremes)
+
+}  // namespace tst_kogelnik_extremes
 #include "tst_kogelnik_extremes.moc"

@@ -16,6 +16,8 @@
 #include "model/gaze/wide_eye_domain.h"
 #include "tests/test_files.h"
 
+namespace tst_learned_pupil {
+
 using namespace fovea::gaze;
 
 namespace {
@@ -206,4 +208,6 @@ class TestLearnedPupil : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestLearnedPupil)
+
+}  // namespace tst_learned_pupil
 #include "tst_learned_pupil.moc"

@@ -10,6 +10,8 @@
 
 #include "model/color/measurement_csv.h"
 
+namespace tst_measurement_csv {
+
 using namespace fovea::color;
 
 namespace {
@@ -138,4 +140,6 @@ class TestMeasurementCsv : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestMeasurementCsv)
+
+}  // namespace tst_measurement_csv
 #include "tst_measurement_csv.moc"

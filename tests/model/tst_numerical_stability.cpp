@@ -47,6 +47,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_numerical_stability {
+
 using namespace fovea;
 using LD = long double;
 
@@ -772,4 +774,6 @@ class TestNumericalStability : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestNumericalStability)
+
+}  // namespace tst_numerical_stability
 #include "tst_numerical_stability.moc"

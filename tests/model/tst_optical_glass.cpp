@@ -8,6 +8,8 @@
 #include "model/analysis/lens_catalog.h"
 #include "model/analysis/optical_glass.h"
 
+namespace tst_optical_glass {
+
 using namespace fovea;
 
 class TestOpticalGlass : public QObject {
@@ -109,4 +111,6 @@ class TestOpticalGlass : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestOpticalGlass)
+
+}  // namespace tst_optical_glass
 #include "tst_optical_glass.moc"

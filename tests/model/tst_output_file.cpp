@@ -16,6 +16,8 @@
 #include "model/io/save_temporaries.h"
 #include "tests/test_files.h"
 
+namespace tst_output_file {
+
 using namespace fovea;
 namespace fs = std::filesystem;
 
@@ -116,4 +118,6 @@ class TestOutputFile : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestOutputFile)
+
+}  // namespace tst_output_file
 #include "tst_output_file.moc"

@@ -11,6 +11,8 @@
 #include "model/analysis/lens_catalog.h"
 #include "model/scene/scene_io.h"
 
+namespace tst_pixel_beam_gain {
+
 using namespace fovea;
 
 namespace {
@@ -79,4 +81,6 @@ class TestPixelBeamGain : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestPixelBeamGain)
+
+}  // namespace tst_pixel_beam_gain
 #include "tst_pixel_beam_gain.moc"

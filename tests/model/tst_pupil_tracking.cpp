@@ -11,6 +11,8 @@
 #include "model/gaze/pupil_detector.h"
 #include "model/gaze/tracked_calibration.h"
 
+namespace tst_pupil_tracking {
+
 using namespace fovea::gaze;
 
 namespace {
@@ -148,4 +150,6 @@ class TestPupilTracking : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestPupilTracking)
+
+}  // namespace tst_pupil_tracking
 #include "tst_pupil_tracking.moc"

@@ -10,6 +10,8 @@
 #include "model/units.h"
 #include "tests/model/rcwa_cases.h"
 
+namespace tst_rcwa {
+
 using namespace fovea::rigorous;
 using fovea::degToRad;
 using fovea::kPi;
@@ -347,4 +349,6 @@ class TestRcwa : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestRcwa)
+
+}  // namespace tst_rcwa
 #include "tst_rcwa.moc"

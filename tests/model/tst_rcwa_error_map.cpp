@@ -6,6 +6,8 @@
 
 #include "model/rigorous/kogelnik_vs_rcwa.h"
 
+namespace tst_rcwa_error_map {
+
 using namespace fovea::rigorous;
 
 class TestRcwaErrorMap : public QObject {
@@ -35,4 +37,6 @@ class TestRcwaErrorMap : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestRcwaErrorMap)
+
+}  // namespace tst_rcwa_error_map
 #include "tst_rcwa_error_map.moc"

@@ -7,6 +7,8 @@
 #include "model/rigorous/rcwa_grating.h"
 #include "model/units.h"
 
+namespace tst_rcwa_grating {
+
 using namespace fovea::rigorous;
 using fovea::kPi;
 
@@ -88,4 +90,6 @@ class TestRcwaGrating : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestRcwaGrating)
+
+}  // namespace tst_rcwa_grating
 #include "tst_rcwa_grating.moc"

@@ -8,6 +8,8 @@
 #include "model/rigorous/rcwa.h"
 #include "model/units.h"
 
+namespace tst_rcwa_kogelnik {
+
 using namespace fovea::rigorous;
 using fovea::degToRad;
 using fovea::kPi;
@@ -161,4 +163,6 @@ class TestRcwaKogelnik : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestRcwaKogelnik)
+
+}  // namespace tst_rcwa_kogelnik
 #include "tst_rcwa_kogelnik.moc"

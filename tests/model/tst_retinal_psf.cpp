@@ -15,6 +15,8 @@
 #include "model/units.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_retinal_psf {
+
 using namespace fovea;
 
 namespace {
@@ -269,4 +271,6 @@ class TestRetinalPsf : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestRetinalPsf)
+
+}  // namespace tst_retinal_psf
 #include "tst_retinal_psf.moc"

@@ -16,6 +16,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/test_files.h"
 
+namespace tst_save_temporaries {
+
 using namespace fovea;
 namespace fs = std::filesystem;
 
@@ -92,4 +94,6 @@ class TestSaveTemporaries : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestSaveTemporaries)
+
+}  // namespace tst_save_temporaries
 #include "tst_save_temporaries.moc"

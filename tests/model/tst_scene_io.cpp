@@ -13,6 +13,8 @@
 #include "model/scene/scene_io.h"
 #include "model/scene/scene_parameters.h"
 
+namespace tst_scene_io {
+
 using namespace fovea;
 
 namespace {
@@ -305,4 +307,6 @@ class TestSceneIo : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestSceneIo)
+
+}  // namespace tst_scene_io
 #include "tst_scene_io.moc"

@@ -14,6 +14,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_seed_definitions {
+
 using namespace fovea;
 
 namespace {
@@ -158,4 +160,6 @@ class TestSeedDefinitions : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestSeedDefinitions)
+
+}  // namespace tst_seed_definitions
 #include "tst_seed_definitions.moc"

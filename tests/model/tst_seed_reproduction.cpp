@@ -14,6 +14,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/test_files.h"
 
+namespace tst_seed_reproduction {
+
 using namespace fovea;
 
 namespace {
@@ -108,4 +110,6 @@ class TestSeedReproduction : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestSeedReproduction)
+
+}  // namespace tst_seed_reproduction
 #include "tst_seed_reproduction.moc"

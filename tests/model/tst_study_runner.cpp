@@ -13,6 +13,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_study_runner {
+
 using namespace fovea;
 
 namespace {
@@ -149,4 +151,6 @@ class TestStudyRunner : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestStudyRunner)
+
+}  // namespace tst_study_runner
 #include "tst_study_runner.moc"

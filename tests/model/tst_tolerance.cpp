@@ -14,6 +14,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_tolerance {
+
 using namespace fovea;
 
 namespace {
@@ -241,4 +243,6 @@ class TestTolerance : public QObject {
 };
 
 QTEST_APPLESS_MAIN(TestTolerance)
+
+}  // namespace tst_tolerance
 #include "tst_tolerance.moc"

@@ -17,6 +17,8 @@
 #include "model/scene/scene_io.h"
 #include "tests/prototype_scene.h"
 
+namespace tst_trace_pipeline {
+
 using namespace fovea;
 
 namespace {
@@ -412,4 +414,6 @@ class TestTracePipeline : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestTracePipeline)
+
+}  // namespace tst_trace_pipeline
 #include "tst_trace_pipeline.moc"

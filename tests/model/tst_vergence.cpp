@@ -12,6 +12,8 @@
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 
+namespace tst_vergence {
+
 using namespace fovea;
 using namespace fovea::gaze;
 
@@ -153,4 +155,6 @@ class TestVergence : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestVergence)
+
+}  // namespace tst_vergence
 #include "tst_vergence.moc"

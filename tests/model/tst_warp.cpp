@@ -15,6 +15,8 @@
 #include "model/image/warp.h"
 #include "model/image/warp_table.h"
 
+namespace tst_warp {
+
 using namespace fovea::image;
 
 namespace {
@@ -161,4 +163,6 @@ class TestWarp : public QObject {
 };
 
 QTEST_GUILESS_MAIN(TestWarp)
+
+}  // namespace tst_warp
 #include "tst_warp.moc"
