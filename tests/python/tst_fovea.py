@@ -108,9 +108,23 @@ class AnalysesTest(unittest.TestCase):
         "optimize-lens": ({"starts": 1}, ["--starts", "1", "--no-cache"]),
     }
 
+    # The analyses whose fovea-cli command is written by hand, each compared in its own test below.
+    HAND_WRITTEN = {"tolerance": "test_tolerance_equals_the_cli", "grating": "test_grating_sweep_equals_the_cli",
+                    "kogelnik-vs-rcwa": "test_kogelnik_vs_rcwa_equals_bench_quick",
+                    "fit": "test_fit_equals_the_cli"}
+
     def test_every_generated_analysis_is_covered(self):
         generated = {k for k, v in fovea.analyses().items() if v["cli_generated"]}
         self.assertEqual(generated, set(self.CASES))
+
+    def test_every_analysis_is_compared_with_the_cli(self):
+        # A new analysis is either generated (CASES) or named here with the test that compares it.
+        analyses = fovea.analyses()
+        self.assertEqual(set(analyses), set(self.CASES) | set(self.HAND_WRITTEN))
+        self.assertFalse(set(self.CASES) & set(self.HAND_WRITTEN))
+        for analysis, test in self.HAND_WRITTEN.items():
+            self.assertFalse(analyses[analysis]["cli_generated"], analysis)
+            self.assertTrue(callable(getattr(self, test, None)), test)
 
     def test_python_equals_the_cli(self):
         scene = fovea.Scene.embedded()
@@ -155,6 +169,76 @@ class AnalysesTest(unittest.TestCase):
         py = fovea.run("tolerance", scene, spec=spec, trials=12, seed=3)
         doc = cli_json("tolerance", "", "--spec", spec, "--trials", "12", "--seed", "3")
         self.assertEqual(doc["trials"], 12)
+        self.assertEqual(canonical(py), canonical(doc))
+
+    def test_grating_sweep_equals_the_cli(self):
+        # The studio's probe-angle sweep of one grating: its "center" is the document of
+        # `fovea-cli grating --json` for the same grating, each sample the answer of
+        # `fovea-cli grating --model rcwa` (which carries Kogelnik's numbers too) at that probe angle.
+        grating = {"n0": 1.52, "n1": 0.015, "thickness_um": 12.0, "period_nm": 350.0, "slant_deg": 30.0,
+                   "probe_deg": 5.0, "wavelength_nm": 532.0, "polarization": "p", "absorption_per_mm": 0.1}
+        span, samples = 4.0, 9
+        py = fovea.run("grating", fovea.Scene.embedded(), span_deg=span, samples=samples, model="kogelnik+rcwa",
+                       **grating)
+        flags = []
+        for k, v in grating.items():
+            flags += ["--" + k.replace("_", "-"), str(v)]
+        centre = grating["probe_deg"]
+        probes = [centre - span + 2.0 * span * i / (samples - 1) for i in range(samples)]
+        lines = "".join(json.dumps(dict(grating, probe_deg=p)) + "\n" for p in probes)
+        path = os.path.join(TMP, "python-grating-sweep.jsonl")
+        with open(path, "w") as f:
+            f.write(lines)
+        answers = [json.loads(line) for line in cli("grating", "--batch", path, "--model", "rcwa")[0].splitlines()]
+        self.assertEqual(len(answers), samples)
+        want = {"center": json.loads(cli("grating", *flags, "--json")[0]), "models": ["kogelnik", "rcwa"],
+                "samples": [{"probe_deg": p, "detuning_deg": p - centre, "kogelnik_efficiency":
+                             a["kogelnik_efficiency"], "xi": a["xi"], "nu": a["nu"], "rcwa_efficiency":
+                             a["efficiency"], "rcwa_converged": a["rcwa"]["converged"]}
+                            for p, a in zip(probes, answers)]}
+        self.assertEqual(want["center"]["polarization"], "p")
+        for s in want["samples"]:
+            self.assertTrue(s["rcwa_converged"])
+            self.assertTrue(0.0 < s["kogelnik_efficiency"] < 1.0)
+            self.assertLess(abs(s["rcwa_efficiency"] - s["kogelnik_efficiency"]), 0.1)
+        self.assertEqual(canonical(py), canonical(want))
+
+    def test_kogelnik_vs_rcwa_equals_bench_quick(self):
+        # The "quick" grid is the one of `fovea-cli bench --quick`, whose kogelnik_vs_rcwa section
+        # summarises it by rho decade under other key names (docs/benchmarks.md). Every number but
+        # the run times (mean Kogelnik ns, mean RCWA ms: measured anew by each run) is the same.
+        py = fovea.run("kogelnik-vs-rcwa", fovea.Scene.embedded(), grid="quick")
+        bench = json.loads(cli("bench", "--quick", "--json")[0])["kogelnik_vs_rcwa"]
+        self.assertEqual(py["grid"], "quick")
+        self.assertEqual(len(py["points"]), bench["points"])
+        self.assertEqual(bench["points"], 24)
+        names = {"rho_min": "rho_min", "rho_max": "rho_max", "points": "points", "max_error": "max_abs_error",
+                 "median_error": "median_abs_error", "max_error_weak": "max_abs_error_nu_le_half_pi"}
+        mine = [{names[k]: v for k, v in row.items() if k in names} for row in py["by_rho"]]
+        theirs = [{k: v for k, v in row.items() if k in names.values()} for row in bench["by_rho"]]
+        self.assertEqual(canonical(mine), canonical(theirs))
+        for row in py["by_rho"]:
+            self.assertGreater(row["mean_kogelnik_ns"], 0.0)
+            self.assertGreater(row["mean_rcwa_ms"], 0.0)
+        # The summary from the points themselves: the bench's numbers are those of these points.
+        errors = sorted(p["abs_error"] for p in py["points"])
+        self.assertEqual(max(r["max_abs_error"] for r in bench["by_rho"]), errors[-1])
+        self.assertEqual(sum(r["points"] for r in bench["by_rho"]), len(errors))
+
+    def test_fit_equals_the_cli(self):
+        # One free parameter against two of the seed's simulated targets, two starts (the second
+        # random, by the seed) and a small evaluation budget: the document of `fovea-cli fit --json`.
+        scene = fovea.Scene.embedded()
+        targets = os.path.join(SOURCE, "resources", "seed", "seed-targets.json")
+        select = "sim-fov-h-0,sim-xp-0"
+        py = fovea.run("fit", scene, targets=targets, free="eye.relief_mm", targets_select=select, starts=2, seed=4,
+                       max_evals=12)
+        doc = cli_json("fit", "", "--targets", targets, "--free", "eye.relief_mm", "--targets-select", select,
+                       "--starts", "2", "--seed", "4", "--max-evals", "12")
+        self.assertEqual([t["id"] for t in doc["targets"]], ["sim-fov-h-0", "sim-xp-0"])
+        self.assertEqual(len(doc["start_results"]), 2)
+        self.assertEqual(doc["evaluations"], sum(r["evaluations"] for r in doc["start_results"]))
+        self.assertLess(doc["chi2"], doc["chi2_initial"])
         self.assertEqual(canonical(py), canonical(doc))
 
     def test_refused_parameter_has_the_cli_message(self):
