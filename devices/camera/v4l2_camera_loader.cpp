@@ -17,7 +17,8 @@ Create loadModule() {
   const LoadedModule m = openModuleBeside(reinterpret_cast<const void*>(&loadModule), "FOVEA_V4L2_CAMERA_MODULE",
                                           "libfovea_v4l2_camera.so");
   if (m.handle == nullptr)
-    throw DeviceError(DeviceError::Kind::NotFound, "cannot load the V4L2 camera module " + m.path + ": " + m.error);
+    throw DeviceError(DeviceError::Kind::NotFound, "cannot load the V4L2 camera module " + m.path + ": " + m.error +
+                                                       (m.from_env ? " (from $FOVEA_V4L2_CAMERA_MODULE)" : ""));
   auto create = reinterpret_cast<Create>(::dlsym(m.handle, "fovea_v4l2_camera_create"));
   if (create == nullptr)
     throw DeviceError(DeviceError::Kind::NotFound, "the V4L2 camera module " + m.path + " has no camera entry point");

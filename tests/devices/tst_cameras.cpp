@@ -143,6 +143,8 @@ class TestCameras : public QObject {
       QVERIFY2(std::string(e.what()).find("cannot load the V4L2 camera module /nonexistent/libfovea_v4l2_camera.so") !=
                    std::string::npos,
                e.what());
+      // The path came from the environment, and the message says so (as the image codec's does).
+      QVERIFY2(std::string(e.what()).find("(from $FOVEA_V4L2_CAMERA_MODULE)") != std::string::npos, e.what());
     }
     qunsetenv("FOVEA_V4L2_CAMERA_MODULE");
     QVERIFY(!mappedInProcess("libopencv_videoio"));
