@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "model/color/srgb.h"
 #include "model/image/image_codec.h"
@@ -70,18 +72,54 @@ std::vector<float> decode(const std::string& path, int max_channels, ImageHeader
   return pixels;
 }
 
-// Encodes through the codec and, when it encoded to memory, writes by the one writer (atomic,
-// checked, fsync'ed: a failed write leaves the existing file as it was); a format without memory
-// output writes directly.
+// A private directory under $TMPDIR (mkdtemp: mode 0700), removed with everything in it when
+// the object goes out of scope: where a format that cannot encode to memory is staged.
+class StagingDirectory {
+ public:
+  StagingDirectory() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "fovea-image-XXXXXX").string();
+    if (::mkdtemp(tmpl.data()) == nullptr)
+      throw ImageIoError("cannot create a staging directory in " + std::filesystem::temp_directory_path().string() +
+                         ": " + std::strerror(errno));
+    dir_ = tmpl;
+  }
+  ~StagingDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(dir_, ignored);
+  }
+  StagingDirectory(const StagingDirectory&) = delete;
+  StagingDirectory& operator=(const StagingDirectory&) = delete;
+  const std::filesystem::path& path() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+// The whole staged file (a few MB at most: our own encoder's output).
+std::vector<unsigned char> readStagedFile(const std::filesystem::path& file, const std::string& target) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw ImageIoError(target + ": cannot read back the staged image " + file.string());
+  return bytes;
+}
+
+// Encodes through the codec and writes the bytes by the one writer (atomic, checked, fsync'ed:
+// a failed write leaves the existing file as it was). A format the codec cannot encode to
+// memory (SGI, ICO, FITS, HEIF, RLA, zfile in OpenImageIO 2.4) is encoded into a file of the
+// same name in a private staging directory and its bytes then go through the same writer, so
+// no format writes the target directly (issue 28).
 void encode(const std::string& path, int width, int height, int channels, SampleType file_type, SampleType data_type,
             const void* data) {
   if (const auto why = outputPathProblem(path)) throw ImageIoError(path + ": " + *why);
+  StagingDirectory staging;
+  // Same file name, so the codec picks the format by the same extension.
+  const std::filesystem::path staged = staging.path() / std::filesystem::path(path).filename();
   std::vector<unsigned char> bytes;
   bool in_memory = false;
   const std::string problem =
-      imageCodec().write(path, width, height, channels, file_type, data_type, data, bytes, in_memory);
+      imageCodec().write(staged.string(), width, height, channels, file_type, data_type, data, bytes, in_memory);
   if (!problem.empty()) throw ImageIoError(path + ": " + problem);
-  if (!in_memory) return;
+  if (!in_memory) bytes = readStagedFile(staged, path);
   try {
     writeOutputFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   } catch (const OutputError& e) {

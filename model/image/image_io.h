@@ -35,7 +35,8 @@ cv::Mat readLinearRgb(const std::string& path);
 // Writes a CV_32FC3 linear RGB image, sRGB-encoded to 8 bits (16 for .tif/.png with
 // `sixteen_bit`), or as float for .exr. Encoded in memory and written by the one writer
 // (model/io/output_file.h: a device, FIFO or directory refused, atomic rename, every write
-// checked) when the format can write to memory (PNG, JPEG, TIFF, EXR, ...), else directly.
+// checked); a format that cannot encode to memory is staged in a private temporary directory
+// first, so every format goes through that writer.
 // Throws ImageIoError.
 void writeLinearRgb(const std::string& path, const cv::Mat& linear_rgb, bool sixteen_bit = false);
 

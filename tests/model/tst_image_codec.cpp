@@ -93,6 +93,35 @@ class TestImageCodec : public QObject {
     QVERIFY2(worst < 1e-4, qPrintable(QString::number(worst)));  // 16-bit sRGB step, linear units
     QVERIFY(worst > 0);                                          // it was quantised: the file really was read
   }
+
+  // Every format goes through the one writer (model/io/output_file.h): the target is replaced by
+  // a rename, never rewritten in place — a hard link to the old file keeps the old bytes. SGI is
+  // a format OpenImageIO 2.4 cannot encode to memory (no "ioproxy"): it is staged in a private
+  // directory under $TMPDIR, which is gone afterwards (issue 28).
+  void everyFormatIsReplacedByRenameNotRewritten() {
+    const std::filesystem::path staging_root = fovea::testing::testTmpDir("image_codec") / "tmpdir";
+    std::filesystem::create_directories(staging_root);
+    const QByteArray old_tmpdir = qgetenv("TMPDIR");
+    qputenv("TMPDIR", QByteArray::fromStdString(staging_root.string()));
+    cv::Mat linear(6, 7, CV_32FC3, cv::Scalar(0.25, 0.5, 0.75));
+    for (const std::string name : {"replaced.png", "replaced.sgi"}) {
+      const std::string target = tmp(name), link = tmp(name + ".old");
+      std::filesystem::remove(target);
+      std::filesystem::remove(link);
+      { std::ofstream(target) << "old bytes"; }
+      std::filesystem::create_hard_link(target, link);
+      image::writeLinearRgb(target, linear);
+      std::ifstream in(link);
+      const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      QCOMPARE(kept, std::string("old bytes"));
+      const cv::Mat back = image::readLinearRgb(target);
+      QCOMPARE(back.cols, 7);
+      QVERIFY2(std::abs(back.at<cv::Vec3f>(5, 6)[2] - 0.75f) < 4e-3,
+               name.c_str());  // half an 8-bit sRGB step near 0.75
+    }
+    QVERIFY2(std::filesystem::is_empty(staging_root), "a staging directory was left behind");
+    qputenv("TMPDIR", old_tmpdir);
+  }
 };
 
 QTEST_GUILESS_MAIN(TestImageCodec)
