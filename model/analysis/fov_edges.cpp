@@ -13,6 +13,11 @@ const std::array<double, 2>& spanAngle(const ProbeRay& r, FovAngle a) {
   return a == FovAngle::Footprint ? r.footprint_deg : r.field_deg;
 }
 
+// The angles a trace must fill: the footprint only when the spans are measured in it.
+ProbeAngles anglesFor(FovAngle a) {
+  return a == FovAngle::Footprint ? ProbeAngles::Both : ProbeAngles::FieldOnly;
+}
+
 struct Sample {
   double s = 0;  // coordinate along the scan line (tan)
   bool lit = false;
@@ -39,7 +44,8 @@ class LineScan {
 
   Sample at(double s) const {
     ++traced_;
-    const ProbeRay r = axis_ == 0 ? probe_.trace(s, fixed_, lambda_) : probe_.trace(fixed_, s, lambda_);
+    const ProbeRay r = axis_ == 0 ? probe_.trace(s, fixed_, lambda_, anglesFor(angle_))
+                                  : probe_.trace(fixed_, s, lambda_, anglesFor(angle_));
     Sample out;
     out.s = s;
     out.lit = r.in_pupil && r.efficiency >= threshold_;
@@ -128,14 +134,16 @@ struct Centre {
 
 // Newton's method on field(tan_x, tan_y) = (0, 0) from a lit start, keeping only lit steps
 // that bring the field angle closer to the centre.
-Centre refineCentre(const RayProbe& probe, double lambda, double threshold, Centre c, long long& traced) {
+Centre refineCentre(const RayProbe& probe, double lambda, double threshold, ProbeAngles angles, Centre c,
+                    long long& traced) {
   const std::array<double, 2> half_tan = probe.halfTan();
   auto lit = [&](const ProbeRay& r) { return r.in_pupil && r.efficiency >= threshold; };
   const double h = 1e-5;
   for (int it = 0; it < 6; ++it) {
     const double f0 = std::hypot(c.ray.field_deg[0], c.ray.field_deg[1]);
     if (f0 < 1e-7) break;
-    const ProbeRay rx = probe.trace(c.x + h, c.y, lambda), ry = probe.trace(c.x, c.y + h, lambda);
+    const ProbeRay rx = probe.trace(c.x + h, c.y, lambda, ProbeAngles::FieldOnly),
+                   ry = probe.trace(c.x, c.y + h, lambda, ProbeAngles::FieldOnly);
     traced += 2;
     if (!lit(rx) || !lit(ry)) break;
     Eigen::Matrix2d J;
@@ -147,7 +155,7 @@ Centre refineCentre(const RayProbe& probe, double lambda, double threshold, Cent
     next.x -= step.x();
     next.y -= step.y();
     if (!(std::abs(next.x) <= half_tan[0] && std::abs(next.y) <= half_tan[1])) break;  // outside the projector field
-    next.ray = probe.trace(next.x, next.y, lambda);
+    next.ray = probe.trace(next.x, next.y, lambda, angles);
     ++traced;
     if (!lit(next.ray) || !(std::hypot(next.ray.field_deg[0], next.ray.field_deg[1]) < f0)) break;
     c = next;
@@ -169,11 +177,12 @@ EdgeFovResult edgeFov(const RayProbe& probe, const std::vector<double>& waveleng
   for (const double lambda : wavelengths_nm) {
     // 1. Coarse grid over the plate's image: statistics and the lit ray nearest the field centre.
     Centre c;
+    double c_off_axis = 0;  // hypot of c's field angle, kept rather than recomputed per ray
     for (int iy = 0; iy < gy; ++iy) {
       const double y = box[2] + (box[3] - box[2]) * (iy + 0.5) / gy;
       for (int ix = 0; ix < gx; ++ix) {
         const double x = box[0] + (box[1] - box[0]) * (ix + 0.5) / gx;
-        const ProbeRay r = probe.trace(x, y, lambda);
+        const ProbeRay r = probe.trace(x, y, lambda, anglesFor(o.angle));
         ++out.rays_traced;
         if (!r.in_pupil) continue;
         ++out.rays_in_pupil;
@@ -182,13 +191,16 @@ EdgeFovResult edgeFov(const RayProbe& probe, const std::vector<double>& waveleng
         if (!(r.efficiency >= o.efficiency_threshold)) continue;
         yaw_lo = std::min(yaw_lo, r.field_deg[0]), yaw_hi = std::max(yaw_hi, r.field_deg[0]);
         pitch_lo = std::min(pitch_lo, r.field_deg[1]), pitch_hi = std::max(pitch_hi, r.field_deg[1]);
-        if (!c.found || std::hypot(r.field_deg[0], r.field_deg[1]) < std::hypot(c.ray.field_deg[0], c.ray.field_deg[1]))
+        const double off_axis = std::hypot(r.field_deg[0], r.field_deg[1]);
+        if (!c.found || off_axis < c_off_axis) {
           c = {true, x, y, r};
+          c_off_axis = off_axis;
+        }
       }
     }
     Span h, v;
     if (c.found) {
-      c = refineCentre(probe, lambda, o.efficiency_threshold, c, out.rays_traced);
+      c = refineCentre(probe, lambda, o.efficiency_threshold, anglesFor(o.angle), c, out.rays_traced);
       const LineScan row(probe, lambda, o.efficiency_threshold, o.angle, 0, c.y, out.rays_traced);
       const LineScan column(probe, lambda, o.efficiency_threshold, o.angle, 1, c.x, out.rays_traced);
       const std::array<double, 2>& a = spanAngle(c.ray, o.angle);

@@ -19,9 +19,4 @@ PupilCrossing crossPupil(const EyePlacement& eye, const Eigen::Vector3d& origin,
   return c;
 }
 
-std::array<double, 2> fieldAngleDeg(const Eigen::Matrix3d& eye_axes, const Eigen::Vector3d& dir) {
-  const Eigen::Vector3d v = eye_axes.transpose() * (-dir.normalized());
-  return {std::atan2(v.x(), v.z()) / kDeg, std::asin(std::clamp(v.y(), -1.0, 1.0)) / kDeg};
-}
-
 }  // namespace fovea

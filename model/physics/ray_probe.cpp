@@ -52,7 +52,9 @@ std::array<double, 4> RayProbe::plateBoundsTan() const {
   return {std::max(b[0], field[0]), std::min(b[1], field[1]), std::max(b[2], field[2]), std::min(b[3], field[3])};
 }
 
-ProbeRay RayProbe::trace(double tan_x, double tan_y, double wavelength_nm) const {
+// flatten: the layer stages are inlined here (one call per ray instead of a PLT call per layer and
+// stage into the interposable template copies); the same operations in the same order.
+[[gnu::flatten]] ProbeRay RayProbe::trace(double tan_x, double tan_y, double wavelength_nm, ProbeAngles angles) const {
   ProbeRay out;
   // Geometry stage: the ray's direction (projectorRays()) and its hit on the plate.
   const Eigen::Vector3d direction = projector_axes_ * Eigen::Vector3d(tan_x, tan_y, 1.0).normalized();
@@ -98,7 +100,7 @@ ProbeRay RayProbe::trace(double tan_x, double tan_y, double wavelength_nm) const
   if (!c.in_pupil) return out;
   out.in_pupil = true;
   out.field_deg = fieldAngleDeg(eye_axes_, out_dir);
-  out.footprint_deg = fieldAngleDeg(eye_axes_, (eye_.pupil_center - hit).normalized());
+  if (angles == ProbeAngles::Both) out.footprint_deg = fieldAngleDeg(eye_axes_, (eye_.pupil_center - hit).normalized());
   return out;
 }
 

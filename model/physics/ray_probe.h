@@ -41,11 +41,16 @@ struct ProbeRay {
   std::array<double, 2> footprint_deg{0, 0};
 };
 
+// Which visual angles trace() fills for a ray entering the pupil: both (the default), or only
+// field_deg when the caller never reads footprint_deg (saves two atan2/asin per ray; the values
+// it does fill are the same).
+enum class ProbeAngles { Both, FieldOnly };
+
 class RayProbe {
  public:
   RayProbe(const Scene& scene, const RayProbeSetup& setup);
 
-  ProbeRay trace(double tan_x, double tan_y, double wavelength_nm) const;
+  ProbeRay trace(double tan_x, double tan_y, double wavelength_nm, ProbeAngles angles = ProbeAngles::Both) const;
 
   // Half-extent of the projector image plane: tan(fov / 2) horizontally and vertically.
   std::array<double, 2> halfTan() const { return half_tan_; }
