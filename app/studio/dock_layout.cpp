@@ -3,6 +3,8 @@
 #include <QDockWidget>
 #include <QMainWindow>
 #include <QScrollArea>
+#include <QScrollBar>
+#include <QStyle>
 
 #include <algorithm>
 #include <vector>
@@ -103,6 +105,22 @@ void applyDefaultDockLayout(QMainWindow* window) {
     window->resizeDocks({tree, gaze}, {column * 45 / 100, column * 55 / 100}, Qt::Vertical);
   if (auto* props = dock("PropertiesDock"), *retina = dock("RetinaDock"); props && retina)
     window->resizeDocks({props, retina}, {column * 55 / 100, column * 45 / 100}, Qt::Vertical);
+}
+
+void widenDockToFit(QMainWindow* window, QDockWidget* dock) {
+  if (!window || !dock || dock->isFloating() || !dock->isVisible()) return;
+  QWidget* content = dock->widget();
+  if (!content) return;
+  int wanted = content->sizeHint().width();
+  if (auto* scroll = qobject_cast<QScrollArea*>(content); scroll && scroll->widget())
+    wanted = scroll->widget()->sizeHint().width() + scroll->verticalScrollBar()->sizeHint().width() +
+             2 * scroll->frameWidth();
+  // The dock's own frame and margins around its widget.
+  wanted += dock->width() - content->width();
+  // At most what leaves the central widget (the 3-D view) 30 % of the window.
+  const int spare = window->centralWidget() ? window->centralWidget()->width() - window->width() * 3 / 10 : 0;
+  const int target = std::min(wanted, dock->width() + std::max(0, spare));
+  if (target > dock->width()) window->resizeDocks({dock}, {target}, Qt::Horizontal);
 }
 
 }  // namespace fovea::studio

@@ -5,6 +5,7 @@
 // analyses and bench over retina, grating vectors and preview; bottom: messages and plots).
 // View ▸ Reset Layout calls applyDefaultDockLayout() again.
 
+class QDockWidget;
 class QMainWindow;
 class QWidget;
 
@@ -18,5 +19,11 @@ void applyDefaultDockLayout(QMainWindow* window);
 // than the space left to it scrolls instead of forcing the window taller than the screen.
 // A panel that has a scroll area of its own is returned as it is (one scroll area per dock).
 QWidget* scrollableDockContent(QWidget* panel);
+
+// Widens the column of `dock` (a side dock) so its panel shows without a horizontal scroll bar:
+// to the panel's size hint plus the vertical scroll bar, as far as the central widget (the 3-D
+// view) keeps 30 % of the window's width; never narrower than it is. For panels whose rows are wide (the Bench
+// dock's axis rows with their jog, home and go-to controls).
+void widenDockToFit(QMainWindow* window, QDockWidget* dock);
 
 }  // namespace fovea::studio

@@ -13,6 +13,7 @@
 #include <QSettings>
 #include <QShortcut>
 #include <QStatusBar>
+#include <QTimer>
 #include <QUndoStack>
 
 #include "app/embedded_scene.h"
@@ -140,11 +141,20 @@ void MainWindow::createDocks() {
   devicesDock_ = addPanel(devices_, tr("Bench"), "DevicesDock", Qt::RightDockWidgetArea);
   tabifyDockWidget(preview, devicesDock_);
   preview->raise();
+  // The Bench panel's axis rows (position, state, jog, Home, go-to, Go) are wider than the
+  // default right column: shown (or given its rows, below), it widens the column to fit, as
+  // far as the 3-D view keeps 30 % of the window (issue 27: at 1920 x 1080 Home, go-to and
+  // Go were cut off behind a horizontal scroll bar).
+  connect(devicesDock_, &QDockWidget::visibilityChanged, this, [this](bool visible) {
+    if (visible) QTimer::singleShot(0, this, [this] { widenDockToFit(this, devicesDock_); });
+  });
   benchStatus_ = new QLabel(this);
   benchStatus_->setObjectName("benchStatusBarLabel");
   statusBar()->addPermanentWidget(benchStatus_);
   benchStatus_->hide();
   connect(devices_, &widgets::DevicesPanel::benchConnected, this, [this](bool is_virtual) {
+    // The axis rows exist from now on: fit the column to them if the dock is in view.
+    QTimer::singleShot(0, this, [this] { widenDockToFit(this, devicesDock_); });
     benchStatus_->setText(is_virtual ? tr(" VIRTUAL BENCH ") : tr(" Bench: hardware "));
     benchStatus_->setToolTip(is_virtual ? tr("No stage controller of the scene is plugged in: the stages and the eye "
                                              "camera are simulated (View ▸ Bench)")

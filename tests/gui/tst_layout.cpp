@@ -6,9 +6,13 @@
 
 #include <QtTest>
 
+#include <QAbstractButton>
 #include <QDockWidget>
 #include <QLineEdit>
 #include <QMenuBar>
+#include <QRegularExpression>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QUndoStack>
 
 #include <filesystem>
@@ -92,6 +96,53 @@ class TestLayout : public QObject {
         QVERIFY2(dock->width() * dock->height() < view->width() * view->height(), name);
     }
     QVERIFY(inside.contains(QRect(view->mapTo(&w, QPoint(0, 0)), view->size())));
+  }
+
+  // The Bench dock, brought forward, shows every axis row whole — jog, Home, the go-to field and
+  // Go — and the STOP button, without a horizontal scroll bar, at both screen sizes (issue 27:
+  // at 1920 x 1080 Home, go-to and Go were cut off); the 3-D view keeps at least 30 % of the width.
+  void benchDockShowsItsControlsWhole_data() { fitsTheScreen_data(); }
+  void benchDockShowsItsControlsWhole() {
+    QFETCH(QSize, screen);
+    const QSize client(screen.width(), screen.height() - 30);
+    studio::MainWindow::setBenchAutoStart(true);  // the virtual bench, so the axis rows exist
+    studio::MainWindow w;
+    studio::MainWindow::setBenchAutoStart(false);
+    w.resize(client);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QDockWidget* dock = w.devicesDock();
+    dock->show();
+    dock->raise();
+    auto* scroll = qobject_cast<QScrollArea*>(dock->widget());
+    QVERIFY(scroll);
+    QTRY_VERIFY_WITH_TIMEOUT(scroll->widget()->findChildren<QAbstractButton*>(QRegularExpression("^go_")).size() >= 5,
+                             10000);
+    QTRY_VERIFY2_WITH_TIMEOUT(scroll->horizontalScrollBar()->maximum() == 0,
+                              qPrintable(QString("scrolls %1 px: dock %2 px, panel wants %3 px, 3-D view %4 px")
+                                             .arg(scroll->horizontalScrollBar()->maximum())
+                                             .arg(dock->width())
+                                             .arg(scroll->widget()->sizeHint().width())
+                                             .arg(w.sceneView()->width())),
+                              2000);
+    const QRect port(scroll->viewport()->mapTo(&w, QPoint(0, 0)), scroll->viewport()->size());
+    int buttons = 0;
+    for (QAbstractButton* b : scroll->widget()->findChildren<QAbstractButton*>()) {
+      if (!b->isVisibleTo(scroll->widget())) continue;
+      const QRect r(b->mapTo(&w, QPoint(0, 0)), b->size());
+      if (r.top() > port.bottom()) continue;  // below the fold: reached by scrolling down
+      QVERIFY2(port.left() <= r.left() && r.right() <= port.right(),
+               qPrintable(QString("%1 \"%2\" at x %3..%4, the dock shows %5..%6")
+                              .arg(b->objectName(), b->text())
+                              .arg(r.left())
+                              .arg(r.right())
+                              .arg(port.left())
+                              .arg(port.right())));
+      ++buttons;
+    }
+    QVERIFY2(buttons >= 5 * 4 + 3, qPrintable(QString::number(buttons)));  // 5 rows x (◀ ▶ Home Go), the bar
+    QVERIFY2(w.sceneView()->width() >= client.width() * 3 / 10,
+             qPrintable(QString("view width %1").arg(w.sceneView()->width())));
   }
 
   void resetLayoutBringsEveryDockBack() {

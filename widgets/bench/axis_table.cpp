@@ -116,6 +116,9 @@ void AxisTable::setBench(devices::LiveBench* live) {
     axis.state = new QLabel(this);
     axis.state->setObjectName("state_" + axis.key);
     axis.state->setMinimumWidth(60);
+    // A note ("refused: 9.929 mm > 8.000 mm", "stopped at 1.423 mm") wraps in its column
+    // rather than being cut to its first word when the dock is narrow.
+    axis.state->setWordWrap(true);
     axis.reverse = new QPushButton("◀", this);
     axis.reverse->setObjectName("jogReverse_" + axis.key);
     axis.forward = new QPushButton("▶", this);
@@ -128,6 +131,10 @@ void AxisTable::setBench(devices::LiveBench* live) {
     // Any number: the field never clips what was typed; goTo() refuses and explains.
     axis.target->setRange(-1e6, 1e6);
     axis.target->setValue(0.0);
+    // Sized for the numbers a stage reaches (the ±1e6 range would make it as wide as
+    // "-1000000.000" and push Go out of a 1366-pixel window's Bench dock); a longer number
+    // still goes in, the field scrolls.
+    axis.target->setMaximumWidth(axis.target->fontMetrics().horizontalAdvance(QStringLiteral("-8888.888")) + 36);
     const auto& b = w->binding();
     axis.target->setToolTip(
         tr("Element coordinate; soft limits %1 … %2")
@@ -135,6 +142,10 @@ void AxisTable::setBench(devices::LiveBench* live) {
     axis.go = new QPushButton(tr("Go"), this);
     axis.go->setObjectName("go_" + axis.key);
     for (QPushButton* pb : {axis.reverse, axis.forward}) pb->setFixedWidth(28);
+    // Home and Go as wide as their words (the style's 80-pixel minimum for text buttons made
+    // the row wider than a 1366-pixel window's Bench dock).
+    for (QPushButton* pb : {axis.home, axis.go})
+      pb->setMaximumWidth(pb->fontMetrics().horizontalAdvance(pb->text()) + 24);
     // Clicking a row keeps the keyboard on the panel (arrow keys jog, Esc stops).
     for (QAbstractButton* ab :
          std::initializer_list<QAbstractButton*>{axis.select, axis.reverse, axis.forward, axis.home})
