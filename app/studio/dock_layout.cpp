@@ -108,7 +108,8 @@ void applyDefaultDockLayout(QMainWindow* window) {
 }
 
 void widenDockToFit(QMainWindow* window, QDockWidget* dock) {
-  if (!window || !dock || dock->isFloating() || !dock->isVisible()) return;
+  // Only a dock the user sees: not one tabbed behind another or in a window not yet shown.
+  if (!window || !dock || dock->isFloating() || !dock->isVisible() || dock->visibleRegion().isEmpty()) return;
   QWidget* content = dock->widget();
   if (!content) return;
   int wanted = content->sizeHint().width();
