@@ -1,5 +1,6 @@
 // fovea-cli retina-image [SCENE] --image IMG --out OUT.png [--gaze-deg A[,B]] [--accommodation-d D]
-//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--seed S] [--rays N] [--no-blend] [--json]
+//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--seed S] [--rays N] [--no-blend]
+//                        [--per-laser-calibration] [--json]
 // Issue 29: the image on both displays -> the retinal image in visual angle (linear RGB,
 // written sRGB-encoded), with the line-of-sight spot and resolution of each display
 // (model/image/retina_image.h, model/analysis/retinal_psf.h; docs/physics.md section 6).
@@ -61,6 +62,14 @@ nlohmann::json renderOne(const EyeRun& run, const std::string& file, const cv::M
   nlohmann::json fov = nlohmann::json::array();
   for (const auto& f : r.foveal) fov.push_back(fovealSpotJson(f));
   j["foveal_per_primary"] = fov;
+  nlohmann::json lc = nlohmann::json::array();
+  for (const auto& c : r.lateral_colour)
+    lc.push_back({{"wavelength_nm", c.wavelength_nm},
+                  {"valid", c.valid},
+                  {"field_deg", c.field_deg},
+                  {"offset_arcmin", c.offset_arcmin}});
+  j["lateral_colour"] = lc;
+  j["colour_calibration"] = o.per_laser_calibration ? "per-laser" : "common";
   j["rays_in_pupil"] = r.rays_in_pupil;
   j["pixels_per_degree"] = r.pixels_per_degree;
   j["size"] = {r.image.cols, r.image.rows};
@@ -91,7 +100,7 @@ void install(CLI::App& app) {
   struct Args {
     std::string scene, image, out, gaze = "0,0", accommodation = "1.25", shift = "0,0", speckle = "0", rays = "20000",
                                    seed = "1";
-    bool json = false, noBlend = false;
+    bool json = false, noBlend = false, perLaser = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("SCENE", a->scene, "scene file (default: the embedded prototype bench)");
@@ -105,6 +114,9 @@ void install(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "speckle random seed (default 1)");
   cmd->add_option("--rays", a->rays, "traced rays per laser (default 20000)");
   cmd->add_flag("--no-blend", a->noBlend, "hard switch at eps_o instead of the B.2.3 blend");
+  cmd->add_flag("--per-laser-calibration", a->perLaser,
+                "warp each laser on its own (no lateral colour); default: one geometric calibration for all "
+                "lasers, measured on the laser nearest 555 nm");
   cmd->add_flag("--json", a->json, "print the JSON result");
   const auto eye = addEyeOption(cmd);
   cmd->callback([a, out, eye] {
@@ -130,6 +142,7 @@ void install(CLI::App& app) {
       usageError("--rays: a whole number within 100..1000000, got '" + a->rays + "'");
     o.rays = static_cast<int>(rays);
     o.blend = !a->noBlend;
+    o.per_laser_calibration = a->perLaser;
     const std::vector<EyeRun> runs = eyeRuns(loadSceneOrExit(a->scene), *eye, a->scene);
     cv::Mat target;
     try {

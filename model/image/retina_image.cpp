@@ -229,6 +229,19 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   const TraceResult tr = traceScene(scene, to);
   const auto grid = projectorGrid(scene.projector, o.rays);
   const int nx = grid[0], ny = grid[1];
+  // The calibration laser's landing angle per projector pixel (B.2.1: one geometric mapping
+  // for all colours): the content each pixel shows. Any of its rays that leaves the plate
+  // towards the eye counts (a fitted calibration extrapolates past the camera's pupil); a
+  // pixel without one falls back to each laser's own angle.
+  const std::size_t calib = calibrationLaser(lasers);
+  std::vector<std::optional<std::array<double, 2>>> calib_field(static_cast<std::size_t>(nx) * ny);
+  if (!o.per_laser_calibration && !lasers.empty())
+    for (const auto& ray : tr.ray_list)
+      if (ray.wavelength_nm == lasers[calib] && ray.exits && ray.towards_eye) {
+        const auto idx = static_cast<std::size_t>(ray.pixel[1]) * nx + ray.pixel[0];
+        if (idx < calib_field.size()) calib_field[idx] = ray.field_deg;
+      }
+  r.lateral_colour = lateralColourAtLineOfSight(scene, o.gaze_deg, o.hoe_shift_mm);
   std::array<int, 3> lasers_in_channel{0, 0, 0};
   for (double wl : lasers) ++lasers_in_channel[static_cast<std::size_t>(retinaChannelOf(wl))];
   // Foveal: the micro-OLED's pixels at gaze + their equal-angle offsets, on the canvas region
@@ -341,8 +354,12 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       const double yaw = o.gaze_deg[0] + c->field_deg[0], pitch = o.gaze_deg[1] + c->field_deg[1];
       const double x = cx(yaw), y = cy(pitch);
       if (!inside(x, y)) continue;  // outside the target field: the projector shows black there
-      const cv::Vec3d v = retinaSample(periph, (yaw / ang.peripheral_fov_deg[0] + 0.5) * periph.cols - 0.5,
-                                       (0.5 - pitch / ang.peripheral_fov_deg[1]) * periph.rows - 0.5);
+      // The content this pixel shows: at the calibration laser's landing angle (its own
+      // angle with per-laser calibration).
+      const auto& cf = calib_field[k];
+      const double show_yaw = cf ? o.gaze_deg[0] + (*cf)[0] : yaw, show_pitch = cf ? o.gaze_deg[1] + (*cf)[1] : pitch;
+      const cv::Vec3d v = retinaSample(periph, (show_yaw / ang.peripheral_fov_deg[0] + 0.5) * periph.cols - 0.5,
+                                       (0.5 - show_pitch / ang.peripheral_fov_deg[1]) * periph.rows - 0.5);
       const double area = (areas[k] > 0 ? areas[k] : median_area) * ppx * ppy;
       const double power = share * v[ch] * c->efficiency * area;
       if (power == 0) continue;

@@ -5,8 +5,12 @@
 //
 // Peripheral: the projector shows the preview's peripheral image (FoveatedCompositor: the
 // target at projector resolution, weighted by 1 - w_f of the B.2.3 blend) with an ideal
-// geometric calibration (B.2.1): each projector pixel shows the content of the world angle at
-// which its traced ray actually reaches the eye. Every traced ray (trace.h, per laser) that
+// geometric calibration (B.2.1), one mapping per projector pixel: each pixel shows the content
+// of the world angle at which the calibration laser's ray (the laser nearest 555 nm,
+// lateral_colour.h) of that pixel reaches the eye. Each laser's ray is placed where it lands
+// itself, so where the layers diffract a pixel's colours apart the channels are displaced:
+// per-layer lateral colour (colour fringes). With per_laser_calibration each laser's own
+// landing angle picks its content (an ideal per-colour warp: no fringes). Every traced ray (trace.h, per laser) that
 // enters the pupil deposits power  value x efficiency x (its cell's area in the visual field)
 // at gaze + its field angle, spread evenly over its cell's parallelogram in the visual field
 // (bilinear sub-splats whose weights sum to 1). Rays that miss the pupil
@@ -37,6 +41,7 @@
 #include <opencv2/core.hpp>
 
 #include "model/analysis/retinal_psf.h"
+#include "model/physics/lateral_colour.h"
 #include "model/scene/scene.h"
 
 namespace fovea::image {
@@ -49,6 +54,8 @@ struct RetinaImageOptions {
   int speckle_patterns = 0;  // 0: no speckle
   std::uint64_t speckle_seed = 1;
   int rays = 20000;  // traced rays per laser
+  // Additions:
+  bool per_laser_calibration = false;  // each laser warped on its own (no lateral colour)
 };
 
 struct RetinaImageResult {
@@ -65,6 +72,7 @@ struct RetinaImageResult {
   std::vector<PeripheralSpot> peripheral;                      // per laser, at the line of sight
   std::vector<FovealSpot> foveal;                              // per micro-OLED primary
   std::size_t peripheral_reference = 0, foveal_reference = 0;  // entries nearest 555 nm
+  std::vector<LateralColour> lateral_colour;                   // per laser, at the line of sight
 };
 
 RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target_linear_rgb,

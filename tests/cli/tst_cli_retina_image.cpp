@@ -68,6 +68,15 @@ class TestCliRetinaImage : public QObject {
     QCOMPARE(img.cols, 480);
     QCOMPARE(img.rows, 277);
     QVERIFY(cv::sum(img)[1] > 0);
+    // Per-layer lateral colour at the line of sight: one entry per laser; the prototype's
+    // lasers are at their layers' wavelengths, so the layers agree (no fringe).
+    QCOMPARE(j["colour_calibration"].get<std::string>(), std::string("common"));
+    QVERIFY(j["lateral_colour"].is_array() && j["lateral_colour"].size() == 3);
+    for (const auto& c : j["lateral_colour"]) {
+      QVERIFY(c["valid"].get<bool>());
+      QVERIFY(c["wavelength_nm"].is_number() && c["field_deg"].size() == 2);
+      QVERIFY(std::hypot(c["offset_arcmin"][0].get<double>(), c["offset_arcmin"][1].get<double>()) < 1e-6);
+    }
   }
 
   void speckleIsReported() {

@@ -7,8 +7,10 @@
 
 #include "app/embedded_scene.h"
 #include "model/analysis/retinal_psf.h"
+#include "model/image/foveation.h"
 #include "model/image/retina_image.h"
 #include "model/image/test_target.h"
+#include "model/physics/lateral_colour.h"
 #include "model/physics/schematic_eye.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
@@ -22,6 +24,60 @@ using namespace fovea;
 namespace {
 using fovea::testing::prototype;
 constexpr double kArcmin = 60.0 / kDeg;  // arcmin per radian
+
+// The prototype with lasers 10 nm off their layers' recording wavelengths (red, blue) and the
+// green one on it: the three layers are identical except for their wavelength.
+Scene offsetLasers() {
+  Scene s = prototype();
+  s.projector.wavelengths_nm = {650.0, 532.0, 450.0};
+  return s;
+}
+
+// Closed form (lateral_colour.h): the calibration laser (on its layer's wavelength) reaches
+// the pupil centre S at yaw theta from plate point P = S + (d / cos theta)(sin theta, 0, cos theta)
+// (plate at z = 0, S at (0, 0, -d)); there a laser mu = lambda/lambda_rec leaves along
+// out_x = (1 - mu) r_x + mu s_x with s_x = -sin theta and r = (P - R)/|P - R| (R the
+// reference point = the projector, both in the horizontal plane), so it is seen at
+// yaw = asin(-out_x). Returns that yaw in degrees.
+double grating_yaw_deg(double theta_deg, double mu, const Vec3mm& reference_mm, double relief_mm) {
+  const double th = theta_deg * kDeg;
+  const double px = relief_mm * std::tan(th);
+  const double rx = px - reference_mm[0], rz = 0.0 - reference_mm[2];
+  const double r_x = rx / std::hypot(rx, rz);
+  const double out_x = (1 - mu) * r_x - mu * std::sin(th);
+  return std::asin(-out_x) / kDeg;
+}
+
+// Centroid (yaw, pitch in degrees, world) of channel k of a retinal image over a window.
+std::array<double, 2> channelCentroidDeg(const cv::Mat& img, const image::DisplayAngles& ang, int k, double yaw_lo,
+                                         double yaw_hi) {
+  double sw = 0, sx = 0, sy = 0;
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x) {
+      const double yaw = ((x + 0.5) / img.cols - 0.5) * ang.peripheral_fov_deg[0];
+      if (yaw < yaw_lo || yaw > yaw_hi) continue;
+      const double pitch = (0.5 - (y + 0.5) / img.rows) * ang.peripheral_fov_deg[1];
+      const double v = img.at<cv::Vec3f>(y, x)[k];
+      sw += v;
+      sx += v * yaw;
+      sy += v * pitch;
+    }
+  return {sx / sw, sy / sw};
+}
+
+// A white Gaussian blob (sigma_deg) at world yaw yaw_deg on the horizon, on the preview's grid.
+cv::Mat blobTarget(const image::DisplayAngles& ang, cv::Size size, double yaw_deg, double sigma_deg) {
+  cv::Mat t(size, CV_32FC3, cv::Scalar(0, 0, 0));
+  for (int y = 0; y < size.height; ++y)
+    for (int x = 0; x < size.width; ++x) {
+      const double yaw = ((x + 0.5) / size.width - 0.5) * ang.peripheral_fov_deg[0];
+      const double pitch = (0.5 - (y + 0.5) / size.height) * ang.peripheral_fov_deg[1];
+      const float v = static_cast<float>(
+          std::exp(-0.5 * ((yaw - yaw_deg) * (yaw - yaw_deg) + pitch * pitch) / (sigma_deg * sigma_deg)));
+      t.at<cv::Vec3f>(y, x) = cv::Vec3f(v, v, v);
+    }
+  return t;
+}
 }  // namespace
 
 class TestRetinalPsf : public QObject {
@@ -251,6 +307,96 @@ class TestRetinalPsf : public QObject {
     QVERIFY2(std::abs(width / expected - 1) < 0.03, qPrintable(QString::number(width / expected)));
   }
 
+  void lateralColourFollowsTheGratingEquation() {
+    // Line of sight, gaze 0: the pixel meeting the plate centre. The green laser is on its
+    // layer's wavelength, so it reaches the pupil centre along the axis; red and blue leave at
+    // yaw asin((1 - mu) 90 / |(90, 0, -70)|) (grating_yaw_deg at theta = 0), pitch 0.
+    const Scene s = offsetLasers();
+    const auto lc = lateralColourAtLineOfSight(s, {0, 0});
+    QCOMPARE(lc.size(), std::size_t{3});
+    const Vec3mm ref = s.hoe_layers[0].recording.reference_point_mm;
+    const std::array<double, 3> rec{660.0, 532.0, 460.0};
+    for (std::size_t i = 0; i < 3; ++i) {
+      QVERIFY(lc[i].valid);
+      const double mu = s.projector.wavelengths_nm[i] / rec[i];
+      const double expect_arcmin = 60.0 * grating_yaw_deg(0.0, mu, ref, s.eye.relief_mm);
+      qInfo("%g nm: lateral colour %.6f, %.2e arcmin (grating equation %.6f arcmin)", lc[i].wavelength_nm,
+            lc[i].offset_arcmin[0], lc[i].offset_arcmin[1], expect_arcmin);
+      QVERIFY2(std::abs(lc[i].offset_arcmin[0] - expect_arcmin) < 1e-7, qPrintable(QString::number(expect_arcmin)));
+      QVERIFY(std::abs(lc[i].offset_arcmin[1]) < 1e-7);
+    }
+    QVERIFY(std::abs(lc[0].offset_arcmin[0]) > 30);  // red: 41 arcmin, not zero
+    // The prototype (lasers on their layers' wavelengths): no lateral colour.
+    for (const auto& c : lateralColourAtLineOfSight(prototype(), {0, 0}))
+      QVERIFY(c.valid && std::hypot(c.offset_arcmin[0], c.offset_arcmin[1]) < 1e-7);
+  }
+
+  void retinalImageShowsPerLayerFringes() {
+    // A white blob at world yaw 10 deg (beyond the foveal blend: only the projector shows it),
+    // gaze 0. With one calibration for all lasers (the green one's), the red and blue channels
+    // are displaced by the grating equation's lateral colour at 10 deg; with each laser warped
+    // on its own they are not. The difference of the two renders' channel centroids removes
+    // what both share (the efficiency map's slope across the blob, the cells' sampling).
+    const Scene s = offsetLasers();
+    const image::DisplayAngles ang = image::displayAngles(s);
+    const cv::Size size(960,
+                        static_cast<int>(std::lround(960 * ang.peripheral_fov_deg[1] / ang.peripheral_fov_deg[0])));
+    const double theta = 10.0;
+    const cv::Mat target = blobTarget(ang, size, theta, 1.0);
+    image::RetinaImageOptions o;
+    o.rays = 40000;
+    const auto common = image::renderRetinaImage(s, target, o);
+    o.per_laser_calibration = true;
+    const auto own = image::renderRetinaImage(s, target, o);
+    const Vec3mm ref = s.hoe_layers[0].recording.reference_point_mm;
+    const std::array<double, 3> rec{660.0, 532.0, 460.0};
+    for (int k = 0; k < 3; ++k) {
+      const double mu = s.projector.wavelengths_nm[static_cast<std::size_t>(k)] / rec[static_cast<std::size_t>(k)];
+      const double expect = grating_yaw_deg(theta, mu, ref, s.eye.relief_mm) - theta;
+      const auto a = channelCentroidDeg(common.image, ang, k, theta - 7, theta + 7);
+      const auto b = channelCentroidDeg(own.image, ang, k, theta - 7, theta + 7);
+      qInfo("channel %d: fringe %.2f arcmin yaw, %.2f pitch (grating equation %.2f arcmin); own warp at %.3f deg", k,
+            60 * (a[0] - b[0]), 60 * (a[1] - b[1]), 60 * expect, b[0]);
+      if (k == 1) {
+        QVERIFY(std::abs(a[0] - b[0]) * 60 < 0.05);  // the calibration colour: unchanged
+      } else {
+        QVERIFY2(std::abs((a[0] - b[0]) / expect - 1) < 0.03, qPrintable(QString::number(60 * (a[0] - b[0]))));
+      }
+      QVERIFY(std::abs(a[1] - b[1]) * 60 < 0.5);  // horizontal plane: no vertical fringe
+    }
+  }
+
+  void symmetricSceneHasNoFringeOnAxis() {
+    // Reference point and projector on the plate's normal through its centre (an on-axis
+    // hologram): at the centre r_t = s_t = 0, so every wavelength leaves along the axis; off
+    // axis the lateral colour is radial, as the grating equation gives it.
+    Scene s = offsetLasers();
+    for (auto& l : s.hoe_layers) l.recording.reference_point_mm = {0.0, 0.0, -70.0};
+    s.projector.pose.position_mm = {0.0, 0.0, -70.0};
+    s.projector.pose.rotation_deg = {0.0, 0.0, 0.0};
+    for (const auto& c : lateralColourAtLineOfSight(s, {0, 0})) {
+      qInfo("on-axis hologram, %g nm: lateral colour %.2e, %.2e arcmin", c.wavelength_nm, c.offset_arcmin[0],
+            c.offset_arcmin[1]);
+      QVERIFY(c.valid);
+      QVERIFY(std::hypot(c.offset_arcmin[0], c.offset_arcmin[1]) < 1e-7);
+    }
+    const image::DisplayAngles ang = image::displayAngles(s);
+    const cv::Size size(960,
+                        static_cast<int>(std::lround(960 * ang.peripheral_fov_deg[1] / ang.peripheral_fov_deg[0])));
+    const double theta = 10.0;
+    const cv::Mat target = blobTarget(ang, size, theta, 1.0);
+    image::RetinaImageOptions o;
+    o.rays = 40000;
+    const auto common = image::renderRetinaImage(s, target, o);
+    o.per_laser_calibration = true;
+    const auto own = image::renderRetinaImage(s, target, o);
+    const double expect = grating_yaw_deg(theta, 650.0 / 660.0, {0.0, 0.0, -70.0}, s.eye.relief_mm) - theta;
+    const auto a = channelCentroidDeg(common.image, ang, 0, theta - 7, theta + 7);
+    const auto b = channelCentroidDeg(own.image, ang, 0, theta - 7, theta + 7);
+    qInfo("on-axis hologram, red at 10 deg: fringe %.2f arcmin (grating equation %.2f)", 60 * (a[0] - b[0]),
+          60 * expect);
+    QVERIFY2(std::abs((a[0] - b[0]) / expect - 1) < 0.03, qPrintable(QString::number(60 * (a[0] - b[0]))));
+  }
   void retinalImageConservesPupilPower() {
     const Scene s = prototype();
     const cv::Mat target = image::makeTestTarget(cv::Size(640, 370), s.projector.fov_deg, 20.0);
