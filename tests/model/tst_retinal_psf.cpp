@@ -10,6 +10,7 @@
 #include "model/image/foveation.h"
 #include "model/image/retina_image.h"
 #include "model/image/test_target.h"
+#include "model/physics/hologram_astigmatism.h"
 #include "model/physics/lateral_colour.h"
 #include "model/physics/schematic_eye.h"
 #include "model/scene/scene_geometry.h"
@@ -396,6 +397,93 @@ class TestRetinalPsf : public QObject {
     qInfo("on-axis hologram, red at 10 deg: fringe %.2f arcmin (grating equation %.2f)", 60 * (a[0] - b[0]),
           60 * expect);
     QVERIFY2(std::abs((a[0] - b[0]) / expect - 1) < 0.03, qPrintable(QString::number(60 * (a[0] - b[0]))));
+  }
+
+  void hologramAstigmatismIsCoddingtons() {
+    // Plate z = 0, reference point and signal point of the prototype, a plate point on the
+    // horizontal meridian (all rays in the x-z plane of incidence), a laser 10 nm off its layer
+    // and a Gaussian beam from the reference point: the tangential and sagittal sections
+    // separate and follow the holographic Coddington equations (hologram_astigmatism.h):
+    //   cos^2 th_o / q'_t = cos^2 th_i / q_t - mu (cos^2 th_s / L_s + cos^2 th_r / L_r)
+    //   1 / q'_s = 1 / q_s - mu (1 / L_s + 1 / L_r)
+    HologramPointGeometry g;
+    g.point = Eigen::Vector3d(6.0, 0.0, 0.0);
+    g.reference_mm = Eigen::Vector3d(90.0, 0.0, -70.0);
+    g.signal_mm = Eigen::Vector3d(0.0, 0.0, -22.0);
+    g.mu = 650.0 / 660.0;
+    const Eigen::Vector3d u_in = (g.point - g.reference_mm).normalized();
+    const Eigen::Vector3d u_out = hologramOutDirection(g, u_in, Eigen::Vector3d(0, 0, -1));
+    QVERIFY(u_out.z() < 0);
+    // Basis normal to u_out: the in-plane (tangential) direction and y (sagittal).
+    Eigen::Matrix<double, 3, 2> b;
+    b.col(0) = Eigen::Vector3d(-u_out.z(), 0.0, u_out.x()).normalized();
+    b.col(1) = Eigen::Vector3d::UnitY();
+    const std::complex<double> q(-36.0, 500.0);
+    const Eigen::Matrix2cd m = hologramOutputCurvature(g, u_in, q, u_out, b);
+    const double l_r = (g.point - g.reference_mm).norm(), l_s = (g.signal_mm - g.point).norm();
+    const double c_i = std::abs(u_in.z()), c_o = std::abs(u_out.z()), c_r = c_i;
+    const double c_s = std::abs((g.signal_mm - g.point).z()) / l_s;
+    // out_x from the grating equation (tangential components), independently of the code.
+    const double out_x = u_in.x() + g.mu * ((g.signal_mm - g.point).x() / l_s - u_in.x());
+    QVERIFY(std::abs(std::sqrt(1 - out_x * out_x) - c_o) < 1e-14);
+    const std::complex<double> t_expect = (c_i * c_i / q - g.mu * (c_s * c_s / l_s + c_r * c_r / l_r)) / (c_o * c_o);
+    const std::complex<double> s_expect = 1.0 / q - g.mu * (1.0 / l_s + 1.0 / l_r);
+    qInfo("tangential %.9f%+.9fi, sagittal %.9f%+.9fi 1/mm (Coddington %.9f, %.9f); astigmatism %.3f D", m(0, 0).real(),
+          m(0, 0).imag(), m(1, 1).real(), m(1, 1).imag(), t_expect.real(), s_expect.real(),
+          1000 * (m(0, 0).real() - m(1, 1).real()));
+    QVERIFY(std::abs(m(0, 0) - t_expect) < 1e-12 * std::abs(t_expect));
+    QVERIFY(std::abs(m(1, 1) - s_expect) < 1e-12 * std::abs(s_expect));
+    QVERIFY(std::abs(m(0, 1)) < 1e-14 && std::abs(m(1, 0)) < 1e-14);
+    QVERIFY(std::abs(m(0, 0).real() - m(1, 1).real()) * 1000 > 1.0);  // off-axis: astigmatic
+  }
+
+  void hologramAstigmatismLimits() {
+    // Limit 1: a point source at the reference point, at the recording wavelength, anywhere on
+    // the plate (here off both meridians: the cross terms count) is imaged stigmatically on
+    // the signal point: M = -I / L_s.
+    HologramPointGeometry g;
+    g.point = Eigen::Vector3d(9.0, -7.0, 0.0);
+    g.reference_mm = Eigen::Vector3d(90.0, 0.0, -70.0);
+    g.signal_mm = Eigen::Vector3d(0.0, 0.0, -22.0);
+    const Eigen::Vector3d u_in = (g.point - g.reference_mm).normalized();
+    const Eigen::Vector3d u_out = hologramOutDirection(g, u_in, Eigen::Vector3d(0, 0, -1));
+    const double l_s = (g.signal_mm - g.point).norm();
+    QVERIFY((u_out - (g.signal_mm - g.point) / l_s).norm() < 1e-14);
+    Eigen::Matrix<double, 3, 2> b;
+    b.col(0) = u_out.cross(Eigen::Vector3d::UnitY()).normalized();
+    b.col(1) = u_out.cross(b.col(0));
+    const Eigen::Matrix2cd m =
+        hologramOutputCurvature(g, u_in, std::complex<double>((g.point - g.reference_mm).norm(), 0.0), u_out, b);
+    const Eigen::Matrix2cd expect = -Eigen::Matrix2cd::Identity() / l_s;
+    qInfo("point source at the reference, (9, -7): |M + I/L_s| = %.2e 1/mm", (m - expect).norm());
+    QVERIFY((m - expect).norm() < 1e-12 / l_s);
+    // Limit 2: an on-axis hologram (reference and projector on the plate's normal through the
+    // line of sight's plate point) has no astigmatism on axis: the spot is round and is the
+    // scalar chain's (thin lens mu (1/L_r + 1/L_s), free space, the eye's ABCD).
+    Scene s = prototype();
+    for (auto& l : s.hoe_layers) l.recording.reference_point_mm = {0.0, 0.0, -70.0};
+    s.projector.pose.position_mm = {0.0, 0.0, -70.0};
+    s.projector.pose.rotation_deg = {0.0, 0.0, 0.0};
+    s.projector.wavelengths_nm = {650.0, 532.0, 450.0};
+    for (double wl : s.projector.wavelengths_nm) {
+      const PeripheralSpot p = peripheralSpot(s, wl, 1.0, {0, 0});
+      QVERIFY(p.valid);
+      QVERIFY(p.astigmatism_d < 1e-9);
+      QVERIFY(std::abs(p.radius_major_arcmin / p.radius_minor_arcmin - 1) < 1e-9);
+      const PixelBeamModel& pb = s.projector.pixel_beam;
+      const double w0 = pb.waist_fwhm_um * 1e-3 / 1.1774100225154747,
+                   th = pb.divergence_mrad * 1e-3 / 1.1774100225154747;
+      std::complex<double> q(70.0 - pb.waist_distance_mm, w0 / th);
+      const double rec = wl > 600 ? 660.0 : wl > 500 ? 532.0 : 460.0;
+      q = transformQ(thinLens(wl / rec * (1.0 / 70.0 + 1.0 / 22.0)), q);
+      q = transformQ(freeSpace(22.0), q);
+      const SchematicEyeState e = navarroEye(1.0, wl);
+      q = transformQ(e.pupil_to_retina, q);
+      const double w = gaussianRadiusMm(q, kPi * w0 * th) / e.retina_mm_per_rad * kArcmin;
+      qInfo("on-axis hologram %g nm: spot %.6f x %.6f arcmin, scalar chain %.6f", wl, p.radius_major_arcmin,
+            p.radius_minor_arcmin, w);
+      QVERIFY(std::abs(p.radius_1e2_arcmin / w - 1) < 1e-9);
+    }
   }
   void retinalImageConservesPupilPower() {
     const Scene s = prototype();
