@@ -69,6 +69,22 @@ nlohmann::json renderOne(const EyeRun& run, const std::string& file, const cv::M
                   {"field_deg", c.field_deg},
                   {"offset_arcmin", c.offset_arcmin}});
   j["lateral_colour"] = lc;
+  // The field-dependent peripheral PSF at its nodes (world angles), per laser.
+  nlohmann::json field = nlohmann::json::array();
+  const std::size_t nodes = r.peripheral.empty() ? 0 : r.peripheral_field.size() / r.peripheral.size();
+  for (std::size_t n = 0; n < r.peripheral_field.size(); ++n) {
+    const auto& f = r.peripheral_field[n];
+    nlohmann::json e = spotMetricsJson(f.spot.metrics);
+    e["wavelength_nm"] = r.peripheral[n / nodes].wavelength_nm;
+    e["world_deg"] = f.world_deg;
+    e["field_deg"] = f.spot.field_deg;
+    e["radius_major_arcmin"] = f.spot.radius_major_arcmin;
+    e["radius_minor_arcmin"] = f.spot.radius_minor_arcmin;
+    e["orientation_deg"] = f.spot.orientation_deg;
+    e["astigmatism_d"] = f.spot.astigmatism_d;
+    field.push_back(e);
+  }
+  j["peripheral_field"] = field;
   j["colour_calibration"] = o.per_laser_calibration ? "per-laser" : "common";
   j["rays_in_pupil"] = r.rays_in_pupil;
   j["pixels_per_degree"] = r.pixels_per_degree;

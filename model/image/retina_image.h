@@ -73,6 +73,13 @@ struct RetinaImageResult {
   std::vector<FovealSpot> foveal;                              // per micro-OLED primary
   std::size_t peripheral_reference = 0, foveal_reference = 0;  // entries nearest 555 nm
   std::vector<LateralColour> lateral_colour;                   // per laser, at the line of sight
+  // The field-dependent peripheral PSF: per laser (outer index), the spot at each node of the
+  // grid over the target field (world yaw, pitch; deg), node index = row * columns + column.
+  struct FieldSpot {
+    std::array<double, 2> world_deg{0, 0};
+    PeripheralSpot spot;
+  };
+  std::vector<FieldSpot> peripheral_field;  // lasers x nodes, laser-major
 };
 
 RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target_linear_rgb,

@@ -77,6 +77,25 @@ class TestCliRetinaImage : public QObject {
       QVERIFY(c["wavelength_nm"].is_number() && c["field_deg"].size() == 2);
       QVERIFY(std::hypot(c["offset_arcmin"][0].get<double>(), c["offset_arcmin"][1].get<double>()) < 1e-6);
     }
+    // The HOE's astigmatism at the line of sight and the field-dependent PSF at its nodes: the
+    // off-axis hologram's tangential section is weaker than its sagittal one, so every spot is
+    // an ellipse with its long axis nearer yaw than pitch.
+    for (const auto& p : j["peripheral_per_wavelength"]) {
+      QCOMPARE(p["hoe_vergence_d"].size(), std::size_t{2});
+      QVERIFY(p["astigmatism_d"].get<double>() > 1.0);
+      QVERIFY(p["radius_major_arcmin"].get<double>() > p["radius_minor_arcmin"].get<double>());
+      QVERIFY(p["cpd_mtf50_long_axis"].get<double>() < p["cpd_mtf50"].get<double>());
+      QVERIFY(p.contains("orientation_deg") && p.contains("field_deg") && p.contains("cpd_mtf10_long_axis"));
+    }
+    QVERIFY(j["peripheral_field"].is_array() && j["peripheral_field"].size() % 3 == 0 &&
+            j["peripheral_field"].size() >= 12);
+    for (const auto& f : j["peripheral_field"]) {
+      checkSpot(f);
+      QVERIFY(f["world_deg"].size() == 2 && f["field_deg"].size() == 2);
+      QVERIFY(f["radius_major_arcmin"].get<double>() >= f["radius_minor_arcmin"].get<double>());
+      QVERIFY(std::abs(f["orientation_deg"].get<double>()) < 45);
+      QVERIFY(f["astigmatism_d"].get<double>() > 0);
+    }
   }
 
   void speckleIsReported() {
