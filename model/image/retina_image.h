@@ -16,8 +16,10 @@
 // (bilinear sub-splats whose weights sum to 1). Rays that miss the pupil
 // deposit nothing (holes, vignetting), the efficiency map shades. The cell area is |det J| of
 // the ray grid's field angles (central differences on the grid, per laser). Then each laser's
-// plane is blurred by its peripheral PSF (retinal_psf.h, Gaussian, the line-of-sight value
-// used over the whole field; a wide one on a sum-pooled copy, see the .cpp) and added to its colour channel (>= 590 nm
+// plane is blurred by its field-dependent peripheral PSF (retinal_psf.h, peripheralSpotAt: an
+// elliptical Gaussian, the HOE's astigmatism included, at the nodes of a ~10 deg grid over the
+// target field, interpolated between them; a wide one on a coarser grid, see the .cpp) and
+// added to its colour channel (>= 590 nm
 // R, >= 490 nm G, else B; lasers sharing a channel share its value equally). Foveal: the preview's micro-OLED image
 // (blend blur and weight included), pixel by pixel at gaze + its equal-angle offset (paraxial magnifier), power value x
 // pixel area, blurred per channel by the foveal PSF of that primary (retinal_psf.h, its total PSF binned to canvas

@@ -18,7 +18,7 @@
 // E^T B M B^T E = H_out, so M = T^-T H_out T^-1, T = B^T E. When the waves lie in one plane of
 // incidence (angles theta to the normal) the two sections separate and this is the holographic
 // form of Coddington's equations (Welford, "Aberrations of Optical Systems", Adam Hilger 1986,
-// ch. 13 on holographic elements; Latta, Appl. Opt. 10, 599 (1971)):
+// the chapter on holographic optical elements; Latta, Appl. Opt. 10, 599 (1971)):
 //     tangential  cos^2 theta_o / q'_t = cos^2 theta_i / q_t - mu (cos^2 theta_s / L_s + cos^2 theta_r / L_r)
 //     sagittal              1 / q'_s  =            1 / q_s - mu (1 / L_s + 1 / L_r)
 // (signal converging to its point, reference diverging from its point: the supplement's
