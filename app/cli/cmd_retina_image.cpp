@@ -1,5 +1,6 @@
 // fovea-cli retina-image [SCENE] --image IMG --out OUT.png [--gaze-deg A[,B]] [--accommodation-d D]
-//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--seed S] [--rays N] [--no-blend]
+//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--speckle-grain pixel|pupil] [--seed S]
+//                        [--rays N] [--no-blend]
 //                        [--per-laser-calibration] [--json]
 // Issue 29: the image on both displays -> the retinal image in visual angle (linear RGB,
 // written sRGB-encoded), with the line-of-sight spot and resolution of each display
@@ -53,6 +54,8 @@ nlohmann::json renderOne(const EyeRun& run, const std::string& file, const cv::M
   j["hoe_shift_mm"] = {o.hoe_shift_mm[0], o.hoe_shift_mm[1]};
   j["speckle_expected"] = r.speckle_expected ? nlohmann::json(*r.speckle_expected) : nlohmann::json(nullptr);
   j["speckle_patterns"] = o.speckle_patterns;
+  j["speckle_grain"] = o.speckle_grain_pupil ? "pupil" : "pixel";
+  j["speckle_dof"] = r.speckle_dof.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.speckle_dof);
   j["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
   j["power_off_canvas"] = r.power_off_canvas;
   j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
@@ -115,7 +118,7 @@ void install(CLI::App& app) {
                                  "Retinal image of both displays at a gaze and accommodation (PSFs, shading, speckle)");
   struct Args {
     std::string scene, image, out, gaze = "0,0", accommodation = "1.25", shift = "0,0", speckle = "0", rays = "20000",
-                                   seed = "1";
+                                   seed = "1", grain = "pixel";
     bool json = false, noBlend = false, perLaser = false;
   };
   auto a = std::make_shared<Args>();
@@ -128,6 +131,9 @@ void install(CLI::App& app) {
   cmd->add_option("--hoe-shift-mm", a->shift, "HOE lateral shift x[,y] in mm (default 0,0)");
   cmd->add_option("--speckle", a->speckle, "independent speckle patterns per laser (0: speckle off, default)");
   cmd->add_option("--seed", a->seed, "speckle random seed (default 1)");
+  cmd->add_option("--speckle-grain", a->grain,
+                  "speckle grain: 'pixel' (one canvas pixel, default) or 'pupil' (the pupil's Airy grain lambda/D, "
+                  "integrated over each canvas pixel; docs/physics.md)");
   cmd->add_option("--rays", a->rays, "traced rays per laser (default 20000)");
   cmd->add_flag("--no-blend", a->noBlend, "hard switch at eps_o instead of the B.2.3 blend");
   cmd->add_flag("--per-laser-calibration", a->perLaser,
@@ -153,6 +159,9 @@ void install(CLI::App& app) {
       usageError("--speckle: a whole number of patterns within 0..1000, got '" + a->speckle + "'");
     o.speckle_patterns = static_cast<int>(speckle);
     o.speckle_seed = parseSeed(a->seed, "--seed");
+    if (a->grain != "pixel" && a->grain != "pupil")
+      usageError("--speckle-grain: 'pixel' or 'pupil', got '" + a->grain + "'");
+    o.speckle_grain_pupil = a->grain == "pupil";
     const double rays = parseNumberList(a->rays, "--rays", 1, 1)[0];
     if (rays < 100 || rays > 1e6 || rays != std::floor(rays))
       usageError("--rays: a whole number within 100..1000000, got '" + a->rays + "'");

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "model/image/foveation.h"
+#include "model/image/speckle_grain.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 
@@ -504,10 +505,20 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   // Peripheral PSFs (and speckle), per laser, into the channels.
   std::vector<cv::Mat> channels(3);  // a channel's first laser plane is moved in, later ones added
   cv::Mat speckle_sum = o.speckle_patterns > 0 ? cv::Mat(canvas_size, CV_64F, cv::Scalar(0)) : cv::Mat(), lit;
+  std::vector<double> speckle_dof(lasers.size(), 1.0);
+  if (o.speckle_patterns > 0 && o.speckle_grain_pupil)
+    for (std::size_t li = 0; li < lasers.size(); ++li)
+      speckle_dof[li] = speckleDegreesOfFreedom(60.0 / ppx, 60.0 / ppy, lasers[li], scene.eye.pupil_diameter_mm);
+  r.speckle_dof = o.speckle_patterns > 0 ? speckle_dof : std::vector<double>();
   for (std::size_t li = 0; li < blurred_planes.size(); ++li) {
     cv::Mat blurred = std::move(blurred_planes[li]);
     if (o.speckle_patterns > 0) {
-      const cv::Mat s = speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
+      // Grain one canvas pixel (each pixel one fully developed pattern per pattern), or set by
+      // the pupil and integrated over the pixel (speckle_grain.h): M degrees of freedom each.
+      const cv::Mat s =
+          o.speckle_grain_pupil
+              ? integratedSpeckleField(canvas_size, speckle_dof[li] * o.speckle_patterns, o.speckle_seed + 7919 * li)
+              : speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
       const double before = cv::sum(blurred)[0];
       cv::Mat sp = blurred.mul(s);
       const double after = cv::sum(sp)[0];
@@ -530,7 +541,10 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     cv::minMaxLoc(any, nullptr, &peak);
     lit = any > 1e-3 * peak;  // where the peripheral display lights the retina
     r.speckle_contrast = speckleContrast(speckle_sum, lit);
-    r.speckle_expected = 1.0 / std::sqrt(static_cast<double>(o.speckle_patterns) * lasers.size());
+    // The mean of the lasers' independent fields: variance sum 1/(M_l N) / L^2.
+    double var = 0;
+    for (double m : speckle_dof) var += 1.0 / (m * o.speckle_patterns);
+    r.speckle_expected = std::sqrt(var) / static_cast<double>(lasers.size());
   }
 
   for (int k = 0; k < 3; ++k)

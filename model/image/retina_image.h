@@ -33,7 +33,9 @@
 // pattern exponential with mean 1 (Goodman, "Speckle Phenomena in Optics", ch. 3), grain one
 // canvas pixel; a laser's plane is multiplied by the mean of `patterns` independent patterns
 // (contrast 1/sqrt(patterns)), normalised so its power is unchanged; the image's speckle
-// contrast, lasers of equal power, is 1/sqrt(patterns x lasers).
+// contrast, lasers of equal power, is 1/sqrt(patterns x lasers). With speckle_grain_pupil the
+// grain is the pupil's (speckle_grain.h): each canvas pixel integrates M grains, its value
+// gamma-distributed with M x patterns degrees of freedom.
 
 #include <array>
 #include <cstdint>
@@ -58,6 +60,9 @@ struct RetinaImageOptions {
   int rays = 20000;  // traced rays per laser
   // Additions:
   bool per_laser_calibration = false;  // each laser warped on its own (no lateral colour)
+  // Speckle grain set by the pupil (speckle_grain.h: Airy-correlated, integrated over each
+  // canvas pixel, M degrees of freedom per pattern); false: grain one canvas pixel.
+  bool speckle_grain_pupil = false;
 };
 
 struct RetinaImageResult {
@@ -69,10 +74,11 @@ struct RetinaImageResult {
   double power_off_canvas =
       0;  // of power_in_pupil, what edge cells would put beyond the canvas (dropped; 0 in practice)
   int rays_in_pupil = 0, rays_traced = 0;
-  std::optional<double> speckle_contrast;                      // measured over the lit canvas
-  std::optional<double> speckle_expected;                      // 1/sqrt(patterns x lasers)
-  std::vector<PeripheralSpot> peripheral;                      // per laser, at the line of sight
-  std::vector<FovealSpot> foveal;                              // per micro-OLED primary
+  std::optional<double> speckle_contrast;  // measured over the lit canvas
+  std::optional<double> speckle_expected;  // 1/sqrt(patterns x lasers) (grain a pixel); sqrt(sum 1/(M N))/lasers
+  std::vector<double> speckle_dof;         // per laser: M of a canvas pixel (1 when the grain is a pixel)
+  std::vector<PeripheralSpot> peripheral;  // per laser, at the line of sight
+  std::vector<FovealSpot> foveal;          // per micro-OLED primary
   std::size_t peripheral_reference = 0, foveal_reference = 0;  // entries nearest 555 nm
   std::vector<LateralColour> lateral_colour;                   // per laser, at the line of sight
   // The field-dependent peripheral PSF: per laser (outer index), the spot at each node of the

@@ -106,6 +106,22 @@ class TestCliRetinaImage : public QObject {
     QVERIFY(j["speckle_contrast"].is_number());
     const double expected = 1.0 / std::sqrt(3.0 * 3.0);  // 3 patterns x 3 lasers
     QVERIFY(std::abs(j["speckle_contrast"].get<double>() / expected - 1) < 0.05);
+    QCOMPARE(j["speckle_grain"].get<std::string>(), std::string("pixel"));
+    // The pupil's grain: each canvas pixel (480 px over 40 deg: 5 arcmin) integrates M grains.
+    const Run g = cliText({"retina-image", "--image", target(), "--out", outPath("speckle-pupil.png"), "--speckle", "3",
+                           "--speckle-grain", "pupil", "--rays", "4000", "--json"});
+    QVERIFY2(g.code == 0, qPrintable(g.err));
+    const json k = g.j();
+    QCOMPARE(k["speckle_grain"].get<std::string>(), std::string("pupil"));
+    QCOMPARE(k["speckle_dof"].size(), std::size_t{3});
+    double var = 0;
+    for (const auto& m : k["speckle_dof"]) {
+      QVERIFY(m.get<double>() > 50);
+      var += 1.0 / (3.0 * m.get<double>());
+    }
+    const double expect_pupil = std::sqrt(var) / 3.0;
+    QVERIFY(std::abs(k["speckle_expected"].get<double>() / expect_pupil - 1) < 1e-12);
+    QVERIFY(std::abs(k["speckle_contrast"].get<double>() / expect_pupil - 1) < 0.05);
   }
 
   void badInput() {
@@ -122,6 +138,9 @@ class TestCliRetinaImage : public QObject {
     r = cliText({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "1,x"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--gaze-deg"), qPrintable(r.err));
+    r = cliText({"retina-image", "--image", target(), "--out", out, "--speckle", "2", "--speckle-grain", "coarse"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--speckle-grain") && r.err.contains("coarse"), qPrintable(r.err));
     r = cliText({"retina-image", "--image", target(), "--out", out, "--speckle", "1.5"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--speckle"), qPrintable(r.err));

@@ -9,6 +9,7 @@
 #include "model/analysis/retinal_psf.h"
 #include "model/image/foveation.h"
 #include "model/image/retina_image.h"
+#include "model/image/speckle_grain.h"
 #include "model/image/test_target.h"
 #include "model/physics/hologram_astigmatism.h"
 #include "model/physics/lateral_colour.h"
@@ -520,6 +521,53 @@ class TestRetinalPsf : public QObject {
             p.radius_minor_arcmin, w);
       QVERIFY(std::abs(p.radius_1e2_arcmin / w - 1) < 1e-9);
     }
+  }
+
+  void speckleGrainSetByThePupil() {
+    // Degrees of freedom of a pixel integrating Airy-correlated speckle (speckle_grain.h):
+    // M -> 1 for a pixel far under the grain lambda/D, M -> a b / Omega_c (Omega_c =
+    // 4 lambda^2 / (pi D^2)) for one far over it.
+    const double wl = 550.0, d = 5.0;
+    const double grain = wl * 1e-6 / d / (kDeg / 60.0);  // lambda/D in arcmin
+    const double omega = image::speckleCorrelationAreaArcmin2(wl, d);
+    QVERIFY(std::abs(omega / (4 * grain * grain / kPi) - 1) < 1e-12);
+    const double small = image::speckleDegreesOfFreedom(0.01 * grain, 0.01 * grain, wl, d);
+    QVERIFY2(std::abs(small - 1) < 1e-3, qPrintable(QString::number(small, 'g', 8)));
+    double last = small;
+    for (double k : {0.5, 1.0, 3.0, 10.0, 30.0, 100.0}) {
+      const double m = image::speckleDegreesOfFreedom(k * grain, k * grain, wl, d);
+      qInfo("pixel %5.1f lambda/D: M = %.4f, asymptote a^2/Omega_c = %.4f (ratio %.4f)", k, m,
+            k * k * grain * grain / omega, m / (k * k * grain * grain / omega));
+      QVERIFY(m > last);
+      last = m;
+    }
+    QVERIFY(std::abs(last / (1e4 * grain * grain / omega) - 1) < 0.05);
+    // The 1080p prototype image (1.25 arcmin pixels) at 532 nm, 5 mm pupil.
+    const double m1080 = image::speckleDegreesOfFreedom(40.0 * 60 / 1920, 23.1 * 60 / 1080, 532.0, 5.0);
+    qInfo("1080p canvas pixel, 532 nm: grain lambda/D %.3f arcmin, M = %.2f, contrast %.3f per pattern",
+          532e-6 / 5.0 / (kDeg / 60.0), m1080, 1 / std::sqrt(m1080));
+    QVERIFY(m1080 > 3 && m1080 < 20);
+    // The gamma field's contrast is 1/sqrt(dof).
+    for (double dof : {1.0, 2.5, 9.0}) {
+      const double c = image::speckleContrast(image::integratedSpeckleField(cv::Size(400, 400), dof, 7));
+      qInfo("dof %.1f: contrast %.4f vs %.4f", dof, c, 1 / std::sqrt(dof));
+      QVERIFY(std::abs(c * std::sqrt(dof) - 1) < 0.05);
+    }
+    // In the retinal image: the measured speckle contrast is the model's sqrt(sum 1/(M_l N))/L.
+    const Scene s = prototype();
+    const cv::Mat target = image::makeTestTarget(cv::Size(640, 370), s.projector.fov_deg, 20.0);
+    image::RetinaImageOptions o;
+    o.rays = 4000;
+    o.speckle_patterns = 2;
+    o.speckle_grain_pupil = true;
+    const auto r = image::renderRetinaImage(s, target, o);
+    QVERIFY(r.speckle_contrast && r.speckle_expected);
+    QCOMPARE(r.speckle_dof.size(), std::size_t{3});
+    qInfo("retinal image 640 px, 2 patterns, pupil grain: M = %.2f / %.2f / %.2f, contrast %.4f vs %.4f",
+          r.speckle_dof[0], r.speckle_dof[1], r.speckle_dof[2], *r.speckle_contrast, *r.speckle_expected);
+    QVERIFY(r.speckle_dof[2] > r.speckle_dof[0]);  // blue: finer grain, more of it per pixel
+    QVERIFY(std::abs(*r.speckle_contrast / *r.speckle_expected - 1) < 0.05);
+    QVERIFY(std::abs(r.power_on_retina - r.power_in_pupil) <= 1e-6 * r.power_in_pupil);
   }
   void retinalImageConservesPupilPower() {
     const Scene s = prototype();
