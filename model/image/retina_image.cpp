@@ -209,7 +209,8 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   // the PSF is interpolated by splitting each ray's power among its four nodes with bilinear
   // weights (a partition of unity) and blurring each node's plane by its own kernel
   // (piecewise-interpolated space-variant blur: Nagy & O'Leary, SIAM J. Sci. Comput. 19, 1063,
-  // 1998). A node no ray reaches takes the line-of-sight spot (no light lands near it anyway).
+  // 1998). A node takes the nearest ray however far it lands (light near the node, if any, is
+  // that ray's); a laser with no ray in the pupil takes its line-of-sight spot.
   const ZoneGrid zg = makeZoneGrid(ang.peripheral_fov_deg);
   const std::size_t n_zones = static_cast<std::size_t>(zg.nx) * zg.ny;
   std::vector<std::vector<Eigen::Matrix2d>> zone_cov(lasers.size(), std::vector<Eigen::Matrix2d>(n_zones));
@@ -510,15 +511,20 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     for (std::size_t li = 0; li < lasers.size(); ++li)
       speckle_dof[li] = speckleDegreesOfFreedom(60.0 / ppx, 60.0 / ppy, lasers[li], scene.eye.pupil_diameter_mm);
   r.speckle_dof = o.speckle_patterns > 0 ? speckle_dof : std::vector<double>();
+  // Grain one canvas pixel (each pixel one fully developed pattern per pattern), or set by the
+  // pupil and integrated over the pixel (speckle_grain.h): M degrees of freedom each. One
+  // field per laser (own seed), drawn concurrently.
+  std::vector<cv::Mat> speckle_fields(o.speckle_patterns > 0 ? lasers.size() : 0);
+  tbb::parallel_for(std::size_t{0}, speckle_fields.size(), [&](std::size_t li) {
+    speckle_fields[li] =
+        o.speckle_grain_pupil
+            ? integratedSpeckleField(canvas_size, speckle_dof[li] * o.speckle_patterns, o.speckle_seed + 7919 * li)
+            : speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
+  });
   for (std::size_t li = 0; li < blurred_planes.size(); ++li) {
     cv::Mat blurred = std::move(blurred_planes[li]);
     if (o.speckle_patterns > 0) {
-      // Grain one canvas pixel (each pixel one fully developed pattern per pattern), or set by
-      // the pupil and integrated over the pixel (speckle_grain.h): M degrees of freedom each.
-      const cv::Mat s =
-          o.speckle_grain_pupil
-              ? integratedSpeckleField(canvas_size, speckle_dof[li] * o.speckle_patterns, o.speckle_seed + 7919 * li)
-              : speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
+      const cv::Mat& s = speckle_fields[li];
       const double before = cv::sum(blurred)[0];
       cv::Mat sp = blurred.mul(s);
       const double after = cv::sum(sp)[0];
