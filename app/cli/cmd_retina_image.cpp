@@ -1,5 +1,7 @@
 // fovea-cli retina-image [SCENE] --image IMG --out OUT.png [--gaze-deg A[,B]] [--accommodation-d D]
-//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--seed S] [--rays N] [--no-blend] [--json]
+//                        [--hoe-shift-mm X[,Y]] [--speckle N] [--speckle-grain pixel|pupil] [--seed S]
+//                        [--rays N] [--no-blend]
+//                        [--per-laser-calibration] [--json]
 // Issue 29: the image on both displays -> the retinal image in visual angle (linear RGB,
 // written sRGB-encoded), with the line-of-sight spot and resolution of each display
 // (model/image/retina_image.h, model/analysis/retinal_psf.h; docs/physics.md section 6).
@@ -52,6 +54,8 @@ nlohmann::json renderOne(const EyeRun& run, const std::string& file, const cv::M
   j["hoe_shift_mm"] = {o.hoe_shift_mm[0], o.hoe_shift_mm[1]};
   j["speckle_expected"] = r.speckle_expected ? nlohmann::json(*r.speckle_expected) : nlohmann::json(nullptr);
   j["speckle_patterns"] = o.speckle_patterns;
+  j["speckle_grain"] = o.speckle_grain_pupil ? "pupil" : "pixel";
+  j["speckle_dof"] = r.speckle_dof.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.speckle_dof);
   j["spot_fwhm_definition"] = "diameter enclosing half the power (EE50): the FWHM of a Gaussian spot";
   j["power_off_canvas"] = r.power_off_canvas;
   j["power_units"] = "linear value x canvas pixels (uniform radiance 1 gives 1 per pixel), summed over R, G, B";
@@ -61,6 +65,30 @@ nlohmann::json renderOne(const EyeRun& run, const std::string& file, const cv::M
   nlohmann::json fov = nlohmann::json::array();
   for (const auto& f : r.foveal) fov.push_back(fovealSpotJson(f));
   j["foveal_per_primary"] = fov;
+  nlohmann::json lc = nlohmann::json::array();
+  for (const auto& c : r.lateral_colour)
+    lc.push_back({{"wavelength_nm", c.wavelength_nm},
+                  {"valid", c.valid},
+                  {"field_deg", c.field_deg},
+                  {"offset_arcmin", c.offset_arcmin}});
+  j["lateral_colour"] = lc;
+  // The field-dependent peripheral PSF at its nodes (world angles), per laser.
+  nlohmann::json field = nlohmann::json::array();
+  const std::size_t nodes = r.peripheral.empty() ? 0 : r.peripheral_field.size() / r.peripheral.size();
+  for (std::size_t n = 0; n < r.peripheral_field.size(); ++n) {
+    const auto& f = r.peripheral_field[n];
+    nlohmann::json e = spotMetricsJson(f.spot.metrics);
+    e["wavelength_nm"] = r.peripheral[n / nodes].wavelength_nm;
+    e["world_deg"] = f.world_deg;
+    e["field_deg"] = f.spot.field_deg;
+    e["radius_major_arcmin"] = f.spot.radius_major_arcmin;
+    e["radius_minor_arcmin"] = f.spot.radius_minor_arcmin;
+    e["orientation_deg"] = f.spot.orientation_deg;
+    e["astigmatism_d"] = f.spot.astigmatism_d;
+    field.push_back(e);
+  }
+  j["peripheral_field"] = field;
+  j["colour_calibration"] = o.per_laser_calibration ? "per-laser" : "common";
   j["rays_in_pupil"] = r.rays_in_pupil;
   j["pixels_per_degree"] = r.pixels_per_degree;
   j["size"] = {r.image.cols, r.image.rows};
@@ -90,8 +118,8 @@ void install(CLI::App& app) {
                                  "Retinal image of both displays at a gaze and accommodation (PSFs, shading, speckle)");
   struct Args {
     std::string scene, image, out, gaze = "0,0", accommodation = "1.25", shift = "0,0", speckle = "0", rays = "20000",
-                                   seed = "1";
-    bool json = false, noBlend = false;
+                                   seed = "1", grain = "pixel";
+    bool json = false, noBlend = false, perLaser = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("SCENE", a->scene, "scene file (default: the embedded prototype bench)");
@@ -103,8 +131,14 @@ void install(CLI::App& app) {
   cmd->add_option("--hoe-shift-mm", a->shift, "HOE lateral shift x[,y] in mm (default 0,0)");
   cmd->add_option("--speckle", a->speckle, "independent speckle patterns per laser (0: speckle off, default)");
   cmd->add_option("--seed", a->seed, "speckle random seed (default 1)");
+  cmd->add_option("--speckle-grain", a->grain,
+                  "speckle grain: 'pixel' (one canvas pixel, default) or 'pupil' (the pupil's Airy grain lambda/D, "
+                  "integrated over each canvas pixel; docs/physics.md)");
   cmd->add_option("--rays", a->rays, "traced rays per laser (default 20000)");
   cmd->add_flag("--no-blend", a->noBlend, "hard switch at eps_o instead of the B.2.3 blend");
+  cmd->add_flag("--per-laser-calibration", a->perLaser,
+                "warp each laser on its own (no lateral colour); default: one geometric calibration for all "
+                "lasers, measured on the laser nearest 555 nm");
   cmd->add_flag("--json", a->json, "print the JSON result");
   const auto eye = addEyeOption(cmd);
   cmd->callback([a, out, eye] {
@@ -125,11 +159,15 @@ void install(CLI::App& app) {
       usageError("--speckle: a whole number of patterns within 0..1000, got '" + a->speckle + "'");
     o.speckle_patterns = static_cast<int>(speckle);
     o.speckle_seed = parseSeed(a->seed, "--seed");
+    if (a->grain != "pixel" && a->grain != "pupil")
+      usageError("--speckle-grain: 'pixel' or 'pupil', got '" + a->grain + "'");
+    o.speckle_grain_pupil = a->grain == "pupil";
     const double rays = parseNumberList(a->rays, "--rays", 1, 1)[0];
     if (rays < 100 || rays > 1e6 || rays != std::floor(rays))
       usageError("--rays: a whole number within 100..1000000, got '" + a->rays + "'");
     o.rays = static_cast<int>(rays);
     o.blend = !a->noBlend;
+    o.per_laser_calibration = a->perLaser;
     const std::vector<EyeRun> runs = eyeRuns(loadSceneOrExit(a->scene), *eye, a->scene);
     cv::Mat target;
     try {

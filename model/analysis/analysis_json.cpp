@@ -186,6 +186,15 @@ nlohmann::json peripheralSpotJson(const PeripheralSpot& p) {
   e["beam_radius_hoe_mm"] = p.beam_radius_hoe_mm;
   e["beam_radius_pupil_mm"] = p.beam_radius_pupil_mm;
   e["pupil_transmission"] = p.pupil_transmission;
+  // The HOE's astigmatism (hologram_astigmatism.h): the elliptical spot and the two vergences.
+  e["field_deg"] = p.field_deg;
+  e["hoe_vergence_d"] = p.vergence_d;
+  e["astigmatism_d"] = p.astigmatism_d;
+  e["radius_major_arcmin"] = p.radius_major_arcmin;
+  e["radius_minor_arcmin"] = p.radius_minor_arcmin;
+  e["orientation_deg"] = p.orientation_deg;
+  e["cpd_mtf50_long_axis"] = p.metrics_major.mtf50_cpd;
+  e["cpd_mtf10_long_axis"] = p.metrics_major.mtf10_cpd;
   return e;
 }
 

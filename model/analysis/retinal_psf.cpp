@@ -8,10 +8,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include <Eigen/Dense>
 #include <opencv2/core.hpp>
 
 #include "model/analysis/foveal_optics.h"
 #include "model/physics/eye_model.h"
+#include "model/physics/hologram_astigmatism.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/schematic_eye.h"
 #include "model/scene/scene_geometry.h"
@@ -59,13 +61,24 @@ PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double a
   s.wavelength_nm = wavelength_nm;
   const EyePlacement eye = placeEye(scene, gaze_deg[0], gaze_deg[1]);
   const Frame plate = frameOf(scene.hoe.pose);
-  const Eigen::Vector3d shift = plate.x() * hoe_shift_mm[0] + plate.y() * hoe_shift_mm[1];
-  const Eigen::Vector3d origin = plate.origin + shift;
   const double denom = eye.gaze.dot(plate.z());
   if (std::abs(denom) < 1e-12) return s;
-  const double t = (origin - eye.pupil_center).dot(plate.z()) / denom;
+  // A lateral shift keeps the plate's plane.
+  const double t = (plate.origin - eye.pupil_center).dot(plate.z()) / denom;
   if (t <= 0) return s;
-  const Eigen::Vector3d hit = eye.pupil_center + t * eye.gaze;
+  return peripheralSpotAt(scene, wavelength_nm, accommodation_d, gaze_deg, hoe_shift_mm,
+                          eye.pupil_center + t * eye.gaze);
+}
+
+PeripheralSpot peripheralSpotAt(const Scene& scene, double wavelength_nm, double accommodation_d,
+                                std::array<double, 2> gaze_deg, std::array<double, 2> hoe_shift_mm,
+                                const Eigen::Vector3d& hit) {
+  PeripheralSpot s;
+  s.wavelength_nm = wavelength_nm;
+  const EyePlacement eye = placeEye(scene, gaze_deg[0], gaze_deg[1]);
+  const Eigen::Matrix3d eye_axes = rotationFromDeg({gaze_deg[0], gaze_deg[1], 0.0});
+  const Frame plate = frameOf(scene.hoe.pose);
+  const Eigen::Vector3d shift = plate.x() * hoe_shift_mm[0] + plate.y() * hoe_shift_mm[1];
   const Eigen::Vector3d local = plate.toLocal(hit - shift);
   if (std::abs(local.x()) > 0.5 * scene.hoe.size_mm[0] || std::abs(local.y()) > 0.5 * scene.hoe.size_mm[1]) return s;
   if (scene.hoe_layers.empty()) return s;
@@ -76,14 +89,30 @@ PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double a
         std::abs(scene.hoe_layers[best].recording.wavelength_nm - wavelength_nm))
       best = i;
   const HoeRecording& rec = scene.hoe_layers[best].recording;
-  const Eigen::Vector3d nominal = hit - shift;  // the fringes at `hit` were recorded here
-  const double lr = (nominal - toVec(rec.reference_point_mm)).norm();
-  const double ls = (nominal - toVec(rec.signal_point_mm)).norm();
-  const double phi = (1.0 / lr + 1.0 / ls) * wavelength_nm / rec.wavelength_nm;  // 1/mm
+  HologramPointGeometry g;
+  g.plate_x = plate.x();
+  g.plate_y = plate.y();
+  g.point = hit - shift;  // the fringes at `hit` were recorded here
+  g.reference_mm = toVec(rec.reference_point_mm);
+  g.signal_mm = toVec(rec.signal_point_mm);
+  g.mu = wavelength_nm / rec.wavelength_nm;
+  const double lr = (g.point - g.reference_mm).norm();
+  const double ls = (g.point - g.signal_mm).norm();
+  const double phi = (1.0 / lr + 1.0 / ls) * g.mu;  // 1/mm: the sagittal power
   s.layer = static_cast<int>(best);
   s.hoe_power_d = phi * 1000.0;
-  s.throw_mm = (hit - projectorSource(scene.projector, 0.0)).norm();
+  const Eigen::Vector3d src = projectorSource(scene.projector, 0.0);
+  s.throw_mm = (hit - src).norm();
+  const Eigen::Vector3d u_in = (hit - src).normalized();
+  const Eigen::Vector3d u_out = hologramOutDirection(g, u_in, eye.pupil_center - hit);
+  if (u_out.isZero()) return s;
+  // To the pupil plane (normal to the gaze through the pupil centre) along the ray.
+  const double along = u_out.dot(-eye.gaze);
+  if (!(along > 1e-9)) return s;
+  const double t = (hit - eye.pupil_center).dot(eye.gaze) / along;
+  if (!(t > 0)) return s;
   s.hoe_to_pupil_mm = t;
+  s.field_deg = fieldAngleDeg(eye_axes, u_out);
 
   const PixelBeamModel& pb = scene.projector.pixel_beam;
   const double lambda_mm = wavelength_nm * 1e-6;
@@ -101,9 +130,7 @@ PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double a
   // chief ray passes its plane's foot point: q is propagated back to the lens, through it and on
   // to the plate (the real thick lens and its obliquity are beam_shaping.h's business).
   if (scene.lens.enabled && scene.lens.focal_length_mm != 0) {
-    const Eigen::Vector3d src = projectorSource(scene.projector, 0.0);
-    const Eigen::Vector3d u = (hit - src).normalized();
-    const double d1 = (toVec(scene.lens.pose.position_mm) - src).dot(u);
+    const double d1 = (toVec(scene.lens.pose.position_mm) - src).dot(u_in);
     if (d1 > 0 && d1 < s.throw_mm) {
       std::complex<double> ql(d1 - pb.waist_distance_mm, z_r);
       ql = transformQ(thinLens(1.0 / scene.lens.focal_length_mm), ql);
@@ -112,16 +139,57 @@ PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double a
     }
   }
   s.beam_radius_hoe_mm = gaussianRadiusMm(q, lambda_eff);
-  q = transformQ(thinLens(phi), q);
-  q = transformQ(freeSpace(t), q);
-  s.beam_radius_pupil_mm = gaussianRadiusMm(q, lambda_eff);
+  // The HOE (hologram_astigmatism.h): the outgoing beam's complex curvature matrix in the
+  // field's (yaw, pitch) basis normal to the ray (the eye frame's tangent directions at the
+  // ray's field angle); its real part's eigenvalues are the two vergences after the plate.
+  const double yaw = s.field_deg[0] * kDeg, pitch = s.field_deg[1] * kDeg;
+  Eigen::Matrix<double, 3, 2> basis;
+  basis.col(0) = eye_axes * Eigen::Vector3d(std::cos(yaw), 0.0, -std::sin(yaw));
+  basis.col(1) =
+      eye_axes * Eigen::Vector3d(-std::sin(pitch) * std::sin(yaw), std::cos(pitch), -std::sin(pitch) * std::cos(yaw));
+  const Eigen::Matrix2cd m = hologramOutputCurvature(g, u_in, q, u_out, basis);
+  {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> re(0.5 * (m.real() + m.real().transpose()));
+    s.vergence_d = {re.eigenvalues()[0] * 1000.0, re.eigenvalues()[1] * 1000.0};
+    s.astigmatism_d = std::abs(s.vergence_d[1] - s.vergence_d[0]);
+  }
+  // Through free space and the eye: Q -> (A Q + B)(C Q + D)^-1, scalar ABCD (rotationally
+  // symmetric, reduced: air before the pupil), Q = M^-1 (Arnaud's astigmatic Gaussian beams,
+  // Siegman ch. 20); the intensity exp(-x^T Sigma^-1 x / 2) has Sigma^-1 = -2 k Im(Q^-1).
+  using C2 = Eigen::Matrix2cd;
+  const C2 id = C2::Identity();
+  auto through = [&](const RayMatrix& r, const C2& qm) -> C2 {
+    return (r.A * qm + r.B * id) * (r.C * qm + r.D * id).inverse();
+  };
+  const double k_eff = 2.0 * kPi / lambda_eff;
+  auto covariance = [&](const C2& qm) -> Eigen::Matrix2d {
+    const Eigen::Matrix2d im = qm.inverse().imag();
+    return (-2.0 * k_eff * 0.5 * (im + im.transpose())).inverse();
+  };
+  auto meanRadius = [](const Eigen::Matrix2d& cov) { return 2.0 * std::pow(cov.determinant(), 0.25); };
+  C2 qm = m.inverse();
+  qm = through(freeSpace(t), qm);
+  const Eigen::Matrix2d cov_pupil = covariance(qm);
+  s.beam_radius_pupil_mm = meanRadius(cov_pupil);
   const double a = 0.5 * scene.eye.pupil_diameter_mm;
   s.pupil_transmission = 1.0 - std::exp(-2.0 * a * a / (s.beam_radius_pupil_mm * s.beam_radius_pupil_mm));
   const SchematicEyeState e = navarroEye(accommodation_d, wavelength_nm);
-  q = transformQ(e.pupil_to_retina, q);
-  s.beam_radius_retina_mm = gaussianRadiusMm(q, lambda_eff);
-  s.radius_1e2_arcmin = s.beam_radius_retina_mm / e.retina_mm_per_rad * kPsfArcminPerRad;
+  qm = through(e.pupil_to_retina, qm);
+  const Eigen::Matrix2d cov_retina = covariance(qm);
+  s.beam_radius_retina_mm = meanRadius(cov_retina);
+  // As visual angle (arcmin^2): the retina's mm per radian of the chief ray.
+  const double scale = kPsfArcminPerRad / e.retina_mm_per_rad;
+  const Eigen::Matrix2d cov = cov_retina * scale * scale;
+  s.covariance_arcmin2 = {cov(0, 0), cov(1, 1), cov(0, 1)};
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+  s.radius_minor_arcmin = 2.0 * std::sqrt(std::max(0.0, es.eigenvalues()[0]));
+  s.radius_major_arcmin = 2.0 * std::sqrt(std::max(0.0, es.eigenvalues()[1]));
+  s.orientation_deg = std::atan2(es.eigenvectors()(1, 1), es.eigenvectors()(0, 1)) / kDeg;
+  if (s.orientation_deg > 90) s.orientation_deg -= 180;
+  if (s.orientation_deg <= -90) s.orientation_deg += 180;
+  s.radius_1e2_arcmin = std::sqrt(s.radius_major_arcmin * s.radius_minor_arcmin);
   s.metrics = gaussianSpotMetrics(s.radius_1e2_arcmin);
+  s.metrics_major = gaussianSpotMetrics(s.radius_major_arcmin);
   s.valid = true;
   return s;
 }

@@ -10,12 +10,20 @@
 // (L_s), so Phi_rec = 1/L_r + 1/L_s, and at another wavelength the same fringes bend by
 // lambda/lambda_rec: Phi = Phi_rec lambda/lambda_rec (per layer: the layer recorded nearest
 // the laser). An enabled beam-shaping lens acts as an ideal thin lens on the chief ray
-// before the plate. Obliquity (astigmatism of the off-axis hologram) and the plate's finite
-// thickness are neglected. Then free space to the entrance pupil (on the trace's pupil disc)
-// and the schematic eye (schematic_eye.h) to the retina. The spot on the retina is Gaussian
-// with 1/e^2 radius w_r; as a visual angle w_r / B (B = retina mm per radian of the chief ray),
-// so FWHM = 1.1774 w and MTF(f) = exp(-2 pi^2 sigma^2 f^2), sigma = w/2, i.e.
-// f_m = sqrt(-ln m / 2) / (pi sigma).
+// before the plate. The hologram's obliquity is kept (hologram_astigmatism.h): off its axis the
+// HOE has different tangential and sagittal powers (the holographic Coddington equations), and
+// it stretches the beam's footprint by cos theta_out / cos theta_in in the plane of incidence,
+// so the outgoing beam is astigmatic: a 2x2 complex curvature matrix, propagated through free
+// space and the eye as Q -> (A Q + B)(C Q + D)^-1. The plate's finite thickness is neglected,
+// the eye is paraxial (the same ABCD at every field angle: its own off-axis aberrations are
+// not modelled). Then free space to the entrance pupil (on the trace's pupil disc) and the
+// schematic eye (schematic_eye.h) to the retina. The spot on the retina is an elliptical
+// Gaussian (1/e^2 radii w_major, w_minor); as a visual angle w_r / B (B = retina mm per radian
+// of the chief ray). Its reported size is that of the circle of equal area, w = sqrt(w_major
+// w_minor): FWHM = 1.1774 w is the equal-area diameter of the half-maximum ellipse, which holds
+// exactly half the power (a 2-D Gaussian holds 1 - f inside its contour at f of the peak), and
+// MTF(f) = exp(-2 pi^2 sigma^2 f^2), sigma = w/2, i.e. f_m = sqrt(-ln m / 2) / (pi sigma), the
+// MTF along the geometric-mean direction (metrics_major: along the long axis, the worst).
 //
 // Foveal (micro-OLED via the combiner): the virtual image at d_f in front of the pupil sends
 // vergence -1/d_f; the eye's defocus is E = -1/d_f - V_focus(lambda) (schematic_eye.h,
@@ -28,6 +36,7 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include "model/scene/scene.h"
@@ -54,13 +63,27 @@ struct PeripheralSpot {
   double beam_radius_hoe_mm = 0, beam_radius_pupil_mm = 0, beam_radius_retina_mm = 0;  // 1/e^2
   double pupil_transmission = 1;  // Gaussian power inside the pupil disc
   bool through_lens = false;      // the scene's beam-shaping lens (thin-lens model) shaped it
-  double radius_1e2_arcmin = 0;   // retinal spot as visual angle
+  double radius_1e2_arcmin = 0;   // retinal spot as visual angle (equal-area: sqrt(major x minor))
   SpotMetrics metrics;
+  // Additions (the HOE's astigmatism, field dependence):
+  std::array<double, 2> field_deg{0, 0};   // the ray's visual angle (yaw, pitch) from the gaze
+  std::array<double, 2> vergence_d{0, 0};  // principal vergences right after the plate (D, < 0 converging)
+  double astigmatism_d = 0;                // their difference
+  double radius_major_arcmin = 0, radius_minor_arcmin = 0;  // 1/e^2 radii of the elliptical spot
+  double orientation_deg = 0;                               // long axis from +yaw towards +pitch
+  std::array<double, 3> covariance_arcmin2{0, 0, 0};        // yaw-yaw, pitch-pitch, yaw-pitch (sigma^2)
+  SpotMetrics metrics_major;                                // along the long axis
 };
 
 // The peripheral pixel on the line of sight for a gaze, HOE shift (HOE local x, y) and accommodation.
 PeripheralSpot peripheralSpot(const Scene& scene, double wavelength_nm, double accommodation_d,
                               std::array<double, 2> gaze_deg, std::array<double, 2> hoe_shift_mm = {0, 0});
+
+// The pixel beam of the projector ray meeting the (shifted) plate at bench point `hit`: the
+// field-dependent spot (the HOE's power and astigmatism where that ray meets it).
+PeripheralSpot peripheralSpotAt(const Scene& scene, double wavelength_nm, double accommodation_d,
+                                std::array<double, 2> gaze_deg, std::array<double, 2> hoe_shift_mm,
+                                const Eigen::Vector3d& hit);
 
 // The pupil PSF on a square grid, centred at (n/2, n/2), sum 1.
 struct PupilPsf {

@@ -7,9 +7,11 @@
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
+#include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
 
 #include "model/image/foveation.h"
+#include "model/image/speckle_grain.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 
@@ -69,62 +71,60 @@ cv::Mat retinaBinPsf(const cv::Mat& psf, double sample_arcmin, double ppx, doubl
   return k;
 }
 
-// Gaussian blur of a power plane (zero outside), sigma in pixels, power conserved. A wide
-// kernel runs on a k-times sum-pooled copy (sigma/k >= 4 px; pooling adds a k-px box, variance
-// k^2/12, under 0.6 % of sigma^2) and is brought back bilinearly, rescaled to the exact power.
-cv::Mat retinaGaussianBlur(const cv::Mat& plane, double sx, double sy) {
-  if (sx <= 0.05 && sy <= 0.05) return plane.clone();
-  const int k = std::max(1, static_cast<int>(std::floor(std::min(sx, sy) / 4.0)));
-  auto blur = [](const cv::Mat& in, double gx, double gy) {
-    cv::Mat out;
-    const int kx = 2 * static_cast<int>(std::ceil(4.0 * gx)) + 1, ky = 2 * static_cast<int>(std::ceil(4.0 * gy)) + 1;
-    cv::GaussianBlur(in, out, cv::Size(kx, ky), gx, gy, cv::BORDER_CONSTANT);
-    return out;
-  };
-  if (k == 1) return blur(plane, sx, sy);
-  const double power = cv::sum(plane)[0];
-  // Block sums straight from the plane (no padded copy), as block means.
-  cv::Mat low((plane.rows + k - 1) / k, (plane.cols + k - 1) / k, CV_64F, cv::Scalar(0));
-  for (int y = 0; y < plane.rows; ++y) {
-    const double* in = plane.ptr<double>(y);
-    double* lo = low.ptr<double>(y / k);
-    for (int x = 0; x < plane.cols; ++x) lo[x / k] += in[x];
-  }
-  low *= 1.0 / (static_cast<double>(k) * k);
-  low = blur(low, sx / k, sy / k);
-  cv::Mat up;
-  cv::resize(low, up, cv::Size(low.cols * k, low.rows * k), 0, 0, cv::INTER_LINEAR);
-  cv::Mat out = up(cv::Rect(0, 0, plane.cols, plane.rows));  // a view: no copy
-  const double now = cv::sum(out)[0];
-  if (now > 0) out *= power / now;
-  return out;
-}
-
 // The pooling factor of a wide Gaussian: k with sigma / k >= 4 px (1 when sigma < 8 px).
 int retinaPoolFactor(double sx, double sy) {
   return std::max(1, static_cast<int>(std::floor(std::min(sx, sy) / 4.0)));
 }
 
-// A plane splatted bilinearly on the k-times coarser grid, blurred to sigma (full-resolution
-// px) and interpolated bilinearly back to `size`, its power kept. The bilinear splat and the
-// bilinear interpolation are each a tent of one coarse pixel, variance 1/6 coarse px^2 (a
-// point at a uniform sub-pixel offset f: E[f(1-f)] = 1/6); variances of convolved kernels
-// add, so the coarse Gaussian takes sigma_c^2 = (sigma/k)^2 - 1/3 and the total is sigma^2.
-cv::Mat retinaCoarseBlur(const cv::Mat& coarse, double sx, double sy, int k, cv::Size size) {
-  const double power = cv::sum(coarse)[0];
-  const double gx = std::sqrt(std::max(0.0, sx * sx / (k * k) - 1.0 / 3.0));
-  const double gy = std::sqrt(std::max(0.0, sy * sy / (k * k) - 1.0 / 3.0));
-  cv::Mat low;
-  cv::GaussianBlur(
-      coarse, low,
-      cv::Size(2 * static_cast<int>(std::ceil(4.0 * gx)) + 1, 2 * static_cast<int>(std::ceil(4.0 * gy)) + 1), gx, gy,
-      cv::BORDER_CONSTANT);
-  cv::Mat up;
-  cv::resize(low, up, cv::Size(low.cols * k, low.rows * k), 0, 0, cv::INTER_LINEAR);
-  cv::Mat out = up(cv::Rect(0, 0, size.width, size.height));  // a view: no copy
-  const double now = cv::sum(out)[0];
-  if (now > 0) out *= power / now;
-  return out;
+// A sampled elliptical Gaussian of covariance `cov` (px^2, x right, y down), sum 1, cut at 4
+// sigma. Eigenvalues under (0.2 px)^2 are raised to it (a point at that scale).
+cv::Mat ellipticalGaussianKernel(Eigen::Matrix2d cov) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(0.5 * (cov + cov.transpose()));
+  Eigen::Vector2d ev = es.eigenvalues().cwiseMax(0.04);
+  cov = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+  const int rx = static_cast<int>(std::ceil(4.0 * std::sqrt(cov(0, 0))));
+  const int ry = static_cast<int>(std::ceil(4.0 * std::sqrt(cov(1, 1))));
+  const Eigen::Matrix2d inv = cov.inverse();
+  cv::Mat k(2 * ry + 1, 2 * rx + 1, CV_64F);
+  for (int y = -ry; y <= ry; ++y)
+    for (int x = -rx; x <= rx; ++x)
+      k.at<double>(y + ry, x + rx) = std::exp(-0.5 * (inv(0, 0) * x * x + 2 * inv(0, 1) * x * y + inv(1, 1) * y * y));
+  k /= cv::sum(k)[0];
+  return k;
+}
+
+// The nodes of the field-dependent PSF over the target field (world yaw, pitch; deg), about
+// 10 deg apart, at least two per axis, and the bilinear weights of a point among them
+// (coordinates clamped to the grid: weights sum to 1 everywhere).
+struct ZoneGrid {
+  int nx = 2, ny = 2;
+  double yaw0 = 0, pitch0 = 0, dyaw = 1, dpitch = 1;
+  double yaw(int i) const { return yaw0 + i * dyaw; }
+  double pitch(int j) const { return pitch0 + j * dpitch; }
+  std::array<double, 2> node(std::size_t z) const {
+    return {yaw(static_cast<int>(z % static_cast<std::size_t>(nx))), pitch(static_cast<int>(z / nx))};
+  }
+  std::array<std::pair<std::size_t, double>, 4> weights(double yaw_deg, double pitch_deg) const {
+    const double fx = std::clamp((yaw_deg - yaw0) / dyaw, 0.0, nx - 1.0);
+    const double fy = std::clamp((pitch_deg - pitch0) / dpitch, 0.0, ny - 1.0);
+    const int i = std::min(static_cast<int>(fx), nx - 2), j = std::min(static_cast<int>(fy), ny - 2);
+    const double tx = fx - i, ty = fy - j;
+    auto at = [&](int a, int b) { return static_cast<std::size_t>(b) * nx + a; };
+    return {{{at(i, j), (1 - tx) * (1 - ty)},
+             {at(i + 1, j), tx * (1 - ty)},
+             {at(i, j + 1), (1 - tx) * ty},
+             {at(i + 1, j + 1), tx * ty}}};
+  }
+};
+ZoneGrid makeZoneGrid(const std::array<double, 2>& fov_deg) {
+  ZoneGrid g;
+  g.nx = std::max(2, static_cast<int>(std::lround(fov_deg[0] / 10.0)) + 1);
+  g.ny = std::max(2, static_cast<int>(std::lround(fov_deg[1] / 10.0)) + 1);
+  g.yaw0 = -0.5 * fov_deg[0];
+  g.pitch0 = -0.5 * fov_deg[1];
+  g.dyaw = fov_deg[0] / (g.nx - 1);
+  g.dpitch = fov_deg[1] / (g.ny - 1);
+  return g;
 }
 
 }  // namespace
@@ -193,17 +193,77 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   r.foveal_reference = nearest555([&](std::size_t i) { return scene.foveal_display.primaries_nm[i]; },
                                   scene.foveal_display.primaries_nm.size());
 
-  // Peripheral kernels: sigma = w/2 (1/e^2 radius w) in canvas pixels; a spot whose line of
-  // sight misses the plate takes the largest valid one (or none).
+  // Peripheral: trace (per laser).
+  TraceOptions to;
+  to.gaze_deg = o.gaze_deg;
+  to.hoe_shift_mm = o.hoe_shift_mm;
+  to.rays = o.rays;
+  to.keep_rays = true;
+  const TraceResult tr = traceScene(scene, to);
+  const auto grid = projectorGrid(scene.projector, o.rays);
+  const int nx = grid[0], ny = grid[1];
+
+  // Field-dependent peripheral PSFs: the spot (retinal_psf.h, peripheralSpotAt: the HOE's power
+  // and astigmatism where the ray meets it) at the nodes of a grid over the target field,
+  // about 10 deg apart, from each laser's traced ray landing nearest the node. Between nodes
+  // the PSF is interpolated by splitting each ray's power among its four nodes with bilinear
+  // weights (a partition of unity) and blurring each node's plane by its own kernel
+  // (piecewise-interpolated space-variant blur: Nagy & O'Leary, SIAM J. Sci. Comput. 19, 1063,
+  // 1998). A node takes the nearest ray however far it lands (light near the node, if any, is
+  // that ray's); a laser with no ray in the pupil takes its line-of-sight spot.
+  const ZoneGrid zg = makeZoneGrid(ang.peripheral_fov_deg);
+  const std::size_t n_zones = static_cast<std::size_t>(zg.nx) * zg.ny;
+  std::vector<std::vector<Eigen::Matrix2d>> zone_cov(lasers.size(), std::vector<Eigen::Matrix2d>(n_zones));
+  {
+    std::vector<std::vector<const TracedRay*>> nearest(lasers.size(), std::vector<const TracedRay*>(n_zones, nullptr));
+    std::vector<std::vector<double>> best_d(lasers.size(), std::vector<double>(n_zones, 1e300));
+    for (const auto& ray : tr.ray_list) {
+      if (!(ray.in_pupil && ray.exits && ray.towards_eye)) continue;
+      const auto it = std::find(lasers.begin(), lasers.end(), ray.wavelength_nm);
+      if (it == lasers.end()) continue;
+      const auto li = static_cast<std::size_t>(it - lasers.begin());
+      const double yaw = o.gaze_deg[0] + ray.field_deg[0], pitch = o.gaze_deg[1] + ray.field_deg[1];
+      for (std::size_t z = 0; z < n_zones; ++z) {
+        const auto node = zg.node(z);
+        const double d = std::hypot(yaw - node[0], pitch - node[1]);
+        if (d < best_d[li][z]) {
+          best_d[li][z] = d;
+          nearest[li][z] = &ray;
+        }
+      }
+    }
+    r.peripheral_field.resize(lasers.size() * n_zones);
+    tbb::parallel_for(std::size_t{0}, r.peripheral_field.size(), [&](std::size_t j) {
+      const std::size_t li = j / n_zones, z = j % n_zones;
+      PeripheralSpot sp;
+      if (nearest[li][z])
+        sp = peripheralSpotAt(scene, lasers[li], o.accommodation_d, o.gaze_deg, o.hoe_shift_mm,
+                              nearest[li][z]->hoe_point);
+      if (!sp.valid) sp = r.peripheral[li];
+      r.peripheral_field[j] = {zg.node(z), sp};
+    });
+  }
+  // A spot whose line of sight misses the plate, and no ray near a node: the largest valid one.
   double w_fallback = 0;
   for (const auto& s : r.peripheral)
     if (s.valid) w_fallback = std::max(w_fallback, s.radius_1e2_arcmin);
-  std::vector<std::array<double, 2>> sig(lasers.size());
   int margin = 4;
-  for (std::size_t i = 0; i < lasers.size(); ++i) {
-    const double w = r.peripheral[i].valid ? r.peripheral[i].radius_1e2_arcmin : w_fallback;
-    sig[i] = {0.5 * w / 60.0 * ppx, 0.5 * w / 60.0 * ppy};
-    margin = std::max(margin, static_cast<int>(std::ceil(4.0 * std::max(sig[i][0], sig[i][1]))) + 2);
+  std::vector<double> min_sigma(lasers.size(), 1e300);
+  for (std::size_t j = 0; j < r.peripheral_field.size(); ++j) {
+    const PeripheralSpot& sp = r.peripheral_field[j].spot;
+    Eigen::Matrix2d c;  // canvas px^2: x = yaw, y = -pitch
+    if (sp.valid) {
+      const double kx = ppx / 60.0, ky = ppy / 60.0;
+      c << sp.covariance_arcmin2[0] * kx * kx, -sp.covariance_arcmin2[2] * kx * ky, -sp.covariance_arcmin2[2] * kx * ky,
+          sp.covariance_arcmin2[1] * ky * ky;
+    } else {
+      const double sx = 0.5 * w_fallback / 60.0 * ppx, sy = 0.5 * w_fallback / 60.0 * ppy;
+      c << sx * sx, 0, 0, sy * sy;
+    }
+    zone_cov[j / n_zones][j % n_zones] = c;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(c);
+    min_sigma[j / n_zones] = std::min(min_sigma[j / n_zones], std::sqrt(std::max(0.0, es.eigenvalues()[0])));
+    margin = std::max(margin, static_cast<int>(std::ceil(4.0 * std::sqrt(std::max(c(0, 0), c(1, 1))))) + 2);
   }
   for (const auto& k : fkernels) margin = std::max(margin, std::max(k.cols, k.rows) / 2 + 2);
   // Cells at the field's edge spread up to 64 px beyond it; kernels need `margin` more.
@@ -220,15 +280,19 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
 
   const cv::Mat& periph = comp.peripheralImage();
 
-  // Peripheral: trace, per laser plane.
-  TraceOptions to;
-  to.gaze_deg = o.gaze_deg;
-  to.hoe_shift_mm = o.hoe_shift_mm;
-  to.rays = o.rays;
-  to.keep_rays = true;
-  const TraceResult tr = traceScene(scene, to);
-  const auto grid = projectorGrid(scene.projector, o.rays);
-  const int nx = grid[0], ny = grid[1];
+  // The calibration laser's landing angle per projector pixel (B.2.1: one geometric mapping
+  // for all colours): the content each pixel shows. Any of its rays that leaves the plate
+  // towards the eye counts (a fitted calibration extrapolates past the camera's pupil); a
+  // pixel without one falls back to each laser's own angle.
+  const std::size_t calib = calibrationLaser(lasers);
+  std::vector<std::optional<std::array<double, 2>>> calib_field(static_cast<std::size_t>(nx) * ny);
+  if (!o.per_laser_calibration && !lasers.empty())
+    for (const auto& ray : tr.ray_list)
+      if (ray.wavelength_nm == lasers[calib] && ray.exits && ray.towards_eye) {
+        const auto idx = static_cast<std::size_t>(ray.pixel[1]) * nx + ray.pixel[0];
+        if (idx < calib_field.size()) calib_field[idx] = ray.field_deg;
+      }
+  r.lateral_colour = lateralColourAtLineOfSight(scene, o.gaze_deg, o.hoe_shift_mm);
   std::array<int, 3> lasers_in_channel{0, 0, 0};
   for (double wl : lasers) ++lasers_in_channel[static_cast<std::size_t>(retinaChannelOf(wl))];
   // Foveal: the micro-OLED's pixels at gaze + their equal-angle offsets, on the canvas region
@@ -274,7 +338,7 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   };
 
   // Each laser's plane is splatted and blurred on its own (TBB, one task per laser).
-  std::vector<cv::Mat> planes(lasers.size()), blurred_planes(lasers.size());
+  std::vector<cv::Mat> blurred_planes(lasers.size());
   std::vector<double> deposited_per(lasers.size(), 0.0), lost_per(lasers.size(), 0.0);
   std::vector<int> in_pupil_per(lasers.size(), 0);
   tbb::task_group displays;
@@ -282,14 +346,13 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   tbb::parallel_for(std::size_t{0}, lasers.size(), [&](std::size_t li) {
     double& deposited = deposited_per[li];
     double& lost = lost_per[li];
-    // A wide PSF (sigma >= 8 px) without speckle: the cells are splatted straight onto a
-    // k-times coarser grid (retinaPoolFactor), blurred there and brought back.
-    const int kpool = o.speckle_patterns > 0 ? 1 : retinaPoolFactor(sig[li][0], sig[li][1]);
+    // A wide PSF (sigma >= 8 px everywhere): the cells are splatted straight onto a k-times
+    // coarser grid (retinaPoolFactor), blurred there and brought back.
+    const int kpool = retinaPoolFactor(min_sigma[li], min_sigma[li]);
     const double pool_inv = 1.0 / kpool, pool_off = 0.5 * (kpool - 1);  // coarse pixel j centres at j k + (k-1)/2
-    cv::Mat plane(kpool > 1
-                      ? cv::Size((canvas_size.width + kpool - 1) / kpool, (canvas_size.height + kpool - 1) / kpool)
-                      : canvas_size,
-                  CV_64F, cv::Scalar(0));
+    const cv::Size coarse_size =
+        kpool > 1 ? cv::Size((canvas_size.width + kpool - 1) / kpool, (canvas_size.height + kpool - 1) / kpool)
+                  : canvas_size;
     // The rays of this laser on their grid.
     std::vector<const TracedRay*> cell(static_cast<std::size_t>(nx) * ny, nullptr);
     for (const auto& ray : tr.ray_list)
@@ -334,6 +397,31 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     }
     const int ch = retinaChannelOf(lasers[li]);
     const double share = 1.0 / lasers_in_channel[static_cast<std::size_t>(ch)];
+    // Each node's plane covers the canvas between its neighbours (where its weight is not
+    // zero), widened by half the largest cell (a cell's splat around its ray) and its kernel.
+    double half_cell_px = 0;
+    for (const auto& ed : edges)
+      half_cell_px =
+          std::max(half_cell_px, 0.5 * (std::hypot(ed[0] * ppx, ed[1] * ppy) + std::hypot(ed[2] * ppx, ed[3] * ppy)));
+    std::vector<Eigen::Matrix2d> kcov(n_zones);
+    std::vector<cv::Rect> zone_rect(n_zones);
+    std::vector<cv::Mat> zone_plane(n_zones);
+    const double tent = kpool > 1 ? 1.0 / 3.0 : 1.0 / 6.0;  // splat (+ interpolation) tents, coarse px^2
+    for (std::size_t z = 0; z < n_zones; ++z) {
+      kcov[z] = zone_cov[li][z] / (static_cast<double>(kpool) * kpool) - tent * Eigen::Matrix2d::Identity();
+      const int kr = static_cast<int>(std::ceil(4.0 * std::sqrt(std::max({kcov[z](0, 0), kcov[z](1, 1), 0.0}))));
+      const int iz = static_cast<int>(z % static_cast<std::size_t>(zg.nx)), jz = static_cast<int>(z / zg.nx);
+      const double x0 = iz == 0 ? 0.0 : cx(zg.yaw(iz - 1)),
+                   x1 = iz + 1 >= zg.nx ? canvas_size.width : cx(zg.yaw(iz + 1));
+      const double y0 = jz + 1 >= zg.ny ? 0.0 : cy(zg.pitch(jz + 1)),
+                   y1 = jz == 0 ? canvas_size.height : cy(zg.pitch(jz - 1));
+      const double pad = (half_cell_px + 2) * pool_inv + kr + 3;
+      const cv::Rect rect(cv::Point(static_cast<int>(std::floor(x0 * pool_inv - pad)),
+                                    static_cast<int>(std::floor(y0 * pool_inv - pad))),
+                          cv::Point(static_cast<int>(std::ceil(x1 * pool_inv + pad)),
+                                    static_cast<int>(std::ceil(y1 * pool_inv + pad))));
+      zone_rect[z] = rect & cv::Rect(cv::Point(0, 0), coarse_size);
+    }
     for (std::size_t k = 0; k < cell.size(); ++k) {
       const TracedRay* c = cell[k];
       if (!c) continue;
@@ -341,8 +429,12 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       const double yaw = o.gaze_deg[0] + c->field_deg[0], pitch = o.gaze_deg[1] + c->field_deg[1];
       const double x = cx(yaw), y = cy(pitch);
       if (!inside(x, y)) continue;  // outside the target field: the projector shows black there
-      const cv::Vec3d v = retinaSample(periph, (yaw / ang.peripheral_fov_deg[0] + 0.5) * periph.cols - 0.5,
-                                       (0.5 - pitch / ang.peripheral_fov_deg[1]) * periph.rows - 0.5);
+      // The content this pixel shows: at the calibration laser's landing angle (its own
+      // angle with per-laser calibration).
+      const auto& cf = calib_field[k];
+      const double show_yaw = cf ? o.gaze_deg[0] + (*cf)[0] : yaw, show_pitch = cf ? o.gaze_deg[1] + (*cf)[1] : pitch;
+      const cv::Vec3d v = retinaSample(periph, (show_yaw / ang.peripheral_fov_deg[0] + 0.5) * periph.cols - 0.5,
+                                       (0.5 - show_pitch / ang.peripheral_fov_deg[1]) * periph.rows - 0.5);
       const double area = (areas[k] > 0 ? areas[k] : median_area) * ppx * ppy;
       const double power = share * v[ch] * c->efficiency * area;
       if (power == 0) continue;
@@ -354,21 +446,53 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
       const int kx = std::clamp(static_cast<int>(std::ceil(std::hypot(ux, uy) * pool_inv)), 1, 64);
       const int ky = std::clamp(static_cast<int>(std::ceil(std::hypot(vx, vy) * pool_inv)), 1, 64);
       const double sub = power / (kx * ky);
-      for (int j = 0; j < ky; ++j)
-        for (int i = 0; i < kx; ++i) {
-          const double fu = (i + 0.5) / kx - 0.5, fv = (j + 0.5) / ky - 0.5;
-          const double sx = x + fu * ux + fv * vx, sy = y + fu * uy + fv * vy;
-          if (inside(sx, sy)) {
-            retinaSplat(plane, (sx - pool_off) * pool_inv, (sy - pool_off) * pool_inv, sub);
-            deposited += sub;
-          } else {
-            lost += sub;
+      // The ray's share of each of its (up to) four nodes.
+      const auto wz = zg.weights(yaw, pitch);
+      for (const auto& [z, w] : wz) {
+        if (w <= 0) continue;
+        cv::Mat& zp = zone_plane[z];
+        if (zp.empty()) zp = cv::Mat(zone_rect[z].size(), CV_64F, cv::Scalar(0));
+        const double ox = zone_rect[z].x, oy = zone_rect[z].y;
+        for (int j = 0; j < ky; ++j)
+          for (int i = 0; i < kx; ++i) {
+            const double fu = (i + 0.5) / kx - 0.5, fv = (j + 0.5) / ky - 0.5;
+            const double sx = x + fu * ux + fv * vx, sy = y + fu * uy + fv * vy;
+            if (inside(sx, sy)) {
+              const double px = (sx - pool_off) * pool_inv - ox, py = (sy - pool_off) * pool_inv - oy;
+              if (px >= 0 && py >= 0 && px < zp.cols - 1 && py < zp.rows - 1) {
+                retinaSplat(zp, px, py, w * sub);
+                deposited += w * sub;
+              } else {
+                lost += w * sub;  // never: the node's plane holds its rays' cells (above)
+              }
+            } else {
+              lost += w * sub;
+            }
           }
-        }
+      }
     }
-    blurred_planes[li] = kpool > 1 ? retinaCoarseBlur(plane, sig[li][0], sig[li][1], kpool, canvas_size)
-                                   : retinaGaussianBlur(plane, sig[li][0], sig[li][1]);
-    if (o.speckle_patterns > 0) planes[li] = std::move(plane);  // its lit mask
+    // Each node's plane blurred by its elliptical Gaussian (filter2D: the kernel is
+    // centro-symmetric, so correlation is convolution), summed, brought back to the canvas.
+    cv::Mat total(coarse_size, CV_64F, cv::Scalar(0));
+    for (std::size_t z = 0; z < n_zones; ++z) {
+      if (zone_plane[z].empty()) continue;
+      cv::Mat out;
+      cv::filter2D(zone_plane[z], out, CV_64F, ellipticalGaussianKernel(kcov[z]), cv::Point(-1, -1), 0,
+                   cv::BORDER_CONSTANT);
+      cv::Mat dst = total(zone_rect[z]);
+      dst += out;
+    }
+    if (kpool > 1) {
+      const double power = cv::sum(total)[0];
+      cv::Mat up;
+      cv::resize(total, up, cv::Size(total.cols * kpool, total.rows * kpool), 0, 0, cv::INTER_LINEAR);
+      cv::Mat out = up(cv::Rect(0, 0, canvas_size.width, canvas_size.height));  // a view: no copy
+      const double now = cv::sum(out)[0];
+      if (now > 0) out *= power / now;
+      blurred_planes[li] = out;
+    } else {
+      blurred_planes[li] = total;
+    }
   });
   displays.wait();
   double deposited = 0, lost = 0;
@@ -382,10 +506,25 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
   // Peripheral PSFs (and speckle), per laser, into the channels.
   std::vector<cv::Mat> channels(3);  // a channel's first laser plane is moved in, later ones added
   cv::Mat speckle_sum = o.speckle_patterns > 0 ? cv::Mat(canvas_size, CV_64F, cv::Scalar(0)) : cv::Mat(), lit;
-  for (std::size_t li = 0; li < planes.size(); ++li) {
+  std::vector<double> speckle_dof(lasers.size(), 1.0);
+  if (o.speckle_patterns > 0 && o.speckle_grain_pupil)
+    for (std::size_t li = 0; li < lasers.size(); ++li)
+      speckle_dof[li] = speckleDegreesOfFreedom(60.0 / ppx, 60.0 / ppy, lasers[li], scene.eye.pupil_diameter_mm);
+  r.speckle_dof = o.speckle_patterns > 0 ? speckle_dof : std::vector<double>();
+  // Grain one canvas pixel (each pixel one fully developed pattern per pattern), or set by the
+  // pupil and integrated over the pixel (speckle_grain.h): M degrees of freedom each. One
+  // field per laser (own seed), drawn concurrently.
+  std::vector<cv::Mat> speckle_fields(o.speckle_patterns > 0 ? lasers.size() : 0);
+  tbb::parallel_for(std::size_t{0}, speckle_fields.size(), [&](std::size_t li) {
+    speckle_fields[li] =
+        o.speckle_grain_pupil
+            ? integratedSpeckleField(canvas_size, speckle_dof[li] * o.speckle_patterns, o.speckle_seed + 7919 * li)
+            : speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
+  });
+  for (std::size_t li = 0; li < blurred_planes.size(); ++li) {
     cv::Mat blurred = std::move(blurred_planes[li]);
     if (o.speckle_patterns > 0) {
-      const cv::Mat s = speckleField(canvas_size, o.speckle_patterns, o.speckle_seed + 7919 * li);
+      const cv::Mat& s = speckle_fields[li];
       const double before = cv::sum(blurred)[0];
       cv::Mat sp = blurred.mul(s);
       const double after = cv::sum(sp)[0];
@@ -403,11 +542,15 @@ RetinaImageResult renderRetinaImage(const Scene& scene, const cv::Mat& target, c
     if (c.empty()) c = cv::Mat(canvas_size, CV_64F, cv::Scalar(0));
   if (o.speckle_patterns > 0 && !lasers.empty()) {
     speckle_sum /= static_cast<double>(lasers.size());
-    cv::Mat any = planes[0].clone();
-    for (std::size_t li = 1; li < planes.size(); ++li) any += planes[li];
-    lit = any > 0;
+    cv::Mat any = channels[0] + channels[1] + channels[2];
+    double peak = 0;
+    cv::minMaxLoc(any, nullptr, &peak);
+    lit = any > 1e-3 * peak;  // where the peripheral display lights the retina
     r.speckle_contrast = speckleContrast(speckle_sum, lit);
-    r.speckle_expected = 1.0 / std::sqrt(static_cast<double>(o.speckle_patterns) * lasers.size());
+    // The mean of the lasers' independent fields: variance sum 1/(M_l N) / L^2.
+    double var = 0;
+    for (double m : speckle_dof) var += 1.0 / (m * o.speckle_patterns);
+    r.speckle_expected = std::sqrt(var) / static_cast<double>(lasers.size());
   }
 
   for (int k = 0; k < 3; ++k)

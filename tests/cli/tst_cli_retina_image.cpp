@@ -68,6 +68,34 @@ class TestCliRetinaImage : public QObject {
     QCOMPARE(img.cols, 480);
     QCOMPARE(img.rows, 277);
     QVERIFY(cv::sum(img)[1] > 0);
+    // Per-layer lateral colour at the line of sight: one entry per laser; the prototype's
+    // lasers are at their layers' wavelengths, so the layers agree (no fringe).
+    QCOMPARE(j["colour_calibration"].get<std::string>(), std::string("common"));
+    QVERIFY(j["lateral_colour"].is_array() && j["lateral_colour"].size() == 3);
+    for (const auto& c : j["lateral_colour"]) {
+      QVERIFY(c["valid"].get<bool>());
+      QVERIFY(c["wavelength_nm"].is_number() && c["field_deg"].size() == 2);
+      QVERIFY(std::hypot(c["offset_arcmin"][0].get<double>(), c["offset_arcmin"][1].get<double>()) < 1e-6);
+    }
+    // The HOE's astigmatism at the line of sight and the field-dependent PSF at its nodes: the
+    // off-axis hologram's tangential section is weaker than its sagittal one, so every spot is
+    // an ellipse with its long axis nearer yaw than pitch.
+    for (const auto& p : j["peripheral_per_wavelength"]) {
+      QCOMPARE(p["hoe_vergence_d"].size(), std::size_t{2});
+      QVERIFY(p["astigmatism_d"].get<double>() > 1.0);
+      QVERIFY(p["radius_major_arcmin"].get<double>() > p["radius_minor_arcmin"].get<double>());
+      QVERIFY(p["cpd_mtf50_long_axis"].get<double>() < p["cpd_mtf50"].get<double>());
+      QVERIFY(p.contains("orientation_deg") && p.contains("field_deg") && p.contains("cpd_mtf10_long_axis"));
+    }
+    QVERIFY(j["peripheral_field"].is_array() && j["peripheral_field"].size() % 3 == 0 &&
+            j["peripheral_field"].size() >= 12);
+    for (const auto& f : j["peripheral_field"]) {
+      checkSpot(f);
+      QVERIFY(f["world_deg"].size() == 2 && f["field_deg"].size() == 2);
+      QVERIFY(f["radius_major_arcmin"].get<double>() >= f["radius_minor_arcmin"].get<double>());
+      QVERIFY(std::abs(f["orientation_deg"].get<double>()) < 45);
+      QVERIFY(f["astigmatism_d"].get<double>() > 0);
+    }
   }
 
   void speckleIsReported() {
@@ -78,6 +106,22 @@ class TestCliRetinaImage : public QObject {
     QVERIFY(j["speckle_contrast"].is_number());
     const double expected = 1.0 / std::sqrt(3.0 * 3.0);  // 3 patterns x 3 lasers
     QVERIFY(std::abs(j["speckle_contrast"].get<double>() / expected - 1) < 0.05);
+    QCOMPARE(j["speckle_grain"].get<std::string>(), std::string("pixel"));
+    // The pupil's grain: each canvas pixel (480 px over 40 deg: 5 arcmin) integrates M grains.
+    const Run g = cliText({"retina-image", "--image", target(), "--out", outPath("speckle-pupil.png"), "--speckle", "3",
+                           "--speckle-grain", "pupil", "--rays", "4000", "--json"});
+    QVERIFY2(g.code == 0, qPrintable(g.err));
+    const json k = g.j();
+    QCOMPARE(k["speckle_grain"].get<std::string>(), std::string("pupil"));
+    QCOMPARE(k["speckle_dof"].size(), std::size_t{3});
+    double var = 0;
+    for (const auto& m : k["speckle_dof"]) {
+      QVERIFY(m.get<double>() > 50);
+      var += 1.0 / (3.0 * m.get<double>());
+    }
+    const double expect_pupil = std::sqrt(var) / 3.0;
+    QVERIFY(std::abs(k["speckle_expected"].get<double>() / expect_pupil - 1) < 1e-12);
+    QVERIFY(std::abs(k["speckle_contrast"].get<double>() / expect_pupil - 1) < 0.05);
   }
 
   void badInput() {
@@ -94,6 +138,9 @@ class TestCliRetinaImage : public QObject {
     r = cliText({"retina-image", "--image", target(), "--out", out, "--gaze-deg", "1,x"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--gaze-deg"), qPrintable(r.err));
+    r = cliText({"retina-image", "--image", target(), "--out", out, "--speckle", "2", "--speckle-grain", "coarse"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--speckle-grain") && r.err.contains("coarse"), qPrintable(r.err));
     r = cliText({"retina-image", "--image", target(), "--out", out, "--speckle", "1.5"});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("--speckle"), qPrintable(r.err));
