@@ -6,6 +6,9 @@ results, with placeholders for the numbers: {PATH:FORMAT} or {PATH*SCALE:FORMAT}
 walks the command's JSON output (a.b[2].c) and FORMAT is a Python format spec (".2f"; "s" for
 a string such as a lens part, which --static matches as one word);
 "unicode_minus": true prints negative numbers with U+2212 as the document does.
+A check names either a fovea-cli "command" ("{tmp}" in an argument is a fresh temporary folder:
+an output file the command must write) or a "file", the JSON a regenerating script wrote and
+the repository keeps (the pupil network's figures, written by scripts/train_pupil_net.py).
 
   check_doc_numbers.py --static      every sentence, numbers as wildcards, is in its document
                                      (cheap: CTest runs it, so a doc edit cannot orphan an entry)
@@ -30,6 +33,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -76,10 +80,18 @@ def load_manifest():
     with open(os.path.join(ROOT, "scripts", "doc-numbers.json"), encoding="utf-8") as f:
         manifest = json.load(f)
     for i, check in enumerate(manifest["checks"]):
-        for key in ("doc", "command", "expect"):
+        for key in ("doc", "expect"):
             if key not in check:
                 raise SystemExit(f"doc-numbers.json: check {i} has no \"{key}\"")
+        if ("command" in check) == ("file" in check):
+            raise SystemExit(f"doc-numbers.json: check {i} needs one of \"command\" and \"file\"")
+        if "file" in check and not os.path.isfile(os.path.join(ROOT, check["file"])):
+            raise SystemExit(f"doc-numbers.json: check {i}: no file {check['file']}")
     return manifest
+
+
+def source_name(check):
+    return " ".join(check["command"]) if "command" in check else check["file"]
 
 
 def read_doc(rel):
@@ -105,24 +117,35 @@ def cli_path():
     return cli
 
 
+def run_command(cli, command):
+    with tempfile.TemporaryDirectory(prefix="doc-numbers-") as tmp:
+        args = [a.replace("{tmp}", tmp) for a in command]
+        return subprocess.run([cli] + args, cwd=ROOT, capture_output=True, text=True)
+
+
 def run_check(manifest, only):
-    cli = cli_path()
+    cli = None
     failures = 0
     outputs = {}  # a command that holds sentences of several documents runs once
     for check in manifest["checks"]:
-        name = " ".join(check["command"])
+        name = source_name(check)
         if only and not re.search(only, name):
             continue
         start = time.time()
-        key = tuple(check["command"])
-        if key not in outputs:
-            outputs[key] = subprocess.run([cli] + check["command"], cwd=ROOT, capture_output=True, text=True)
-        proc = outputs[key]
-        if proc.returncode != 0:
-            print(f"FAIL fovea-cli {name}: exit {proc.returncode}\n{proc.stderr.strip()}")
-            failures += 1
-            continue
-        doc = json.loads(proc.stdout)
+        if "file" in check:
+            with open(os.path.join(ROOT, check["file"]), encoding="utf-8") as f:
+                doc = json.load(f)
+        else:
+            cli = cli or cli_path()
+            key = tuple(check["command"])
+            if key not in outputs:
+                outputs[key] = run_command(cli, check["command"])
+            proc = outputs[key]
+            if proc.returncode != 0:
+                print(f"FAIL fovea-cli {name}: exit {proc.returncode}\n{proc.stderr.strip()}")
+                failures += 1
+                continue
+            doc = json.loads(proc.stdout)
         text = read_doc(check["doc"])
         for sentence in check["expect"]:
             try:
@@ -135,7 +158,7 @@ def run_check(manifest, only):
                 found = pattern(sentence).search(text)
                 print(f"FAIL {check['doc']}: should say {want!r}" + (f", says {found.group(0)!r}" if found else ""))
                 failures += 1
-        print(f"checked fovea-cli {name} ({time.time() - start:.0f} s)")
+        print(f"checked {'fovea-cli ' if 'command' in check else ''}{name} ({time.time() - start:.0f} s)")
     return failures
 
 
@@ -149,7 +172,7 @@ def main():
     manifest = load_manifest()
     failures = static_check(manifest) if args.static else run_check(manifest, args.k)
     n = sum(len(c["expect"]) for c in manifest["checks"]
-            if args.static or not args.k or re.search(args.k, " ".join(c["command"])))
+            if args.static or not args.k or re.search(args.k, source_name(c)))
     print(f"{n - failures if failures <= n else 0} of {n} sentences hold" if failures else f"all {n} sentences hold")
     return 1 if failures else 0
 

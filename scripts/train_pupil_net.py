@@ -160,7 +160,9 @@ def main():
     torch.onnx.export(model, torch.zeros(1, 1, SIZE, SIZE), a.out, opset_version=11, input_names=["frame"],
                       output_names=["ellipse"], do_constant_folding=True)
     ev = evaluate(model, xv, tv)
+    # docs/gaze-tracking.md prints these figures (scripts/doc-numbers.json holds it to this file)
     json.dump({"validation": ev, "train_minutes": (time.time() - start) / 60, "frames": len(x),
+               "frames_with_pupil": int(t[:, 6].sum()), "validation_frames": len(xv),
                "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
 

@@ -155,6 +155,31 @@ nlohmann::json binocularJson(const devices::BinocularResult& r, const devices::B
     const double m = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
     if (std::isfinite(m)) median = m;
   }
+  // Extremes over the fixations (docs/gaze-tracking.md's binocular table prints them); a time is
+  // null when a fixation never got there.
+  auto extreme = [&](auto value, bool want_max) -> nlohmann::json {
+    if (r.fixations.empty()) return nullptr;
+    double best = want_max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+    for (const auto& f : r.fixations) {
+      const std::optional<double> v = value(f);
+      if (!v) return nullptr;
+      best = want_max ? std::max(best, *v) : std::min(best, *v);
+    }
+    return best;
+  };
+  auto timeMs = [&](const std::optional<double>& s) { return s ? std::optional<double>(*s * ms) : std::nullopt; };
+  const nlohmann::json time_max = extreme([&](const auto& f) { return timeMs(f.time_to_tolerance_s); }, true);
+  const nlohmann::json eye_time_max = extreme([&](const auto& f) { return timeMs(f.eye_time_to_tolerance_s); }, true);
+  const nlohmann::json peak_min =
+      extreme([](const auto& f) { return std::optional<double>(f.peak_focus_error_d); }, false);
+  const nlohmann::json peak_max =
+      extreme([](const auto& f) { return std::optional<double>(f.peak_focus_error_d); }, true);
+  const nlohmann::json final_max =
+      extreme([](const auto& f) { return std::optional<double>(std::abs(f.final_focus_error_worst_d)); }, true);
+  const nlohmann::json inset_left =
+      extreme([](const auto& f) { return std::optional<double>(f.inset_on_fovea_fraction[0]); }, false);
+  const nlohmann::json inset_right =
+      extreme([](const auto& f) { return std::optional<double>(f.inset_on_fovea_fraction[1]); }, false);
   const auto& L = r.eyes[0];
   const auto& R = r.eyes[1];
   const double to_focus = r.to_command_s + r.vergence_s;
@@ -169,7 +194,12 @@ nlohmann::json binocularJson(const devices::BinocularResult& r, const devices::B
         {"median_time_to_0_25d_ms", median},
         {"settled_fixations", std::count_if(times.begin(), times.end(), [](double x) { return std::isfinite(x); })},
         {"target_ms", 300},
-        {"tolerance_d", o.tolerance_d}}},
+        {"tolerance_d", o.tolerance_d},
+        {"max_time_to_0_25d_ms", time_max},
+        {"max_eye_time_to_0_25d_ms", eye_time_max},
+        {"peak_focus_error_d", {{"min", peak_min}, {"max", peak_max}}},
+        {"max_final_focus_error_d", final_max},
+        {"min_inset_on_fovea_fraction", {{"left", inset_left}, {"right", inset_right}}}}},
       {"latency_budget_ms",
        {{"capture", R.capture_s * ms},
         {"detect", R.detect_s * ms},

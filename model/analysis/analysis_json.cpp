@@ -263,6 +263,8 @@ nlohmann::json lensOptimizationJson(const LensOptimization& r) {
                      {"decenter_mm", c.placement.decenter_mm},
                      {"tilt_deg", c.placement.tilt_deg},
                      {"rms_spot_um", c.rms_spot_um},
+                     // the candidate's own gain, as the best's improvement_percent (docs/analyses.md)
+                     {"improvement_percent", 100.0 * (r.rms_before_um - c.rms_spot_um) / r.rms_before_um},
                      {"evaluations", c.evaluations}});
   j["candidates"] = cands;
   return j;

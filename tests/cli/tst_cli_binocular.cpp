@@ -5,6 +5,8 @@
 #include <QtTest>
 #include "tests/test_paths.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -47,6 +49,31 @@ void checkContract(const nlohmann::json& j, std::size_t fixations) {
   QCOMPARE(s["fixations"].get<std::size_t>(), fixations);
   const double w = s["within_0_25d_fraction"].get<double>();
   QVERIFY(w >= 0 && w <= 1);
+  // The extremes over the fixations (docs/gaze-tracking.md's binocular table) are the fixations' own.
+  double peak_min = 1e300, peak_max = -1e300, final_max = -1e300, inset_left = 1e300, inset_right = 1e300;
+  double time_max = -1e300;
+  bool all_settled = true;
+  for (const auto& f : j["fixations"]) {
+    peak_min = std::min(peak_min, f["peak_focus_error_d"].get<double>());
+    peak_max = std::max(peak_max, f["peak_focus_error_d"].get<double>());
+    final_max = std::max(final_max, std::abs(f["final_focus_error_d"].get<double>()));
+    inset_left = std::min(inset_left, f["inset_on_fovea_fraction"]["left"].get<double>());
+    inset_right = std::min(inset_right, f["inset_on_fovea_fraction"]["right"].get<double>());
+    if (f["time_to_0_25d_ms"].is_null())
+      all_settled = false;
+    else
+      time_max = std::max(time_max, f["time_to_0_25d_ms"].get<double>());
+  }
+  QCOMPARE(s["peak_focus_error_d"]["min"].get<double>(), peak_min);
+  QCOMPARE(s["peak_focus_error_d"]["max"].get<double>(), peak_max);
+  QCOMPARE(s["max_final_focus_error_d"].get<double>(), final_max);
+  QCOMPARE(s["min_inset_on_fovea_fraction"]["left"].get<double>(), inset_left);
+  QCOMPARE(s["min_inset_on_fovea_fraction"]["right"].get<double>(), inset_right);
+  if (all_settled)
+    QCOMPARE(s["max_time_to_0_25d_ms"].get<double>(), time_max);
+  else
+    QVERIFY(s["max_time_to_0_25d_ms"].is_null());
+  QVERIFY(s.contains("max_eye_time_to_0_25d_ms"));
   const auto& b = j["latency_budget_ms"];
   QVERIFY(b.is_object());
   for (const char* k : {"capture", "detect", "map", "command", "to_command", "vergence", "focus_to_command",

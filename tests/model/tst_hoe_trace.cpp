@@ -68,6 +68,9 @@ class TestHoeTrace : public QObject {
     }
     qInfo("recording geometry: worst miss of the focus %.3g mm, s efficiency %.3f .. %.3f", worst_miss_mm, eta_min,
           eta_max);
+    // docs/physics.md prints "s: 0.71-0.92 over the plate": held to those digits.
+    QVERIFY2(std::abs(eta_min - 0.71) <= 0.005, qPrintable(QString::number(eta_min)));
+    QVERIFY2(std::abs(eta_max - 0.92) <= 0.005, qPrintable(QString::number(eta_max)));
   }
 
   void phaseConjugateRecordingWritesTheSameFringes() {
