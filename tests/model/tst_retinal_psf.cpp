@@ -80,6 +80,26 @@ cv::Mat blobTarget(const image::DisplayAngles& ang, cv::Size size, double yaw_de
     }
   return t;
 }
+
+// A white blob at world yaw `theta_deg` rendered twice on the retina: with one calibration for
+// all lasers (common) and with each laser warped on its own (own).
+struct BlobRenders {
+  image::DisplayAngles ang;
+  image::RetinaImageResult common, own;
+};
+BlobRenders blobRenders(const Scene& s, double theta_deg) {
+  BlobRenders r;
+  r.ang = image::displayAngles(s);
+  const cv::Size size(960,
+                      static_cast<int>(std::lround(960 * r.ang.peripheral_fov_deg[1] / r.ang.peripheral_fov_deg[0])));
+  const cv::Mat target = blobTarget(r.ang, size, theta_deg, 1.0);
+  image::RetinaImageOptions o;
+  o.rays = 40000;
+  r.common = image::renderRetinaImage(s, target, o);
+  o.per_laser_calibration = true;
+  r.own = image::renderRetinaImage(s, target, o);
+  return r;
+}
 }  // namespace
 
 class TestRetinalPsf : public QObject {
@@ -379,16 +399,10 @@ class TestRetinalPsf : public QObject {
     // on its own they are not. The difference of the two renders' channel centroids removes
     // what both share (the efficiency map's slope across the blob, the cells' sampling).
     const Scene s = offsetLasers();
-    const image::DisplayAngles ang = image::displayAngles(s);
-    const cv::Size size(960,
-                        static_cast<int>(std::lround(960 * ang.peripheral_fov_deg[1] / ang.peripheral_fov_deg[0])));
     const double theta = 10.0;
-    const cv::Mat target = blobTarget(ang, size, theta, 1.0);
-    image::RetinaImageOptions o;
-    o.rays = 40000;
-    const auto common = image::renderRetinaImage(s, target, o);
-    o.per_laser_calibration = true;
-    const auto own = image::renderRetinaImage(s, target, o);
+    const BlobRenders r = blobRenders(s, theta);
+    const image::DisplayAngles& ang = r.ang;
+    const image::RetinaImageResult &common = r.common, &own = r.own;
     const Vec3mm ref = s.hoe_layers[0].recording.reference_point_mm;
     const std::array<double, 3> rec{660.0, 532.0, 460.0};
     for (int k = 0; k < 3; ++k) {
@@ -421,16 +435,10 @@ class TestRetinalPsf : public QObject {
       QVERIFY(c.valid);
       QVERIFY(std::hypot(c.offset_arcmin[0], c.offset_arcmin[1]) < 1e-7);
     }
-    const image::DisplayAngles ang = image::displayAngles(s);
-    const cv::Size size(960,
-                        static_cast<int>(std::lround(960 * ang.peripheral_fov_deg[1] / ang.peripheral_fov_deg[0])));
     const double theta = 10.0;
-    const cv::Mat target = blobTarget(ang, size, theta, 1.0);
-    image::RetinaImageOptions o;
-    o.rays = 40000;
-    const auto common = image::renderRetinaImage(s, target, o);
-    o.per_laser_calibration = true;
-    const auto own = image::renderRetinaImage(s, target, o);
+    const BlobRenders r = blobRenders(s, theta);
+    const image::DisplayAngles& ang = r.ang;
+    const image::RetinaImageResult &common = r.common, &own = r.own;
     const double expect = grating_yaw_deg(theta, 650.0 / 660.0, {0.0, 0.0, -70.0}, s.eye.relief_mm) - theta;
     const auto a = channelCentroidDeg(common.image, ang, 0, theta - 7, theta + 7);
     const auto b = channelCentroidDeg(own.image, ang, 0, theta - 7, theta + 7);
