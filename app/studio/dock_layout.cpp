@@ -4,7 +4,6 @@
 #include <QMainWindow>
 #include <QScrollArea>
 #include <QScrollBar>
-#include <QStyle>
 
 #include <algorithm>
 #include <vector>

@@ -10,11 +10,12 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
+#include <string_view>
+#include <variant>
 
 #include "model/color/srgb.h"
 #include "model/image/image_codec.h"
+#include "model/io/json_input.h"
 #include "model/io/output_file.h"
 
 namespace fovea::image {
@@ -95,14 +96,6 @@ class StagingDirectory {
   std::filesystem::path dir_;
 };
 
-// The whole staged file (a few MB at most: our own encoder's output).
-std::vector<unsigned char> readStagedFile(const std::filesystem::path& file, const std::string& target) {
-  std::ifstream in(file, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw ImageIoError(target + ": cannot read back the staged image " + file.string());
-  return bytes;
-}
-
 // Encodes through the codec and writes the bytes by the one writer (atomic, checked, fsync'ed:
 // a failed write leaves the existing file as it was). A format the codec cannot encode to
 // memory (SGI, ICO, FITS, HEIF, RLA, zfile in OpenImageIO 2.4) is encoded into a file of the
@@ -119,9 +112,17 @@ void encode(const std::string& path, int width, int height, int channels, Sample
   const std::string problem =
       imageCodec().write(staged.string(), width, height, channels, file_type, data_type, data, bytes, in_memory);
   if (!problem.empty()) throw ImageIoError(path + ": " + problem);
-  if (!in_memory) bytes = readStagedFile(staged, path);
+  std::string staged_bytes;  // read back through the program's one input reader
+  if (!in_memory) {
+    auto read = readInputFile(staged, kMaxImageFileBytes);
+    if (read.index() == 1)
+      throw ImageIoError(path + ": cannot read back the staged image " + staged.string() + ": " + std::get<1>(read));
+    staged_bytes = std::move(std::get<0>(read));
+  }
+  const std::string_view text =
+      in_memory ? std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()) : staged_bytes;
   try {
-    writeOutputFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    writeOutputFile(path, text);
   } catch (const OutputError& e) {
     throw ImageIoError(e.what());
   }
