@@ -1,6 +1,6 @@
 // fovea-cli closed-loop --binocular contract: every key of the issue-30 JSON (fixations,
 // summary, latency_budget_ms), a fixation file, usage and input errors, --detector on both eye
-// trackers; the monocular
+// trackers, mode "explicit" running the left eye on its own train; the monocular
 // command's keys unchanged beside it (tst_cli_track.cpp).
 #include <QtTest>
 #include "tests/test_paths.h"
@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/scene/eye_scene.h"
+#include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 
@@ -86,6 +88,12 @@ void checkContract(const nlohmann::json& j, std::size_t fixations) {
           1e-9);
   for (const char* k : {"travel_mm", "range_d", "d_per_mm", "resolution_d_per_count"})
     QVERIFY2(j["focus_stage"].contains(k), k);
+  // Per eye, its own train's stages and focus stage (the top-level "focus_stage" is the right eye's).
+  for (const char* e : {"left", "right"}) {
+    for (const char* k : {"stages", "focus_stage", "focus_motion"}) QVERIFY2(j["eyes"][e].contains(k), k);
+    for (const char* k : {"hoe", "foveal_display", "focus"}) QVERIFY2(j["eyes"][e]["stages"][k].is_string(), k);
+  }
+  QCOMPARE(j["eyes"]["right"]["focus_stage"], j["focus_stage"]);
 }
 }  // namespace
 
@@ -133,6 +141,31 @@ class TestCliBinocular : public QObject {
     QVERIFY(f["time_to_0_25d_ms"].is_number());
     QVERIFY(f["time_to_0_25d_ms"].get<double>() <= 300);
     QVERIFY(std::abs(f["final_focus_error_d"].get<double>()) < 0.25);
+  }
+
+  void explicitMirrorTrainGivesTheMirrorDocument() {
+    // The binocular example in mode "explicit" with its left train written out from the mirror
+    // (explicitBinocularScene): the tracked closed loop's document of mode "mirror", every
+    // number but the measured detector wall time, and no warning.
+    const std::string mirror = std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json";
+    const fovea::SceneLoadResult loaded = fovea::loadSceneFile(mirror);
+    QVERIFY(loaded.ok());
+    const std::string expl = (tmpDir() / "explicit-mirror.json").string();
+    std::ofstream(expl) << fovea::serializeScene(fovea::explicitBinocularScene(*loaded.scene));
+    const std::string file = (tmpDir() / "fixation-explicit.json").string();
+    std::ofstream(file) << R"({"fixations": [{"distance_cm": 30, "direction_deg": [8, 2], "hold_ms": 600}]})";
+    const QStringList common{"--binocular", "--fixations",   file.c_str(), "--fps",
+                             "60",          "--stage-model", "DDSM50",     "--json"};
+    const Run a = cli(QStringList{"closed-loop", mirror.c_str()} + common);
+    const Run b = cli(QStringList{"closed-loop", expl.c_str()} + common);
+    QVERIFY2(a.code == 0, a.err.constData());
+    QVERIFY2(b.code == 0, b.err.constData());
+    QVERIFY2(b.err.isEmpty(), b.err.constData());
+    auto ja = nlohmann::json::parse(a.out.toStdString()), jb = nlohmann::json::parse(b.out.toStdString());
+    checkContract(jb, 1);
+    for (auto* j : {&ja, &jb}) (*j)["latency_budget_ms"].erase("detect_measured_mean");
+    QCOMPARE(jb, ja);
+    QCOMPARE(jb["eyes"]["left"]["focus_stage"], jb["focus_stage"]);
   }
 
   void detectorOnBothTrackers() {

@@ -192,6 +192,7 @@ void DevicesPanel::finishConnect(int generation, const std::shared_ptr<std::uniq
   live_ = std::move(*made);
   connecting_ = live_->bench().connectAll();
   if (!camera_error.isEmpty()) report(tr("Camera: %1").arg(camera_error), true);
+  axes_->setFocusModel(focusStageModel(currentScene()));
   axes_->setBench(live_.get());
   camera_->setBench(live_.get());
   follow_->setBench(live_.get());
