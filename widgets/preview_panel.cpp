@@ -421,6 +421,7 @@ void PreviewPanel::applyMode() {
   retinaView_->setVisible(retina);
   retinaInfo_->setVisible(retina);
   retinaControls_->setVisible(retina);
+  status_->setVisible(!retina);  // in Retina image mode: errors only (showFrame)
   accommodation_->setVisible(retina);
   accommodationLabel_->setVisible(retina);
 }
@@ -488,11 +489,15 @@ void PreviewPanel::showFrame(const PreviewFrame& f) {
   ++framesShown_;
   if (f.accommodation_d) {  // a Retina image frame
     retinaView_->setImage(f.retina);
-    retinaInfo_->setText(f.retinaInfo);
-    status_->setText(
+    // The render time ends the info line; the status line (a row above the image, which a
+    // 1366 x 768 screen cannot spare) shows only an error in this mode.
+    retinaInfo_->setText(
         f.error.isEmpty()
-            ? tr("retina image %1 ms at %2 D").arg(f.update_ms, 0, 'f', 0).arg(*f.accommodation_d, 0, 'f', 2)
-            : f.error);
+            ? f.retinaInfo +
+                  tr(" · rendered in %1 ms at %2 D").arg(f.update_ms, 0, 'f', 0).arg(*f.accommodation_d, 0, 'f', 2)
+            : f.retinaInfo);
+    status_->setText(f.error);
+    status_->setVisible(mode() == Mode::Displays || !f.error.isEmpty());
     emit frameShown();
     if (pending_) {
       const bool seam = *pending_;
@@ -509,6 +514,7 @@ void PreviewPanel::showFrame(const PreviewFrame& f) {
   peripheralView_->setImage(f.peripheral);
   peripheralView_->setRings(f.target_fov_deg, f.gaze_deg, rings);
   perceivedView_->setImage(f.perceived);
+  status_->setVisible(mode() == Mode::Displays || !f.error.isEmpty());
   if (!f.error.isEmpty()) {
     status_->setText(f.error);
   } else {

@@ -1,7 +1,7 @@
 #include "widgets/retina_image_controls.h"
 
 #include <QComboBox>
-#include <QGridLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QSignalBlocker>
 #include <QSpinBox>
@@ -10,20 +10,19 @@ namespace fovea::widgets {
 
 RetinaImageControls::RetinaImageControls(QWidget* parent) : QWidget(parent) {
   setObjectName("RetinaImageControls");
-  auto* grid = new QGridLayout(this);
-  grid->setContentsMargins(0, 0, 0, 0);
+  auto* row = new QHBoxLayout(this);
+  row->setContentsMargins(0, 0, 0, 0);
   speckle_ = new QSpinBox(this);
   speckle_->setObjectName("RetinaSpeckle");
   speckle_->setRange(0, kMaxSpecklePatterns);
   speckle_->setSpecialValueText(tr("off"));
-  speckle_->setSuffix(tr(" per laser"));
   speckle_->setToolTip(
       tr("Speckle: independent speckle patterns per laser (off: none); the image's speckle contrast falls as "
          "1/sqrt(patterns x lasers) (fovea-cli retina-image --speckle N, seed 1)"));
   grain_ = new QComboBox(this);
   grain_->setObjectName("RetinaSpeckleGrain");
-  grain_->addItem(tr("pixel grain"));
-  grain_->addItem(tr("pupil grain"));
+  grain_->addItem(tr("pixel"));
+  grain_->addItem(tr("pupil"));
   grain_->setToolTip(
       tr("Speckle grain: one canvas pixel, or the pupil's Airy grain integrated over each pixel "
          "(--speckle-grain pixel|pupil)"));
@@ -37,15 +36,11 @@ RetinaImageControls::RetinaImageControls(QWidget* parent) : QWidget(parent) {
          "--per-laser-calibration)"));
   auto* speckleLabel = new QLabel(tr("Speckle"), this);
   speckleLabel->setBuddy(speckle_);
-  auto* colourLabel = new QLabel(tr("Lateral colour"), this);
-  colourLabel->setBuddy(calibration_);
-  grid->addWidget(speckleLabel, 0, 0);
-  grid->addWidget(speckle_, 0, 1);
-  grid->addWidget(grain_, 0, 2);
-  grid->addWidget(colourLabel, 1, 0);
-  grid->addWidget(calibration_, 1, 1, 1, 2);
-  grid->setColumnStretch(1, 1);
-  grid->setColumnStretch(2, 1);
+  speckleLabel->setToolTip(speckle_->toolTip());
+  row->addWidget(speckleLabel);
+  row->addWidget(speckle_);
+  row->addWidget(grain_);
+  row->addWidget(calibration_, 1);
   grain_->setEnabled(false);
   connect(speckle_, &QSpinBox::valueChanged, this, [this](int n) {
     grain_->setEnabled(n > 0);

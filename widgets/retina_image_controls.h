@@ -2,8 +2,9 @@
 // The Retina image mode's options (Foveated preview dock, issue 29): speckle (off or N independent
 // patterns per laser), its grain (a canvas pixel or the pupil's) and the lateral colour (one
 // geometric calibration for all lasers, or each laser warped on its own) — the studio's side of
-// `fovea-cli retina-image --speckle N --speckle-grain pixel|pupil --per-laser-calibration`. Two
-// compact rows, so that they fit the dock at 1366 x 768. Holds the choices only; the preview's
+// `fovea-cli retina-image --speckle N --speckle-grain pixel|pupil --per-laser-calibration`. One
+// compact row (the words in the tooltips), so that the retinal image keeps its place in the dock
+// at 1366 x 768. Holds the choices only; the preview's
 // worker turns them into model/image/retina_image.h's RetinaImageOptions.
 
 #include <QWidget>
