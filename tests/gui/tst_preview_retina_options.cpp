@@ -4,7 +4,8 @@
 // --speckle 4 --speckle-grain pupil --json` prints for the same target; per-laser calibration
 // takes the lateral colour at the line of sight to 0; the options are shown only in the Retina
 // image mode; with the HOE following the gaze the preview's HOE shift is the studio's one x_p
-// (hoe_travel.h), the live trace's at the same gaze.
+// (hoe_travel.h), the live trace's at the same gaze; the design report's retinal image takes the
+// preview's options and names them in its caption.
 #include <QtTest>
 #include "tests/test_paths.h"
 
@@ -17,8 +18,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/studio/analysis_features.h"
 #include "app/studio/live_trace_features.h"
 #include "app/studio/main_window.h"
+#include "app/studio/report_data.h"
 #include "model/analysis/hoe_travel.h"
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
@@ -223,6 +226,33 @@ class TestPreviewRetinaOptions : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(retinaFrameOf(panel, gaze, panel->accommodation(), {}) &&
                                  panel->lastFrame().hoe_shift_mm == (std::array<double, 2>{0, 0}),
                              120000);
+  }
+
+  void reportTakesThePreviewsOptions() {
+    studio::MainWindow w;
+    w.setPersistentSettings(false);
+    auto* panel = w.findChild<PreviewPanel*>("PreviewPanel");
+    QVERIFY(panel);
+    panel->setRetinaOptions({2, true, true});
+    studio::ReportOptions o;
+    o.rays = 300;
+    o.sweep_step_deg = 10;
+    o.kogelnik_vs_rcwa = false;
+    const QString html =
+        QString::fromStdString((testing::testTmpDir("gui_preview_retina") / "report-retina-options.html").string());
+    QString error;
+    QVERIFY2(w.analysisFeatures()->exportReport(html, o, &error), qPrintable(error));
+    const QString text = QString::fromStdString(testing::readFileText(html.toStdString()));
+    QVERIFY(text.contains("The retinal image at gaze"));
+    QVERIFY2(text.contains("Speckle: 2 patterns per laser, pupil grain (seed 1), contrast "),
+             "no speckle in the caption");
+    QVERIFY(text.contains("each laser warped on its own (per-laser calibration), lateral colour 0.0 arcmin"));
+    // The preview's defaults: no speckle, one calibration.
+    panel->setRetinaOptions({});
+    QVERIFY2(w.analysisFeatures()->exportReport(html, o, &error), qPrintable(error));
+    const QString plain = QString::fromStdString(testing::readFileText(html.toStdString()));
+    QVERIFY(plain.contains(
+        "Speckle off; one geometric calibration (the laser nearest 555 nm), lateral colour 0.0 arcmin."));
   }
 };
 
