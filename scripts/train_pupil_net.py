@@ -3,16 +3,16 @@
 fovea-cli eye-dataset wrote, and exports it to ONNX for OpenCV's DNN module.
 
 Input: one 96 x 96 grey frame (the 400 x 400 eye-camera frame downscaled with INTER_AREA),
-scaled to x / 255 - 0.5. Output: 7 numbers, the pupil ellipse regressed directly
-(cx, cy, major, minor in units of the frame's width; cos 2a, sin 2a of the major axis'
-angle, the doubled angle because an ellipse is symmetric under a half turn) and a logit
-whether a pupil is visible. Why a regression head (not a heatmap or segmentation): the
-ellipse of an occluded or partly out-of-frame pupil is the *full* outline, which a
-segmentation of the visible pixels does not give without a second fit that the lid edge
-biases; a flattened (not pooled) feature map keeps where things are, and the C++ side then
-needs nothing beyond a forward pass (no argmax, contour or fit), so the model stays within
-the ops OpenCV 4.6's ONNX importer reads (Conv, BatchNormalization folded, Relu, Flatten,
-Gemm). The classical fit refines the centre in `--detector auto`.
+scaled to x / 255 - 0.5. Output: 7 numbers, the pupil ellipse (cx, cy, major, minor in units
+of the frame's width; cos 2a, sin 2a of the major axis' angle, the doubled angle because an
+ellipse is symmetric under a half turn) and a logit whether a pupil is visible. The centre
+comes from a 24 x 24 heatmap's soft-argmax (PupilNet's docstring); the axes, angle and
+visibility are regressed from the flattened 6 x 6 map. Why no segmentation head: the ellipse
+of an occluded or partly out-of-frame pupil is the *full* outline, which a segmentation of
+the visible pixels does not give without a second fit that the lid edge biases; the soft-
+argmax of a heatmap trained on the true centre points behind the lid as well. The C++ side
+needs nothing beyond a forward pass, within the ops OpenCV 4.6's ONNX importer reads. The
+classical fit refines the centre in `--detector auto`.
 
 Usage: train_pupil_net.py --data DIR [--data DIR...] --val DIR --out model.onnx
        [--epochs N] [--seed S] [--threads T]
@@ -59,20 +59,56 @@ def block(cin, cout, stride):
     return [nn.Conv2d(cin, cout, 3, stride, 1, bias=False), nn.BatchNorm2d(cout), nn.ReLU(inplace=True)]
 
 
+GRID = 24  # the centre heatmap's cells: 96 / 4, 16.7 px of a 400 px frame each
+
+
 class PupilNet(nn.Module):
+    """An encoder (four stride-2 convolutions, 96 -> 6), a regression head on the flattened
+    6 x 6 map for the axes, angle and visibility, and a decoder back to 24 x 24 (transposed
+    convolutions with skips from the encoder) whose one-channel map is a centre heatmap read
+    by its soft-argmax (integral regression, Sun et al., ECCV 2018): the expectation of the
+    cell centres under the softmax of the map. The soft-argmax is differentiable and trained
+    on the centre itself, so the centre is sub-cell (unlike an argmax) and translation-
+    equivariant (unlike the dense head, whose 6 x 6 x 64 -> 128 layer regressed it to ~7 px).
+    It is part of the graph (Flatten, Softmax, MatMul with the constant cell grid, Slice,
+    Concat: ops OpenCV 4.6's ONNX importer reads), so the output stays the 7 numbers
+    model/gaze/learned_pupil_detector.cpp reads."""
+
     def __init__(self):
         super().__init__()
-        self.features = nn.Sequential(*block(1, 16, 2), *block(16, 32, 2), *block(32, 48, 2),
-                                      *block(48, 64, 2))  # 96 -> 6; ~6 M multiply-adds a frame
+        self.e1 = nn.Sequential(*block(1, 16, 2))  # 48
+        self.e2 = nn.Sequential(*block(16, 32, 2))  # 24
+        self.e3 = nn.Sequential(*block(32, 48, 2))  # 12
+        self.e4 = nn.Sequential(*block(48, 64, 2))  # 6
         self.head = nn.Sequential(nn.Flatten(), nn.Linear(64 * 6 * 6, 128), nn.ReLU(inplace=True), nn.Linear(128, 7))
+        self.up1 = nn.ConvTranspose2d(64, 48, 2, 2)  # 6 -> 12, added to e3
+        self.d1 = nn.Sequential(*block(48, 32, 1))
+        self.up2 = nn.ConvTranspose2d(32, 32, 2, 2)  # 12 -> 24, added to e2
+        self.d2 = nn.Sequential(*block(32, 16, 1), nn.Conv2d(16, 1, 1))
+        c = (torch.arange(GRID, dtype=torch.float32) + 0.5) / GRID
+        gy, gx = torch.meshgrid(c, c, indexing="ij")
+        # The cell grid as a frozen bias-free linear layer (a registered buffer exports as an
+        # Identity node, which OpenCV 4.6's importer refuses).
+        self.grid = nn.Linear(GRID * GRID, 2, bias=False)
+        self.grid.weight.data = torch.stack([gx.reshape(-1), gy.reshape(-1)], dim=0)  # (2, 576)
+        self.grid.weight.requires_grad_(False)
 
     def forward(self, x):
-        return self.head(self.features(x))
+        f2 = self.e2(self.e1(x))
+        f3 = self.e3(f2)
+        f4 = self.e4(f3)
+        dense = self.head(f4)
+        h = self.d1(self.up1(f4) + f3)
+        heat = self.d2(self.up2(h) + f2)
+        centre = self.grid(torch.softmax(torch.flatten(heat, 1), dim=1))
+        return torch.cat([centre, dense[:, 2:]], dim=1)
 
 
 def loss_fn(out, t):
     vis = t[:, 6]
-    bce = nn.functional.binary_cross_entropy_with_logits(out[:, 6], vis)
+    # Closed eyes weigh 3x: a false pupil moves the display to a gaze that is not there
+    # (issue 31: <= 1 % false positives on closed eyes).
+    bce = nn.functional.binary_cross_entropy_with_logits(out[:, 6], vis, weight=1 + 2 * (1 - vis))
     m = vis > 0.5
     if m.sum() == 0:
         return bce, bce
@@ -100,6 +136,22 @@ def evaluate(model, x, t, bs=512):
     e = np.concatenate(errs)
     return {"centre_err_px_median": float(np.median(e)), "within_5px": float((e <= 5).mean()),
             "visibility_accuracy": vis_ok / len(x)}
+
+
+def export(model, path):
+    """ONNX for OpenCV 4.6: batch norm folded into the convolutions (constant folding). Two
+    folded tensors that happen to be equal (e.g. zero biases) are exported as one initializer
+    and an Identity node, which OpenCV 4.6 refuses; such nodes are replaced by copies."""
+    torch.onnx.export(model, torch.zeros(1, 1, SIZE, SIZE), path, opset_version=11, input_names=["frame"],
+                      output_names=["ellipse"], do_constant_folding=True)
+    import onnx
+    from onnx import numpy_helper
+    m = onnx.load(path)
+    inits = {i.name: i for i in m.graph.initializer}
+    for n in [n for n in m.graph.node if n.op_type == "Identity" and n.input[0] in inits]:
+        m.graph.initializer.append(numpy_helper.from_array(numpy_helper.to_array(inits[n.input[0]]), n.output[0]))
+        m.graph.node.remove(n)
+    onnx.save(m, path)
 
 
 def main():
@@ -157,8 +209,7 @@ def main():
             print("time budget reached: stopping early", flush=True)
             break
     model.eval()
-    torch.onnx.export(model, torch.zeros(1, 1, SIZE, SIZE), a.out, opset_version=11, input_names=["frame"],
-                      output_names=["ellipse"], do_constant_folding=True)
+    export(model, a.out)
     ev = evaluate(model, xv, tv)
     # docs/gaze-tracking.md prints these figures (scripts/doc-numbers.json holds it to this file)
     json.dump({"validation": ev, "train_minutes": (time.time() - start) / 60, "frames": len(x),

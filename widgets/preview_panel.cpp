@@ -18,10 +18,12 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/analysis/hoe_travel.h"
 #include "model/color/srgb.h"
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
 #include "model/image/retina_image.h"
+#include "model/image/retina_image_figures.h"
 #include "model/image/test_target.h"
 #include "model/scene/scene_compare.h"
 #include "model/vector_state.h"
@@ -63,6 +65,12 @@ QImage toQImage(const cv::Mat& linear, int max_width) {
 }
 }  // namespace
 
+// What a Retina image frame is asked for (PreviewPanel::requestRender).
+struct RetinaRequest {
+  double accommodation_d = 1.25;
+  RetinaPreviewOptions options;
+};
+
 // Lives on the panel's worker thread; the panel talks to it only through queued calls.
 class PreviewWorker : public QObject {
  public:
@@ -71,6 +79,7 @@ class PreviewWorker : public QObject {
   void configure(const Scene& scene, bool blend) {
     clearUpperVectorState();  // queued calls run Qt code on this thread (model/vector_state.h)
     scene_ = scene;
+    xp_.reset();
     compositor_ = std::make_unique<image::FoveatedCompositor>(scene, blend);
     if (target_.empty()) {
       const image::DisplayAngles a = image::displayAngles(scene);
@@ -92,21 +101,39 @@ class PreviewWorker : public QObject {
       error_ = QString::fromStdString(e.what());
     }
   }
-  // The retinal image at this gaze and accommodation (model/image/retina_image.h).
-  void renderRetina(PreviewFrame& f, std::array<double, 2> gaze, double accommodation_d, bool blend) {
+  // The HOE shift of the retinal image: the studio's one x_p (hoe_travel.h) at this gaze when
+  // the scene's HOE follows the gaze (none at zero gaze, as in the live trace), else none.
+  std::array<double, 2> hoeShift(std::array<double, 2> gaze) {
+    if (!scene_.view.hoe_follows_gaze || (gaze[0] == 0.0 && gaze[1] == 0.0)) return {0, 0};
+    if (!xp_ || xp_->first != gaze) xp_.emplace(gaze, hoeTravel(scene_, gaze, sceneXpRule(scene_)).shift_mm);
+    return xp_->second;
+  }
+
+  // The retinal image at this gaze, accommodation and options (model/image/retina_image.h).
+  void renderRetina(PreviewFrame& f, std::array<double, 2> gaze, const RetinaRequest& q, bool blend) {
     f.gaze_deg = gaze;
-    f.accommodation_d = accommodation_d;
+    f.accommodation_d = q.accommodation_d;
+    f.retinaOptions = q.options;
     if (target_.empty()) return;
     if (retinaTarget_.empty()) {
-      const int h = std::max(1, static_cast<int>(std::lround(target_.rows * double(kRetinaWidthPx) / target_.cols)));
-      cv::resize(target_, retinaTarget_, cv::Size(kRetinaWidthPx, h), 0, 0, cv::INTER_AREA);
+      if (target_.cols == kRetinaWidthPx) {
+        retinaTarget_ = target_;
+      } else {
+        const int h = std::max(1, static_cast<int>(std::lround(target_.rows * double(kRetinaWidthPx) / target_.cols)));
+        cv::resize(target_, retinaTarget_, cv::Size(kRetinaWidthPx, h), 0, 0, cv::INTER_AREA);
+      }
     }
     image::RetinaImageOptions o;
     o.gaze_deg = gaze;
-    o.accommodation_d = accommodation_d;
+    o.accommodation_d = q.accommodation_d;
     o.blend = blend;
+    o.speckle_patterns = q.options.speckle_patterns;
+    o.speckle_grain_pupil = q.options.speckle_grain_pupil;
+    o.per_laser_calibration = q.options.per_laser_calibration;
     try {
       const auto t0 = std::chrono::steady_clock::now();
+      o.hoe_shift_mm = hoeShift(gaze);
+      f.hoe_shift_mm = o.hoe_shift_mm;
       const image::RetinaImageResult r = image::renderRetinaImage(scene_, retinaTarget_, o);
       f.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       f.retina = toQImage(r.image, kViewWidthPx);
@@ -122,21 +149,36 @@ class PreviewWorker : public QObject {
                     .arg(m.fwhm_arcmin, 0, 'f', 2)
                     .arg(m.mtf50_cpd, 0, 'f', 1);
       }
+      const QString sep = " · ";
+      f.speckle_contrast = r.speckle_contrast;
+      f.speckle_expected = r.speckle_expected;
+      if (r.speckle_contrast) {
+        info += (info.isEmpty() ? "" : sep) + QString("speckle contrast %1").arg(*r.speckle_contrast, 0, 'f', 3);
+        if (r.speckle_expected) info += QString(" (expected %1)").arg(*r.speckle_expected, 0, 'f', 3);
+      }
+      f.lateral_colour_arcmin = image::lateralColourShownArcmin(r, o);
+      if (f.lateral_colour_arcmin)
+        info += (info.isEmpty() ? "" : sep) + QString("lateral colour %1′%2")
+                                                  .arg(*f.lateral_colour_arcmin, 0, 'f', 1)
+                                                  .arg(o.per_laser_calibration ? " (per-laser calibration)" : "");
+      if (o.hoe_shift_mm != std::array<double, 2>{0, 0})
+        info += (info.isEmpty() ? "" : sep) +
+                QString("HOE x_p %1, %2 mm").arg(o.hoe_shift_mm[0], 0, 'f', 2).arg(o.hoe_shift_mm[1], 0, 'f', 2);
       f.retinaInfo = info;
     } catch (const std::exception& e) {
       f.error = QString::fromStdString(e.what());
     }
   }
 
-  void render(std::array<double, 2> gaze, bool seam, int generation, std::optional<double> accommodation_d,
+  void render(std::array<double, 2> gaze, bool seam, int generation, const std::optional<RetinaRequest>& retina,
               bool blend) {
     clearUpperVectorState();
     PreviewFrame f;
     f.generation = generation;
     f.error = error_;
     error_.clear();
-    if (accommodation_d) {
-      renderRetina(f, gaze, *accommodation_d, blend);
+    if (retina) {
+      renderRetina(f, gaze, *retina, blend);
     } else if (compositor_) {
       const auto t0 = std::chrono::steady_clock::now();
       compositor_->update(gaze);
@@ -168,6 +210,7 @@ class PreviewWorker : public QObject {
   QImage targetImage_;
   QString error_;
   std::unique_ptr<image::FoveatedCompositor> compositor_;
+  std::optional<std::pair<std::array<double, 2>, std::array<double, 2>>> xp_;  // gaze -> x_p, this scene
 };
 
 PreviewImageView::PreviewImageView(const QString& title, QWidget* parent) : QWidget(parent), title_(title) {
@@ -286,6 +329,8 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   layout->addWidget(displaysGrid_);
   retinaView_ = new PreviewImageView(tr("Retina image (visual angle)"), this);
   retinaView_->setObjectName("RetinaImageView");
+  retinaControls_ = new RetinaImageControls(this);
+  layout->addWidget(retinaControls_);
   retinaInfo_ = new QLabel(this);
   retinaInfo_->setObjectName("RetinaImageInfo");
   retinaInfo_->setWordWrap(true);
@@ -318,6 +363,9 @@ PreviewPanel::PreviewPanel(SceneDocument* document, QWidget* parent) : QWidget(p
   connect(blend_, &QCheckBox::toggled, this, [this] { rebuild(); });
   connect(accommodation_, &QSlider::valueChanged, this, [this] {
     accommodationLabel_->setText(tr("accommodation %1 D").arg(accommodation(), 0, 'f', 2));
+    if (mode() == Mode::RetinaImage) requestRender(false);
+  });
+  connect(retinaControls_, &RetinaImageControls::changed, this, [this] {
     if (mode() == Mode::RetinaImage) requestRender(false);
   });
   connect(mode_, &QComboBox::currentIndexChanged, this, [this] {
@@ -359,11 +407,21 @@ void PreviewPanel::setAccommodation(double d) {
   accommodation_->setValue(static_cast<int>(std::lround(d * kAccommodationStepsPerD)));
 }
 
+RetinaPreviewOptions PreviewPanel::retinaOptions() const {
+  return retinaControls_->options();
+}
+
+void PreviewPanel::setRetinaOptions(const RetinaPreviewOptions& o) {
+  retinaControls_->setOptions(o);
+}
+
 void PreviewPanel::applyMode() {
   const bool retina = mode() == Mode::RetinaImage;
   displaysGrid_->setVisible(!retina);
   retinaView_->setVisible(retina);
   retinaInfo_->setVisible(retina);
+  retinaControls_->setVisible(retina);
+  status_->setVisible(!retina);  // in Retina image mode: errors only (showFrame)
   accommodation_->setVisible(retina);
   accommodationLabel_->setVisible(retina);
 }
@@ -418,10 +476,11 @@ void PreviewPanel::requestRender(bool seam) {
   PreviewWorker* w = worker_;
   const auto g = gaze();
   const int gen = framesShown_ + 1;
-  const std::optional<double> acc = mode() == Mode::RetinaImage ? std::optional<double>(accommodation()) : std::nullopt;
+  std::optional<RetinaRequest> retina;
+  if (mode() == Mode::RetinaImage) retina = RetinaRequest{accommodation(), retinaOptions()};
   const bool blend = blend_->isChecked();
   QMetaObject::invokeMethod(
-      w, [w, g, seam, gen, acc, blend] { w->render(g, seam && !acc, gen, acc, blend); }, Qt::QueuedConnection);
+      w, [w, g, seam, gen, retina, blend] { w->render(g, seam && !retina, gen, retina, blend); }, Qt::QueuedConnection);
 }
 
 void PreviewPanel::showFrame(const PreviewFrame& f) {
@@ -430,11 +489,15 @@ void PreviewPanel::showFrame(const PreviewFrame& f) {
   ++framesShown_;
   if (f.accommodation_d) {  // a Retina image frame
     retinaView_->setImage(f.retina);
-    retinaInfo_->setText(f.retinaInfo);
-    status_->setText(
+    // The render time ends the info line; the status line (a row above the image, which a
+    // 1366 x 768 screen cannot spare) shows only an error in this mode.
+    retinaInfo_->setText(
         f.error.isEmpty()
-            ? tr("retina image %1 ms at %2 D").arg(f.update_ms, 0, 'f', 0).arg(*f.accommodation_d, 0, 'f', 2)
-            : f.error);
+            ? f.retinaInfo +
+                  tr(" · rendered in %1 ms at %2 D").arg(f.update_ms, 0, 'f', 0).arg(*f.accommodation_d, 0, 'f', 2)
+            : f.retinaInfo);
+    status_->setText(f.error);
+    status_->setVisible(mode() == Mode::Displays || !f.error.isEmpty());
     emit frameShown();
     if (pending_) {
       const bool seam = *pending_;
@@ -451,6 +514,7 @@ void PreviewPanel::showFrame(const PreviewFrame& f) {
   peripheralView_->setImage(f.peripheral);
   peripheralView_->setRings(f.target_fov_deg, f.gaze_deg, rings);
   perceivedView_->setImage(f.perceived);
+  status_->setVisible(mode() == Mode::Displays || !f.error.isEmpty());
   if (!f.error.isEmpty()) {
     status_->setText(f.error);
   } else {

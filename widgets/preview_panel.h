@@ -7,7 +7,12 @@
 // computed once the gaze has rested for a moment.
 // Retina image mode (issue 29): the same target and gaze through both displays and the
 // accommodating eye, as the retina receives it (model/image/retina_image.h), with an
-// accommodation slider; rendered on the same worker at kRetinaWidthPx, coalesced the same way.
+// accommodation slider and the speckle / lateral-colour options (widgets/retina_image_controls.h);
+// rendered on the same worker at kRetinaWidthPx (a target of that width as it is), coalesced the
+// same way. When the scene's HOE follows the gaze (view.hoe_follows_gaze, the Gaze dock's toggle)
+// the HOE is shifted by the studio's one x_p (model/analysis/hoe_travel.h, hoeTravel with the
+// scene's x_p rule) at the preview's gaze, as the live trace applies it at the eye's; otherwise
+// it is not shifted.
 
 #include <QImage>
 #include <QPointer>
@@ -18,6 +23,7 @@
 #include <optional>
 
 #include "model/scene/scene.h"
+#include "widgets/retina_image_controls.h"
 
 class QCheckBox;
 class QComboBox;
@@ -59,6 +65,12 @@ struct PreviewFrame {
   QImage retina;                          // Retina image mode: the retinal image (sRGB for display)
   QString retinaInfo;                     // its line-of-sight spots and powers, one line
   std::optional<double> accommodation_d;  // set in Retina image mode
+  // Retina image mode: the options and HOE shift it was rendered with, and its figures
+  // (model/image/retina_image.h's RetinaImageResult; the lateral colour from retina_image_figures.h).
+  RetinaPreviewOptions retinaOptions;
+  std::array<double, 2> hoe_shift_mm{0, 0};
+  std::optional<double> speckle_contrast, speckle_expected;  // speckle on
+  std::optional<double> lateral_colour_arcmin;               // at the line of sight, the largest laser's
   std::array<double, 2> gaze_deg{0, 0};
   std::array<double, 2> target_fov_deg{0, 0}, foveal_fov_deg{0, 0};
   std::array<double, 3> ring_deg{0, 0, 0};
@@ -85,6 +97,9 @@ class PreviewPanel : public QWidget {
   // Retina image mode's accommodation (diopters, 0..4 in 0.05 D steps).
   void setAccommodation(double diopters);
   double accommodation() const;
+  // Retina image mode's speckle and lateral-colour options (kept for the session).
+  void setRetinaOptions(const RetinaPreviewOptions& options);
+  RetinaPreviewOptions retinaOptions() const;
   // Number of frames shown so far and the newest one (for tests).
   int framesShown() const { return framesShown_; }
   const PreviewFrame& lastFrame() const { return last_; }
@@ -109,6 +124,7 @@ class PreviewPanel : public QWidget {
   QComboBox* mode_ = nullptr;
   QWidget* displaysGrid_ = nullptr;
   PreviewImageView* retinaView_ = nullptr;
+  RetinaImageControls* retinaControls_ = nullptr;
   QCheckBox* blend_ = nullptr;
   PreviewImageView *targetView_ = nullptr, *fovealView_ = nullptr, *peripheralView_ = nullptr,
                    *perceivedView_ = nullptr;

@@ -10,8 +10,9 @@
 // fovea-cli closed-loop SCENE --binocular --fixations FILE|N [--ipd MM] [--seed S]
 //                         [--stage-model M] [--focus-stage-model M] [--fps F]
 //                         [--detector classical|learned|auto] [--json]
-// The binocular loop with focus (devices/bench/binocular_loop.h): both eyes (the left one on
-// the mirrored train) fixate points in depth and direction; vergence from both trackers (each
+// The binocular loop with focus (devices/bench/binocular_loop.h): both eyes, each on its own
+// train (a binocular scene's left train; the mirror image of a monocular scene's), fixate
+// points in depth and direction; vergence from both trackers (each
 // calibrated and tracking with --detector) drives the focus stages. FILE: {"fixations": [{"distance_cm",
 // "direction_deg": [yaw, pitch] or yaw, "hold_ms"}]}; N: that many random fixations (30-250 cm) drawn with the seed.
 #include <algorithm>
@@ -25,7 +26,6 @@
 #include "devices/bench/closed_gaze_loop.h"
 #include "model/io/json_fields.h"
 #include "model/io/json_input.h"
-#include "model/scene/eye_scene.h"
 
 namespace fovea::cli {
 namespace cmd_closed_loop {  // one per command file: fovea-cli compiles in unity batches
@@ -119,6 +119,36 @@ std::vector<devices::BinocularFixation> fixationsFrom(const std::string& text, u
 
 nlohmann::json optionalMs(const std::optional<double>& s) {
   return s ? nlohmann::json(*s * 1000) : nlohmann::json(nullptr);
+}
+
+// One eye's focus stage: the keys of the top-level "focus_stage" (the right eye's).
+nlohmann::json focusStageJson(const devices::FocusEye& f) {
+  return {{"mirror_distance_mm", f.model.mirror_distance_mm},
+          {"focal_length_mm", f.model.focal_length_mm},
+          {"nominal_panel_mm", f.model.nominal_panel_mm},
+          {"near_mm", f.travel.near_mm},
+          {"far_mm", f.travel.far_mm},
+          {"panel_near_mm", f.travel.panel_near_mm},
+          {"panel_far_mm", f.travel.panel_far_mm},
+          {"travel_mm", f.travel.travel_mm},
+          {"range_d", f.travel.range_d},
+          {"d_per_mm", {{"near", f.travel.sensitivity_near_d_per_mm}, {"far", f.travel.sensitivity_far_d_per_mm}}},
+          {"resolution_d_per_count",
+           {{"near", f.travel.sensitivity_near_d_per_mm / f.counts_per_mm},
+            {"far", f.travel.sensitivity_far_d_per_mm / f.counts_per_mm}}}};
+}
+
+// One eye's block of "eyes".
+nlohmann::json eyeJson(const devices::ClosedLoopResult& e, const devices::FocusEye& f) {
+  const double ms = 1000;
+  return {
+      {"inset_error_deg", statsJson(e.inset_error_deg)},
+      {"off_fovea_fraction", e.time_off_fovea_s / std::max(e.duration_s, 1e-12)},
+      {"calibration", {{"accuracy_deg", e.calibration_accuracy_deg}, {"precision_deg", e.calibration_precision_deg}}},
+      {"frames", {{"captured", e.frames}, {"tracked", e.frames_found}}},
+      {"stages", {{"hoe", e.hoe_stage}, {"foveal_display", e.oled_stage}, {"focus", f.stage}}},
+      {"focus_stage", focusStageJson(f)},
+      {"focus_motion", statsJson(f.move_s, ms)}};
 }
 
 nlohmann::json binocularJson(const devices::BinocularResult& r, const devices::BinocularOptions& o) {
@@ -220,20 +250,7 @@ nlohmann::json binocularJson(const devices::BinocularResult& r, const devices::B
            {{"left", path(r.to_command_s, r.oled_move_s[0])}, {"right", path(r.to_command_s, r.oled_move_s[1])}}},
           {"focus", path(to_focus, r.focus_move_s)}}}}},
       {"stages", {{"hoe", R.hoe_stage}, {"foveal_display", R.oled_stage}, {"focus", r.focus_stage}}},
-      {"focus_stage",
-       {{"mirror_distance_mm", r.focus_model.mirror_distance_mm},
-        {"focal_length_mm", r.focus_model.focal_length_mm},
-        {"nominal_panel_mm", r.focus_model.nominal_panel_mm},
-        {"near_mm", r.travel.near_mm},
-        {"far_mm", r.travel.far_mm},
-        {"panel_near_mm", r.travel.panel_near_mm},
-        {"panel_far_mm", r.travel.panel_far_mm},
-        {"travel_mm", r.travel.travel_mm},
-        {"range_d", r.travel.range_d},
-        {"d_per_mm", {{"near", r.travel.sensitivity_near_d_per_mm}, {"far", r.travel.sensitivity_far_d_per_mm}}},
-        {"resolution_d_per_count",
-         {{"near", r.travel.sensitivity_near_d_per_mm / r.focus_counts_per_mm},
-          {"far", r.travel.sensitivity_far_d_per_mm / r.focus_counts_per_mm}}}}},
+      {"focus_stage", focusStageJson(r.focus_eyes[1])},
       {"vergence",
        {{"ipd_mm", o.geometry.ipd_mm},
         {"samples", r.vergence_samples},
@@ -248,19 +265,7 @@ nlohmann::json binocularJson(const devices::BinocularResult& r, const devices::B
           {"tau_ms", o.dynamics.tau_s * ms},
           {"peak_convergence_deg_s", o.dynamics.peak_convergence_deg_s},
           {"peak_divergence_deg_s", o.dynamics.peak_divergence_deg_s}}}}},
-      {"eyes",
-       {{"left",
-         {{"inset_error_deg", statsJson(L.inset_error_deg)},
-          {"off_fovea_fraction", L.time_off_fovea_s / std::max(L.duration_s, 1e-12)},
-          {"calibration",
-           {{"accuracy_deg", L.calibration_accuracy_deg}, {"precision_deg", L.calibration_precision_deg}}},
-          {"frames", {{"captured", L.frames}, {"tracked", L.frames_found}}}}},
-        {"right",
-         {{"inset_error_deg", statsJson(R.inset_error_deg)},
-          {"off_fovea_fraction", R.time_off_fovea_s / std::max(R.duration_s, 1e-12)},
-          {"calibration",
-           {{"accuracy_deg", R.calibration_accuracy_deg}, {"precision_deg", R.calibration_precision_deg}}},
-          {"frames", {{"captured", R.frames}, {"tracked", R.frames_found}}}}}}},
+      {"eyes", {{"left", eyeJson(L, r.focus_eyes[0])}, {"right", eyeJson(R, r.focus_eyes[1])}}},
       {"duration_s", r.duration_s}};
   return out;
 }
@@ -288,7 +293,7 @@ void install(CLI::App& app) {
   cmd->add_flag("--json", a->json, "print the result as JSON");
   cmd->add_option("--detector", a->detector,
                   "pupil detector of the calibration and the loop: classical (default), learned or auto");
-  cmd->add_flag("--binocular", a->binocular, "both eyes (the left on the mirrored train), vergence and focus stages");
+  cmd->add_flag("--binocular", a->binocular, "both eyes (each on its own train), vergence and focus stages");
   cmd->add_option("--fixations", a->fixations, "with --binocular: a fixation file (JSON) or a count of random ones");
   CLI::Option* ipd_option =
       cmd->add_option(
@@ -328,13 +333,11 @@ void install(CLI::App& app) {
       bo.seed_right = a->seed;
       bo.seed_left = a->seed + 1000003u;
       const auto fixations = fixationsFrom(a->fixations, a->seed);
-      if (scene.binocular && scene.binocular->left)
-        std::cerr << "closed-loop: binocular mode \"explicit\": the loop's left eye runs on the mirror image of the "
-                     "scene's (right) train, not on the file's left train\n";
       devices::BinocularResult br;
       try {
-        // The loop mirrors the scene's (right) train itself: it gets the right eye's scene.
-        br = devices::runBinocularLoop(scene.binocular ? eyeScene(scene, EyeSide::Right) : scene, fixations, bo);
+        // Each eye on its own train: a binocular scene's eyeScene(scene, EyeSide::Left|Right), a
+        // monocular scene as the right eye with its mirror image as the left.
+        br = devices::runBinocularLoop(scene, fixations, bo);
       } catch (const std::invalid_argument& e) {
         inputError(std::string("closed-loop: ") + e.what());
       }

@@ -34,6 +34,7 @@
 #include "widgets/plots/plot_builders.h"
 #include "widgets/plots/plots_panel.h"
 #include "widgets/preferences.h"
+#include "widgets/preview_panel.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::studio {
@@ -239,6 +240,13 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   ReportOptions options = requested;
   if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
     options.follow_gaze = true;
+  // The report's retinal image takes the Foveated preview's Retina image options.
+  if (const widgets::PreviewPanel* preview = window_->previewPanel()) {
+    const widgets::RetinaPreviewOptions r = preview->retinaOptions();
+    options.retina_speckle_patterns = r.speckle_patterns;
+    options.retina_speckle_grain_pupil = r.speckle_grain_pupil;
+    options.retina_per_laser_calibration = r.per_laser_calibration;
+  }
   const Scene scene = window_->document()->scene();
   const QString scenePath = window_->document()->filePath();
   auto cancel = std::make_shared<std::atomic<bool>>(false);

@@ -9,6 +9,7 @@
 #include "model/color/srgb.h"
 #include "model/image/foveation.h"
 #include "model/image/retina_image.h"
+#include "model/image/retina_image_figures.h"
 #include "model/image/test_target.h"
 #include "model/physics/projector_rays.h"
 #include "model/scene/eye_scene.h"
@@ -60,6 +61,7 @@ constexpr const char* kReportAccommodationsD = "0.4,0.67,1,1.25,1.67,2.5,3.3";
 constexpr int kReportRetinaWidthPx = 960;
 
 std::optional<ReportRetinaImage> reportRetinaImage(const Scene& scene, std::array<double, 2> gaze_deg,
+                                                   std::array<double, 2> hoe_shift_mm, const ReportOptions& options,
                                                    QStringList& problems) {
   try {
     const image::DisplayAngles a = image::displayAngles(scene);
@@ -71,10 +73,21 @@ std::optional<ReportRetinaImage> reportRetinaImage(const Scene& scene, std::arra
     o.gaze_deg = gaze_deg;
     const double d_f = scene.foveal_display.combiner.image_distance_mm;
     o.accommodation_d = d_f > 250 ? std::clamp(1000.0 / d_f, 0.0, 4.0) : 1.25;
+    o.hoe_shift_mm = hoe_shift_mm;
+    o.speckle_patterns = options.retina_speckle_patterns;
+    o.speckle_grain_pupil = options.retina_speckle_grain_pupil;
+    o.per_laser_calibration = options.retina_per_laser_calibration;
     const image::RetinaImageResult r = image::renderRetinaImage(scene, target, o);
     ReportRetinaImage out;
     out.gaze_deg = gaze_deg;
     out.accommodation_d = o.accommodation_d;
+    out.hoe_shift_mm = o.hoe_shift_mm;
+    out.speckle_patterns = o.speckle_patterns;
+    out.speckle_grain_pupil = o.speckle_grain_pupil;
+    out.per_laser_calibration = o.per_laser_calibration;
+    out.speckle_contrast = r.speckle_contrast;
+    out.speckle_expected = r.speckle_expected;
+    out.lateral_colour_arcmin = image::lateralColourShownArcmin(r, o);
     out.power_in_pupil = r.power_in_pupil;
     out.power_on_retina = r.power_on_retina;
     if (!r.peripheral.empty() && r.peripheral[r.peripheral_reference].valid) {
@@ -222,7 +235,14 @@ std::optional<ReportData> computeReportData(const Scene& loaded, const QString& 
   res["accommodation-d"] = kReportAccommodationsD;  // the resolution-vs-accommodation plot
   if (auto j = step("resolution", scene, res, control, 0.6, 0.7, d.problems, &cancelled)) d.resolution = *j;
   if (cancelled) return std::nullopt;
-  d.retinaImage = reportRetinaImage(scene, options.gazes_deg.front(), d.problems);
+  // The retinal image at the first gaze, with the HOE where its trace had it (x_p when following).
+  std::array<double, 2> retinaShift{0, 0};
+  for (const GazeTrace& t : d.traces)
+    if (t.gaze_deg == options.gazes_deg.front()) {
+      retinaShift = t.hoe_shift_mm;
+      break;
+    }
+  d.retinaImage = reportRetinaImage(scene, options.gazes_deg.front(), retinaShift, options, d.problems);
   if (control.cancelled()) return std::nullopt;
   if (!scene.hoe_layers.empty()) {
     if (auto j = step("selectivity", scene, defaultParameters(*findAnalysis("selectivity")), control, 0.7, 0.75,

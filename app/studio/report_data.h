@@ -43,6 +43,11 @@ struct ReportOptions {
   int tolerance_seed = 1;
   // A binocular scene's eye: "left", "right" or "both"; empty: both. Ignored for a monocular scene.
   QString eye;
+  // The retinal image's speckle and lateral-colour options (the studio passes the Foveated
+  // preview's Retina image options; model/image/retina_image.h, seed 1).
+  int retina_speckle_patterns = 0;
+  bool retina_speckle_grain_pupil = false;
+  bool retina_per_laser_calibration = false;
 };
 
 struct GazeTrace {
@@ -59,6 +64,11 @@ struct ReportRetinaImage {
   QImage image;
   std::array<double, 2> gaze_deg{0, 0};
   double accommodation_d = 0;
+  std::array<double, 2> hoe_shift_mm{0, 0};  // x_p at the gaze with follow_gaze, else 0
+  int speckle_patterns = 0;
+  bool speckle_grain_pupil = false, per_laser_calibration = false;
+  std::optional<double> speckle_contrast, speckle_expected;     // speckle on
+  std::optional<double> lateral_colour_arcmin;                  // shown at the line of sight, the largest laser's
   double peripheral_spot_arcmin = 0, peripheral_mtf50_cpd = 0;  // 0 when the line of sight misses the HOE
   double foveal_spot_arcmin = 0, foveal_mtf50_cpd = 0;
   double power_in_pupil = 0, power_on_retina = 0;

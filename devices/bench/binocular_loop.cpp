@@ -12,6 +12,7 @@
 #include "devices/virtual/motion_profile.h"
 #include "model/gaze/gaze_calibration.h"
 #include "model/physics/display_camera_map.h"
+#include "model/scene/eye_scene.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 
@@ -96,6 +97,17 @@ std::vector<BinocularFixation> randomFixations(int n, std::uint32_t seed, double
 
 BinocularResult runBinocularLoop(const Scene& scene, const std::vector<BinocularFixation>& fixations,
                                  const BinocularOptions& o) {
+  if (scene.binocular)
+    return runBinocularLoop(eyeScene(scene, EyeSide::Left), eyeScene(scene, EyeSide::Right), fixations, o);
+  // A monocular scene: its train is the right eye's, the left one its mirror about the plane
+  // ipd / 2 nasal of the right eye's rotation centre (eye_scene.h's midPlaneX).
+  const double mid_plane_x_mm =
+      scene.hoe.pose.position_mm[0] + scene.eye.lateral_offset_mm[0] - o.geometry.ipd_mm / 2.0;
+  return runBinocularLoop(mirroredScene(scene, mid_plane_x_mm), scene, fixations, o);
+}
+
+BinocularResult runBinocularLoop(const Scene& left, const Scene& right, const std::vector<BinocularFixation>& fixations,
+                                 const BinocularOptions& o) {
   if (fixations.empty()) throw std::invalid_argument("no fixations");
   BinocularResult r;
   auto sched = std::make_shared<BinocularSchedule>();
@@ -118,7 +130,8 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
   sched->end_s = t;
   r.duration_s = t;
 
-  const double radius = scene.eye.eyeball_diameter_mm / 2;
+  const std::array<const Scene*, 2> scenes{&left, &right};
+  const std::array<double, 2> radii{left.eye.eyeball_diameter_mm / 2, right.eye.eyeball_diameter_mm / 2};
   const std::array<Eigen::Vector3d, 2> centres{o.geometry.leftCentre(), o.geometry.rightCentre()};
   const std::array<std::uint32_t, 2> seeds{o.seed_left, o.seed_right};
   // Gaze of eye e (0 left, 1 right) in its own train's frame (the left one mirrored).
@@ -133,6 +146,7 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
   auto optionsFor = [&](int e) {
     ClosedLoopOptions oe = o.loop;
     oe.seed = seeds[static_cast<std::size_t>(e)];
+    oe.mirrored_frame = e == 0;  // the left train in the bench frame, its gazes and targets mirrored
     return oe;
   };
   auto trackEye = [&](int e) -> TrackedRun {
@@ -150,7 +164,7 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
       ev.peak_velocity_deg_s = mainSequencePeakVelocity(ev.amplitude_deg);
       traj.saccades.push_back(ev);
     }
-    if (o.track) return trackEyeTrajectory(scene, oe, traj);
+    if (o.track) return trackEyeTrajectory(*scenes[static_cast<std::size_t>(e)], oe, traj);
     // Synthetic tracker: the true gaze at mid-exposure plus Gaussian noise per axis.
     TrackedRun run;
     run.trajectory = traj;
@@ -169,44 +183,77 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
     run.calibration_precision_sd_deg = o.synthetic_sigma_deg * std::sqrt(2.0);
     return run;
   };
-  std::future<TrackedRun> right = std::async(std::launch::async, trackEye, 1);
+  std::future<TrackedRun> right_run = std::async(std::launch::async, trackEye, 1);
   std::array<TrackedRun, 2> runs;
   runs[0] = trackEye(0);
-  runs[1] = right.get();
-  for (int e = 0; e < 2; ++e) r.eyes[static_cast<std::size_t>(e)] = simulateStages(scene, runs[e], optionsFor(e));
+  runs[1] = right_run.get();
+  for (int e = 0; e < 2; ++e) {
+    const auto ei = static_cast<std::size_t>(e);
+    r.eyes[ei] = simulateStages(*scenes[ei], runs[ei], optionsFor(e));
+  }
   // Per-axis sample SD: precision SD is the RMS angle to the mean direction over both axes.
   r.precision_sd_deg_left = runs[0].calibration_precision_sd_deg / std::sqrt(2.0);
   r.precision_sd_deg_right = runs[1].calibration_precision_sd_deg / std::sqrt(2.0);
 
-  // Focus stage.
+  // Focus stages, one per eye on its own train (its combiner, its micro-OLED's stage model).
   ClosedLoopOptions of = o.loop;
   if (o.focus_stage_model) of.stage_model = o.focus_stage_model;
-  const apt::StageModel focus = stageModelFor(scene, "foveal_display", of, r.focus_stage);
-  r.focus_counts_per_mm = focus.counts_per_unit;
-  r.focus_model = focusStageModel(scene);
-  r.travel = focusTravel(r.focus_model, o.near_mm, o.far_mm);
-  const double u0 = r.focus_model.nominal_panel_mm;
-  auto panelForDepth = [&](double depth_mm) { return panelForImageDistance(r.focus_model, depth_mm - radius); };
-  const double start_offset = panelForDepth(o.start_distance_mm) - u0;
-  const double deadband_mm = o.focus_deadband_d / std::abs(dioptresPerMm(r.focus_model, u0));
-  std::array<FollowedAxis, 2> axes{FollowedAxis(focus.max_velocity, focus.max_acceleration, deadband_mm, start_offset),
-                                   FollowedAxis(focus.max_velocity, focus.max_acceleration, deadband_mm, start_offset)};
+  struct FocusAxis {
+    apt::StageModel stage;
+    double u0 = 0, u_lo = 0, u_hi = 0;
+  };
+  std::array<FocusAxis, 2> fa;
+  std::vector<FollowedAxis> axes;
+  for (std::size_t e = 0; e < 2; ++e) {
+    FocusEye& fe = r.focus_eyes[e];
+    // The train's focus axis (foveal_display z, scene format "stages"), when it has one.
+    const StageBinding* axis = nullptr;
+    for (const auto& b : scenes[e]->stages)
+      if (b.element == "foveal_display" && b.axis == "z") axis = &b;
+    ClosedLoopOptions oe = of;
+    if (axis && !oe.stage_model) oe.stage_model = axis->stage_model;
+    fa[e].stage = stageModelFor(*scenes[e], "foveal_display", oe, fe.stage);
+    fe.counts_per_mm = fa[e].stage.counts_per_unit;
+    fe.model = focusStageModel(*scenes[e]);
+    fe.travel = focusTravel(fe.model, o.near_mm, o.far_mm);
+    fa[e].u0 = fe.model.nominal_panel_mm;
+    // The stage's mechanical travel, centred on the 30-250 cm panel range (a fixation off
+    // axis at 30 cm needs its image plane nearer than 30 cm along z), short of the focal point;
+    // with a focus axis, within its soft limits (z = u0 - u: u in [u0 - z_hi, u0 - z_lo]).
+    const double mid = 0.5 * (fe.travel.panel_near_mm + fe.travel.panel_far_mm);
+    const double half = 0.5 * (fa[e].stage.travel_max - fa[e].stage.travel_min);
+    fa[e].u_lo = std::max(0.5 * fe.travel.panel_near_mm, mid - half);
+    fa[e].u_hi = std::min(fe.model.focal_length_mm - 0.01, mid + half);
+    if (axis) {
+      fa[e].u_lo = std::max(fa[e].u_lo, fa[e].u0 - axis->soft_limits[1]);
+      fa[e].u_hi = std::min(fa[e].u_hi, fa[e].u0 - axis->soft_limits[0]);
+    }
+  }
+  // Panel distance of eye e for a fixation depth (z from the rotation centres' plane).
+  auto panelForDepth = [&](std::size_t e, double depth_mm) {
+    return panelForImageDistance(r.focus_eyes[e].model, depth_mm - radii[e]);
+  };
+  for (std::size_t e = 0; e < 2; ++e) {
+    const FocusEye& fe = r.focus_eyes[e];
+    const double start_offset = panelForDepth(e, o.start_distance_mm) - fa[e].u0;
+    const double deadband_mm = o.focus_deadband_d / std::abs(dioptresPerMm(fe.model, fa[e].u0));
+    axes.emplace_back(fa[e].stage.max_velocity, fa[e].stage.max_acceleration, deadband_mm, start_offset);
+  }
+  r.focus_stage = r.focus_eyes[1].stage;
+  r.focus_model = r.focus_eyes[1].model;
+  r.travel = r.focus_eyes[1].travel;
+  r.focus_counts_per_mm = r.focus_eyes[1].counts_per_mm;
 
   // Vergence from both trackers -> filter -> focus commands.
   r.to_command_s = r.eyes[1].latency_to_command_s;
   r.vergence_s = o.vergence_s;
   gaze::FixationDistanceFilter filter(o.geometry, o.dynamics, o.filter);
   struct Command {
-    double t, offset;
+    double t;
+    std::array<double, 2> offset;  // per eye
   };
   std::vector<Command> commands;
   std::vector<double> raw_err, filt_err, sigmas;
-  // The focus stage's mechanical travel, centred on the 30-250 cm panel range (a fixation off
-  // axis at 30 cm needs its image plane nearer than 30 cm along z), short of the focal point.
-  const double mid = 0.5 * (r.travel.panel_near_mm + r.travel.panel_far_mm);
-  const double half = 0.5 * (focus.travel_max - focus.travel_min);
-  const double u_lo = std::max(0.5 * r.travel.panel_near_mm, mid - half),
-               u_hi = std::min(r.focus_model.focal_length_mm - 0.01, mid + half);
   const std::size_t frames = std::min(runs[0].frames.size(), runs[1].frames.size());
   for (std::size_t k = 0; k < frames; ++k) {
     const TrackedFrame& fl = runs[0].frames[k];
@@ -233,8 +280,12 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
       filt_err.push_back(filtered - truth);
     }
     const double depth = filtered > 0 ? 1000.0 / filtered : std::numeric_limits<double>::infinity();
-    const double u = std::isfinite(depth) && depth > radius ? panelForDepth(depth) : u_hi;
-    commands.push_back({fl.exposure_start_s + r.to_command_s + o.vergence_s, std::clamp(u, u_lo, u_hi) - u0});
+    Command c{fl.exposure_start_s + r.to_command_s + o.vergence_s, {0, 0}};
+    for (std::size_t e = 0; e < 2; ++e) {
+      const double u = std::isfinite(depth) && depth > radii[e] ? panelForDepth(e, depth) : fa[e].u_hi;
+      c.offset[e] = std::clamp(u, fa[e].u_lo, fa[e].u_hi) - fa[e].u0;
+    }
+    commands.push_back(c);
   }
   r.closed_form_sigma_d_mean = meanSd(sigmas)[0];
   const auto rs = meanSd(raw_err), fs = meanSd(filt_err);
@@ -246,6 +297,7 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
   const double step = o.loop.eval_step_s;
   std::size_t next = 0;
   std::vector<double> focus_moves;
+  std::array<std::vector<double>, 2> eye_focus_moves;
   for (std::size_t i = 0; i < sched->segments.size(); ++i) {
     const FixationSegment& seg = sched->segments[i];
     const double end = i + 1 < sched->segments.size() ? sched->segments[i + 1].onset_s : sched->end_s;
@@ -261,15 +313,15 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
       const double te = static_cast<double>(k) * step;
       if (te >= end) break;
       while (next < commands.size() && commands[next].t <= te) {
-        for (auto& a : axes) a.command(commands[next].t, commands[next].offset);
+        for (std::size_t e = 0; e < 2; ++e) axes[e].command(commands[next].t, commands[next].offset[e]);
         ++next;
       }
       const Eigen::Vector3d q = sched->pointAt(te);
       for (std::size_t e = 0; e < 2; ++e) {
-        const double plane_z = radius + imageDistanceForPanel(r.focus_model, u0 + axes[e].position(te));
+        const double plane_z = radii[e] + imageDistanceForPanel(r.focus_eyes[e].model, fa[e].u0 + axes[e].position(te));
         const auto g = gaze::gazeTowardsDeg(centres[e], q);
         const Eigen::Vector3d dir = gazeDirection(g[0], g[1]);
-        const Eigen::Vector3d pupil = centres[e] + radius * dir;
+        const Eigen::Vector3d pupil = centres[e] + radii[e] * dir;
         const double s_display = (plane_z - pupil.z()) / dir.z();
         err[e] = 1000.0 / s_display - 1000.0 / (q - pupil).norm();
       }
@@ -296,9 +348,13 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
                      gazeDirection(fixations[i - 1].direction_deg[0], fixations[i - 1].direction_deg[1]).z();
     const double depth_to =
         fixations[i].distance_mm * gazeDirection(fixations[i].direction_deg[0], fixations[i].direction_deg[1]).z();
-    out.focus_motion_s = MotionProfile::trapezoid(0, panelForDepth(depth_from), panelForDepth(depth_to),
-                                                  focus.max_velocity, focus.max_acceleration)
-                             .endTime();
+    for (std::size_t e = 0; e < 2; ++e) {
+      const double move = MotionProfile::trapezoid(0, panelForDepth(e, depth_from), panelForDepth(e, depth_to),
+                                                   fa[e].stage.max_velocity, fa[e].stage.max_acceleration)
+                              .endTime();
+      eye_focus_moves[e].push_back(move);
+      out.focus_motion_s = std::max(out.focus_motion_s, move);
+    }
     focus_moves.push_back(out.focus_motion_s);
     for (std::size_t e = 0; e < 2; ++e) {
       const auto& er = r.eyes[e];
@@ -309,16 +365,19 @@ BinocularResult runBinocularLoop(const Scene& scene, const std::vector<Binocular
     r.fixations.push_back(out);
   }
   r.focus_move_s = statsOf(focus_moves);
+  for (std::size_t e = 0; e < 2; ++e) r.focus_eyes[e].move_s = statsOf(eye_focus_moves[e]);
 
   // The lateral stages' moves per fixation change (trapezoids between the settled targets, the
   // slower axis), per eye in its own train: the motion part of each path's budget.
   for (std::size_t e = 0; e < 2; ++e) {
+    const Scene& scene = *scenes[e];
+    const bool mirrored = e == 0;
     const apt::StageModel hoe = stageModelFor(scene, "hoe", o.loop, r.eyes[e].hoe_stage);
     const apt::StageModel oled = stageModelFor(scene, "foveal_display", o.loop, r.eyes[e].oled_stage);
     std::vector<double> hoe_moves, oled_moves;
     for (const auto& seg : sched->segments) {
       const auto from = ownGaze(static_cast<int>(e), seg.onset_s), to = ownGaze(static_cast<int>(e), seg.onset_s + 10);
-      const auto h0 = geometricHoeShiftForGaze(scene, from), h1 = geometricHoeShiftForGaze(scene, to);
+      const auto h0 = hoeShiftInOwnFrame(scene, from, mirrored), h1 = hoeShiftInOwnFrame(scene, to, mirrored);
       const auto f0 = fovealShiftForGaze(scene, from), f1 = fovealShiftForGaze(scene, to);
       double th = 0, tf = 0;
       for (std::size_t k = 0; k < 2; ++k) {

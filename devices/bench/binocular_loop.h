@@ -2,15 +2,21 @@
 // The binocular closed loop with focus (issue 30): two eyes fixating points in depth
 // (30-250 cm) and direction; per eye the monocular closed gaze loop of closed_gaze_loop.h
 // (eye camera frames -> pupil detector -> C.4 calibration -> HOE and micro-OLED stages),
-// run on the mirror image of the scene's optical train for the left eye; from both tracked
+// each eye on its own optical train (eye_scene.h: the left train is the mirror image of the
+// scene's, or in mode "explicit" the file's own left train); from both tracked
 // gazes the fixation point (model/gaze/vergence.h: closest approach, closed-form
 // uncertainty, fixation-distance filter) drives one focus stage per eye, which moves the
 // micro-OLED along the combiner's axis (model/physics/focus_stage.h).
 //
-// Frames. Head frame of vergence.h (x towards the right eye). The scene's train is the
-// right eye's; the left train is its mirror about the mid-plane x = 0, so the left eye's
-// gaze (yaw, pitch) is (-yaw, pitch) in the scene's frame, and its stages move mirrored.
-// Both eye cameras expose at the same instants.
+// Frames. Head frame of vergence.h (x towards the right eye, the eyes' rotation centres at
+// -+ipd/2 on x). Each eye's monocular loop runs in the eye's own frame, the right eye's
+// train's; the left eye's own frame is the mirror image of the bench frame (its gaze
+// (yaw, pitch) is (-yaw, pitch) in the bench frame, its stages move mirrored), so its tracker,
+// calibration and stage targets are those of a right eye (ClosedLoopOptions::mirrored_frame:
+// only the HOE's x_p reads the left train's bench geometry). Per eye from its own train: the
+// HOE and micro-OLED stage models, x_p and x_f, the eye (pupil, fovea, eyeball radius), the
+// combiner (the focus stage model) and the focus stage's model; the rotation centres come
+// from the IPD. Both eye cameras expose at the same instants.
 //
 // The eyes. Fixation i (point P_i at cyclopean distance d_i in direction u_i) starts at
 // onset t_i: the direction changes by a main-sequence minimum-jerk saccade (as the monocular
@@ -49,7 +55,10 @@ struct BinocularOptions {
   gaze::BinocularGeometry geometry;
   gaze::VergenceDynamics dynamics;
   gaze::FixationFilterOptions filter;
-  std::optional<std::string> focus_stage_model;  // default: the micro-OLED's lateral stage model
+  // Default: the train's focus axis's model (foveal_display z), else the micro-OLED's lateral
+  // stage model (loop.stage_model overrides both); with a focus axis the commands stay within its
+  // soft limits.
+  std::optional<std::string> focus_stage_model;
   double start_distance_mm = 800, start_hold_s = 0.3;
   double vergence_s = 0.00001;          // modelled closest approach + filter time
   double focus_deadband_d = 0.02;       // focus commands within this of the last one are dropped
@@ -72,13 +81,24 @@ struct FixationOutcome {
   double final_focus_error_worst_d = 0;             // the larger in magnitude, signed
   std::array<double, 2> inset_on_fovea_fraction{0, 0};
   double peak_focus_error_d = 0;
-  double focus_motion_s = 0;  // the focus stage's move between the previous and this target
+  double focus_motion_s = 0;  // the focus stages' move between the previous and this target (the slower eye)
   double vergence_change_deg = 0;
+};
+
+// One eye's focus stage.
+struct FocusEye {
+  std::string stage;  // stage model
+  FocusStageModel model;
+  FocusTravel travel;
+  double counts_per_mm = 0;
+  Stats move_s;  // per fixation change
 };
 
 struct BinocularResult {
   std::vector<FixationOutcome> fixations;
-  std::array<ClosedLoopResult, 2> eyes;  // left, right (each in its own, mirrored, frame)
+  std::array<ClosedLoopResult, 2> eyes;  // left, right (each in its own frame, the left one mirrored)
+  std::array<FocusEye, 2> focus_eyes;    // left, right
+  // The right eye's focus stage (focus_eyes[1]; both eyes' in mode "mirror").
   std::string focus_stage;
   FocusStageModel focus_model;
   FocusTravel travel;
@@ -93,8 +113,13 @@ struct BinocularResult {
   double duration_s = 0;
 };
 
-// Runs the loop (the trackers render every frame unless o.track is false). Throws
+// Runs the loop on the two eyes' monocular scenes, both in the bench frame (eyeScene(scene,
+// EyeSide::Left|Right)); the trackers render every frame unless o.track is false. Throws
 // std::invalid_argument for an unknown stage model or an empty fixation list.
+BinocularResult runBinocularLoop(const Scene& left, const Scene& right, const std::vector<BinocularFixation>& fixations,
+                                 const BinocularOptions& o);
+// The same for one scene: a binocular scene's two eyes (eye_scene.h), or a monocular scene as
+// the right eye with its mirror image o.geometry.ipd_mm / 2 nasal of its rotation centre as the left.
 BinocularResult runBinocularLoop(const Scene& scene, const std::vector<BinocularFixation>& fixations,
                                  const BinocularOptions& o);
 

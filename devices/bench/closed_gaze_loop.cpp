@@ -51,6 +51,12 @@ double discOverlap(double d, double e, double p) {
 
 }  // namespace
 
+std::array<double, 2> hoeShiftInOwnFrame(const Scene& scene, std::array<double, 2> gaze_deg, bool mirrored_frame) {
+  if (!mirrored_frame) return geometricHoeShiftForGaze(scene, gaze_deg);
+  const auto s = geometricHoeShiftForGaze(scene, {0.0 - gaze_deg[0], gaze_deg[1]});
+  return {0.0 - s[0], s[1]};
+}
+
 double mainSequencePeakVelocity(double amplitude_deg) {
   return 700.0 * (1 - std::exp(-amplitude_deg / 10.0));
 }
@@ -200,7 +206,7 @@ ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const
       if (!f.found) continue;
       ++r.frames_found;
       const double tc = f.exposure_start_s + r.latency_to_command_s;
-      const auto hoe = geometricHoeShiftForGaze(scene, f.gaze_deg);
+      const auto hoe = hoeShiftInOwnFrame(scene, f.gaze_deg, o.mirrored_frame);
       const auto oled = fovealShiftForGaze(scene, f.gaze_deg);
       hoe_x.command(tc, hoe[0]);
       hoe_y.command(tc, hoe[1]);
@@ -218,7 +224,7 @@ ClosedLoopResult simulateStages(const Scene& scene, const TrackedRun& run, const
     }
     if (saccade_i < r.saccades.size() && t >= r.saccades[saccade_i].onset_s && interval_start < 0) interval_start = t;
     if (err > o.settle_tolerance_deg) r.time_beyond_tolerance_s += step, last_beyond = t;
-    const auto xp = geometricHoeShiftForGaze(scene, g);
+    const auto xp = hoeShiftInOwnFrame(scene, g, o.mirrored_frame);
     const double d = std::hypot(hoe_x.position(t) - xp[0], hoe_y.position(t) - xp[1]);
     hoe_err.push_back(d);
     const double inside = discOverlap(d, focus_r, pupil_r);

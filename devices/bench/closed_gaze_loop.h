@@ -55,7 +55,18 @@ struct ClosedLoopOptions {
   gaze::IrCameraPose camera;
   int leds = 6;
   gaze::PupilDetectorKind detector = gaze::PupilDetectorKind::Classical;  // of the calibration and the loop
+  // The scene is a left eye's train in the bench frame (eye_scene.h) while gazes and stage
+  // targets are in the eye's own, mirrored, frame (the binocular loop's left eye): the HOE's
+  // x_p is then mirrorHoeShift's (below). False: scene and gazes share the frame.
+  bool mirrored_frame = false;
 };
+
+// The geometric HOE shift x_p for a gaze in the eye's own frame (o.mirrored_frame: the
+// scene's train is a left eye's in the bench frame, the gaze its own mirrored one). Under the
+// mirror S = diag(-1, 1, 1) a gaze (yaw, pitch) is (-yaw, pitch) in the bench frame, and the
+// HOE's local x is reversed (eye_scene.h), so x_p_own(yaw, pitch) = (-x, y) of
+// geometricHoeShiftForGaze(scene, (-yaw, pitch)).
+std::array<double, 2> hoeShiftInOwnFrame(const Scene& scene, std::array<double, 2> gaze_deg, bool mirrored_frame);
 
 // The measured side of the loop: one entry per camera frame.
 struct TrackedFrame {

@@ -3,7 +3,7 @@
 // (learned_pupil_detector.h) or auto, the learned detector's proposal refined by the
 // classical ellipse fit: the classical detector runs on a window around the learned centre
 // (2.5 pupil diameters, at least 96 px) and its ellipse is taken when it lies within
-// max(5 px, 0.3 diameters) of the learned centre (the fit is the more exact outline where it
+// max(2 px, 0.1 diameters) of the learned centre (the fit is the more exact outline where it
 // holds; the proposal keeps it from locking on a shadow or lash elsewhere); otherwise the
 // learned ellipse stands. No pupil from the learned detector: none from auto (closed eyes).
 // docs/gaze-tracking.md has the measurements behind that choice.

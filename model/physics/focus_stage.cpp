@@ -28,6 +28,14 @@ double dioptresPerMm(const FocusStageModel& m, double panel_mm) {
   return -(1000.0 / (d * d)) * f * f / ((f - panel_mm) * (f - panel_mm));
 }
 
+double focusAxisForImageDistance(const FocusStageModel& m, double image_mm) {
+  return m.nominal_panel_mm - panelForImageDistance(m, image_mm);
+}
+
+double imageDistanceForFocusAxis(const FocusStageModel& m, double axis_mm) {
+  return imageDistanceForPanel(m, m.nominal_panel_mm - axis_mm);
+}
+
 FocusTravel focusTravel(const FocusStageModel& m, double near_mm, double far_mm) {
   FocusTravel t;
   t.near_mm = near_mm;

@@ -39,6 +39,15 @@ double panelForImageDistance(const FocusStageModel& m, double image_mm);
 // panel moves away from the mirror towards its focal point.
 double dioptresPerMm(const FocusStageModel& m, double panel_mm);
 
+// The focus axis of the bench: the stage binding of element "foveal_display", axis "z" (scene
+// format, "stages"), whose element coordinate is the panel's displacement along its own
+// optical axis (local +z, the emission direction, towards the combiner) from the scene's
+// nominal place: z = u0 - u, so z = 0 puts the image at the scene's d_f, z > 0 brings the
+// panel nearer the mirror and the image nearer the eye.
+double focusAxisForImageDistance(const FocusStageModel& m, double image_mm);
+// The image distance from the pupil (mm) of the focus axis at z (mm); +infinity at u0 - z >= f.
+double imageDistanceForFocusAxis(const FocusStageModel& m, double axis_mm);
+
 struct FocusTravel {
   double near_mm = 0, far_mm = 0;                                      // image distances (from the pupil)
   double panel_near_mm = 0, panel_far_mm = 0;                          // u at each

@@ -12,7 +12,11 @@
 namespace fovea::testing {
 
 struct CliCall {
-  int timeout_ms = 120000;
+  // A guard against a hung process, not a time limit on the work: below CTest's 600 s per
+  // test, far above any call's time on an idle machine. It was 120 s: a binocular closed loop
+  // takes 60-140 s on a loaded machine, the likely cause of one tst_cli_binocular failure seen
+  // in a loaded full run (not reproduced alone); a loaded machine must not fail a test.
+  int timeout_ms = 540000;
   QByteArray stdin_data;  // written, then the channel is closed
   QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
 };
@@ -50,7 +54,7 @@ struct CliText {
   nlohmann::json j() const { return nlohmann::json::parse(out.toStdString()); }
 };
 
-inline CliText cliText(const QStringList& args, int timeout_ms = 120000) {
+inline CliText cliText(const QStringList& args, int timeout_ms = CliCall{}.timeout_ms) {
   const CliOutput r = runFoveaCli(args, timeout_ms);
   return {r.code, QString::fromUtf8(r.out), QString::fromUtf8(r.err)};
 }

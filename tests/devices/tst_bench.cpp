@@ -1,6 +1,7 @@
 // The live bench of the prototype scene with no hardware: every binding on the virtual
 // bench, each axis on its own worker thread; element-coordinate moves through the
-// bindings, soft limits, and the e-stop interrupting a running move.
+// bindings, soft limits, and the e-stop interrupting a running move; the binocular example's
+// focus axis (foveal_display z) setting the foveal image distance.
 #include <QtTest>
 #include "tests/prototype_scene.h"
 #include "tests/test_paths.h"
@@ -11,6 +12,7 @@
 #include "devices/bench/bench.h"
 #include "devices/bench/follow_gaze_table.h"
 #include "devices/bench/target_follower.h"
+#include "model/physics/focus_stage.h"
 #include "model/scene/scene_io.h"
 
 namespace tst_bench {
@@ -78,6 +80,59 @@ class TestBench : public QObject {
       std::lock_guard lock(m);  // the refused move published on hx: the detached listener missed it
       QCOMPARE(seen.size(), seen_after_detach);
     }
+  }
+
+  // The focus axis of resources/scenes/binocular-prototype.json: an APT stage on the virtual
+  // bench like the others. Its element coordinate z = u0 - u (focus_stage.h); moved to the
+  // panel position for an image 50 cm from the pupil, the position read back gives 2 D within
+  // the encoder's 2.9e-5 mm (MTS25-Z8, 34 304 counts/mm: 2e-5 D); past its soft limits
+  // (-1.5 ... 3.5 mm, image 7.44 m ... 25.5 cm) the move is refused and nothing is sent.
+  void focusAxisSetsTheImageDistance() {
+    const SceneLoadResult loaded =
+        loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json");
+    QVERIFY(loaded.ok());
+    const Scene& scene = *loaded.scene;
+    BenchOptions o;
+    o.virtual_clock = std::make_shared<SimulatedClock>();
+    Bench bench(scene, o, std::vector<DeviceInfo>{});
+    for (auto& f : bench.connectAll()) f.get();
+    AxisWorker* fz = bench.find("foveal_display", "z");
+    QVERIFY(fz);
+    QVERIFY(fz->snapshot().is_virtual);
+    QTRY_VERIFY_WITH_TIMEOUT(fz->snapshot().state.known, 2000);
+    const FocusStageModel m = focusStageModel(scene);
+    // Powered on at z = 0: the scene's image distance d_f = 800 mm.
+    QVERIFY(std::abs(fz->snapshot().element_position) < 1e-6);
+    QVERIFY(std::abs(imageDistanceForFocusAxis(m, 0.0) - 800.0) < 1e-9);
+    // The travel for 30-250 cm lies inside the soft limits.
+    const double z_near = focusAxisForImageDistance(m, 300), z_far = focusAxisForImageDistance(m, 2500);
+    qInfo("focus axis: z(30 cm) %.4f mm, z(250 cm) %.4f mm, z(50 cm) %.4f mm", z_near, z_far,
+          focusAxisForImageDistance(m, 500));
+    QVERIFY(std::abs(z_near - 2.7413) < 1e-4 && std::abs(z_far + 1.1408) < 1e-4);
+    const auto& b = fz->binding();
+    QVERIFY(b.soft_limits[0] < z_far && z_near < b.soft_limits[1]);
+
+    const double z50 = focusAxisForImageDistance(m, 500);
+    bench.moveElement("foveal_display", "z", z50).get();
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(fz->snapshot().element_position - z50) < 1e-4, 2000);
+    const double d = imageDistanceForFocusAxis(m, fz->snapshot().element_position);
+    qInfo("focus axis at %.5f mm: image %.3f mm, %.5f D", fz->snapshot().element_position, d, 1000.0 / d);
+    QVERIFY(std::abs(1000.0 / d - 2.0) < 0.01);
+    // A jog of +0.1 mm (nearer image): 0.1 mm x |dD/du| = 0.1 x 0.757 D/mm more.
+    const double before = fz->snapshot().element_position;
+    bench.moveElement("foveal_display", "z", before + 0.1).get();
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(fz->snapshot().element_position - before - 0.1) < 1e-4, 2000);
+    const double d2 = imageDistanceForFocusAxis(m, fz->snapshot().element_position);
+    QVERIFY(1000.0 / d2 > 1000.0 / d);
+    QVERIFY(std::abs((1000.0 / d2 - 1000.0 / d) -
+                     0.1 * std::abs(dioptresPerMm(m, m.nominal_panel_mm - before - 0.05))) < 0.005);
+
+    // Past the near soft limit (3.5 mm; 4 mm would put the image at 23.2 cm): refused, nothing sent.
+    QVERIFY_THROWS_EXCEPTION(DeviceError, bench.moveElement("foveal_display", "z", 4.0).get());
+    QVERIFY(!sentMoveAbsolute(*bench.virtualController("foveal_display", "z"), 16 * 34304 + 17152));  // 16.5 mm
+    QVERIFY_THROWS_EXCEPTION(DeviceError, bench.moveElement("foveal_display", "z", -1.6).get());
+    QVERIFY(!sentMoveAbsolute(*bench.virtualController("foveal_display", "z"), 10 * 34304 + 30874));  // 10.9 mm
+    QTRY_VERIFY_WITH_TIMEOUT(fz->snapshot().last_error.find("soft limits") != std::string::npos, 2000);
   }
 
   void unpluggedAxisComesBackByItself() {

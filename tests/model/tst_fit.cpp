@@ -238,6 +238,51 @@ class TestFit : public QObject {
     QVERIFY(std::abs(j["correlation"][1][1].get<double>() - 1.0) < 1e-12);
   }
 
+  void recoversTheEyeReliefFromXp() {
+    // docs/fitting.md: the eye relief recovered from x_p(+-10 deg) beside the height, green n1
+    // and waist (relief 22 -> 21.5 mm: chi2 2960 in 211 evaluations, relief back to
+    // 21.500 +- 0.028 mm), and at 23 mm the same targets only to +-0.39 mm (past the kink of
+    // x_p(relief) near 22.2 mm). Held at the printed digits.
+    const Scene nominal = prototype();
+    const std::vector<FitTarget> shape{
+        target("fov-h", "fov_deg", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.05),
+        target("fov-v", "fov_deg", {{"shift", "none"}, {"direction", "vertical"}, {"wavelength_nm", 532}}, 0.05),
+        target("eff", "mean_efficiency", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.002),
+        target("spot", "rms_spot_um", nlohmann::json::object(), 2.0),
+        target("xp+10", "x_p_mm", {{"gaze_deg", 10}, {"wavelength_nm", 532}}, 0.02),
+        target("xp-10", "x_p_mm", {{"gaze_deg", -10}, {"wavelength_nm", 532}}, 0.02)};
+    const auto fitRelief = [&](double relief) {
+      const std::vector<std::pair<std::string, double>> truth{{"eye.relief_mm", relief},
+                                                              {"hoe.size_mm[1]", 35.2},
+                                                              {"hoe_layers[1].n1", 0.0165},
+                                                              {"projector.pixel_beam.waist_fwhm_um", 690.0}};
+      Scene built = nominal;
+      for (const auto& [path, v] : truth) built = withParameter(built, path, v);
+      std::vector<FitTarget> t = shape;
+      const std::vector<double> measured = evaluateTargets(built, t);
+      for (std::size_t i = 0; i < t.size(); ++i) t[i].value = measured[i];
+      std::vector<std::string> specs;
+      for (const auto& [path, v] : truth) specs.push_back(path);
+      FitOptions o;
+      o.starts = 2;
+      const auto r = fitScene(nominal, t, parseFreeParameters(nominal, specs), o);
+      if (!r.ok()) qFatal("the relief fit was cancelled");
+      return *r.value;
+    };
+    const FitResult near = fitRelief(21.5);
+    const FitParameterResult& relief = near.parameters[0];
+    qInfo("21.5 mm: %d evaluations, chi2 %.6g -> %.3g, relief %.6f +- %.6f", near.evaluations, near.chi2_initial,
+          near.chi2, relief.fitted, relief.uncertainty.value_or(-1));
+    QCOMPARE(near.evaluations, 211);
+    QVERIFY2(std::abs(near.chi2_initial - 2960) < 5, qPrintable(QString::number(near.chi2_initial)));
+    QVERIFY2(near.chi2 < 1e-6, qPrintable(QString::number(near.chi2)));
+    QVERIFY2(std::abs(relief.fitted - 21.5) < 5e-4, qPrintable(QString::number(relief.fitted, 'f', 6)));
+    QVERIFY(relief.uncertainty && std::abs(*relief.uncertainty - 0.028) < 5e-4);
+    const FitResult far = fitRelief(23.0);
+    qInfo("23 mm: relief %.6f +- %.6f", far.parameters[0].fitted, far.parameters[0].uncertainty.value_or(-1));
+    QVERIFY(far.parameters[0].uncertainty && std::abs(*far.parameters[0].uncertainty - 0.39) < 5e-3);
+  }
+
   void warnsOfUndeterminedParameters() {
     // Efficiency on Bragg depends on n1 d only (tanh^2(pi n1 d / lambda), Kogelnik 1969): one
     // efficiency target cannot separate n1 from the thickness.

@@ -38,6 +38,12 @@ QString AxisTable::stageFrameHint(const Row& r, const QString& error) const {
            formatAxisValue(b.soft_limits[1], r.unit));
 }
 
+QString formatFocusImage(const FocusStageModel& model, double axis_mm) {
+  const double d_mm = imageDistanceForFocusAxis(model, axis_mm);
+  if (!std::isfinite(d_mm) || d_mm <= 0) return QStringLiteral("image at ∞");
+  return QString("%1 cm · %2 D").arg(d_mm / 10, 0, 'f', 1).arg(1000.0 / d_mm, 0, 'f', 2);
+}
+
 QString formatAxisValue(double value, const QString& unit) {
   const DisplayUnits u = Preferences::instance().units();
   if (unit == "deg") return u.angleUnit == AngleUnit::Degree ? fixed(value, unit) : u.angle(value, 5);
@@ -113,6 +119,7 @@ void AxisTable::setBench(devices::LiveBench* live) {
     axis.position->setMinimumWidth(80);
     axis.position->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
     axis.position->setStyleSheet("font-family: monospace;");
+    axis.focus = focus_model_ && w->binding().element == "foveal_display" && w->binding().axis == "z";
     axis.state = new QLabel(this);
     axis.state->setObjectName("state_" + axis.key);
     axis.state->setMinimumWidth(60);
@@ -236,7 +243,9 @@ void AxisTable::refresh() {
         r.note_error = true;
       }
     }
-    r.position->setText(s.state.known ? fixed(s.element_position, r.unit) : QStringLiteral("—"));
+    QString position = s.state.known ? fixed(s.element_position, r.unit) : QStringLiteral("—");
+    if (r.focus && s.state.known) position += "\n" + formatFocusImage(*focus_model_, s.element_position);
+    r.position->setText(position);
     QString st;
     if (!s.connected)
       st = tr("offline");

@@ -1,6 +1,8 @@
 #pragma once
 // The Bench dock's axes: one row per stage binding (element position in the scene's frame,
-// state, jog buttons, Home, a go-to field), the jog step and speed, the selected axis.
+// state, jog buttons, Home, a go-to field), the jog step and speed, the selected axis. The
+// focus axis (foveal_display z, model/physics/focus_stage.h) also shows the foveal image's
+// distance from the pupil in cm and dioptres.
 //
 // Typed targets are never changed by the field: it takes any number, and a target outside
 // the binding's soft limits is refused with the reason in the preferred units and in the
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "devices/bench/live_bench.h"
+#include "model/physics/focus_stage.h"
 
 class QButtonGroup;
 class QDoubleSpinBox;
@@ -33,7 +36,9 @@ class AxisTable : public QGroupBox {
   explicit AxisTable(QWidget* parent = nullptr);
 
   void setBench(devices::LiveBench* live);  // nullptr: no rows
-  void refresh();                           // readouts from the axis snapshots
+  // The scene's combiner, for the focus axis's image distance (before setBench; nullopt: none).
+  void setFocusModel(std::optional<FocusStageModel> model) { focus_model_ = model; }
+  void refresh();  // readouts from the axis snapshots
 
   void jog(const QString& axis_key, int direction);  // +1 forward, -1 reverse
   void goTo(const QString& axis_key, double element_value);
@@ -74,6 +79,7 @@ class AxisTable : public QGroupBox {
     QString note, note_tip;  // shown instead of the computed state while set
     bool note_error = false;
     bool stop_pending = false;  // Esc while it moved: say where it stopped once it stands
+    bool focus = false;         // the focus axis: the image distance beside the position
     std::string seen_error;     // the snapshot's last error already reported
   };
   void refuse(Row& row, const QString& what, double value);
@@ -85,6 +91,7 @@ class AxisTable : public QGroupBox {
   const Row* row(const QString& key) const;
 
   devices::LiveBench* live_ = nullptr;
+  std::optional<FocusStageModel> focus_model_;
   std::vector<Row> rows_;
   QGridLayout* grid_ = nullptr;
   QButtonGroup* select_group_ = nullptr;
@@ -96,5 +103,7 @@ class AxisTable : public QGroupBox {
 
 // "12.500 mm" / "20.00°" in the preferred display units (model values in mm or deg).
 QString formatAxisValue(double value, const QString& unit);
+// The focus axis's image: "50.0 cm · 2.00 D" for an image 500 mm from the pupil ("∞" beyond).
+QString formatFocusImage(const FocusStageModel& model, double axis_mm);
 
 }  // namespace fovea::widgets

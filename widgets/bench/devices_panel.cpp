@@ -140,6 +140,10 @@ Scene DevicesPanel::currentScene() const {
 // ---------------------------------------------------------------------------------------
 
 void DevicesPanel::connectBench() {
+  startBench(true);
+}
+
+void DevicesPanel::startBench(bool announce) {
   want_connected_ = true;
   if (live_ || connect_thread_.joinable()) return;  // connected, or a start is under way
   const Scene scene = currentScene();
@@ -147,7 +151,7 @@ void DevicesPanel::connectBench() {
   o.allow_hardware = options_.allow_hardware;
   o.clock = options_.clock;
   const int generation = ++connect_generation_;
-  report(tr("Starting the bench…"), false);
+  if (announce) report(tr("Starting the bench…"), false);
   // USB enumeration, the emulators and the virtual optics are built off the GUI thread; the
   // result comes back as a queued call (dropped if the panel goes first: it joins this thread).
   connect_thread_ = std::thread([this, scene, o, generation] {
@@ -175,7 +179,9 @@ void DevicesPanel::finishConnect(int generation, const std::shared_ptr<std::uniq
   if (connect_thread_.joinable()) connect_thread_.join();
   if (generation != connect_generation_) {  // disconnected (or the scene replaced) meanwhile
     made->reset();
-    if (want_connected_) connectBench();
+    // A start superseded by a newer one (the scene replaced meanwhile): the user was told the
+    // bench is starting; start again without saying it twice.
+    if (want_connected_) startBench(false);
     return;
   }
   if (!error.isEmpty() || !*made) {
@@ -186,6 +192,7 @@ void DevicesPanel::finishConnect(int generation, const std::shared_ptr<std::uniq
   live_ = std::move(*made);
   connecting_ = live_->bench().connectAll();
   if (!camera_error.isEmpty()) report(tr("Camera: %1").arg(camera_error), true);
+  axes_->setFocusModel(focusStageModel(currentScene()));
   axes_->setBench(live_.get());
   camera_->setBench(live_.get());
   follow_->setBench(live_.get());

@@ -107,6 +107,7 @@ class DevicesPanel : public QWidget {
   void hideEvent(QHideEvent* event) override;
 
  private:
+  void startBench(bool announce);
   void finishConnect(int generation, const std::shared_ptr<std::unique_ptr<devices::LiveBench>>& made,
                      const QString& error, const QString& camera_error);
   void refresh();
