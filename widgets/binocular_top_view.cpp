@@ -63,7 +63,7 @@ BinocularTopView::Mapping BinocularTopView::mapping() const {
 }
 
 std::optional<QPointF> BinocularTopView::fixationPixel() const {
-  if (!state_.fixation_mm) return std::nullopt;
+  if (!state_.binocular || !state_.fixation_mm) return std::nullopt;
   return mapping().map(state_.fixation_mm->x(), state_.fixation_mm->z());
 }
 
@@ -72,6 +72,13 @@ void BinocularTopView::paintEvent(QPaintEvent*) {
   p.setRenderHint(QPainter::Antialiasing);
   const QPalette pal = palette();
   p.fillRect(rect(), pal.base());
+  if (!state_.binocular) {
+    p.setPen(pal.text().color());
+    p.drawText(rect().adjusted(8, 8, -8, -8), Qt::AlignCenter | Qt::TextWordWrap,
+               tr("A monocular scene: one eye, no vergence. A binocular scene (for example "
+                  "scenes/binocular-prototype.json) shows both eyes and their fixation point here."));
+    return;
+  }
   const Mapping m = mapping();
   const QFontMetricsF fm(font());
   // Frame and depth scale.

@@ -20,6 +20,7 @@ class BinocularTopView : public QWidget {
   explicit BinocularTopView(QWidget* parent = nullptr);
 
   struct State {
+    bool binocular = false;  // false: a monocular scene, nothing to draw but a note
     double ipd_mm = 63.0;
     std::array<double, 2> left_deg{0, 0}, right_deg{0, 0};  // gazes (yaw, pitch), head frame
     std::optional<Eigen::Vector3d> fixation_mm;             // head frame; none: the lines do not meet

@@ -81,8 +81,9 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   fixGrid->addWidget(fixationReadout_, 1, 0, 1, 2);
   fixGrid->setColumnStretch(1, 1);
   grid->addWidget(binocularBox_, 2, 0, 1, 3);
+  // The top view has a dock of its own (the studio puts it beside the Retina dock: at
+  // 1366x768 it does not fit under the Gaze dock's controls); this panel keeps it current.
   topView_ = new BinocularTopView(this);
-  topView_->setMinimumHeight(150);
   grid->addWidget(follow_, 3, 0, 1, 3);
   // The x_p rule lives in the scene too (view.xp_rule), read by every x_p caller (hoe_travel.h).
   xpRule_ = new QComboBox(this);
@@ -99,10 +100,8 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   readout_->setWordWrap(true);
   readout_->setTextFormat(Qt::PlainText);
   grid->addWidget(readout_, 5, 0, 1, 3);
-  grid->addWidget(topView_, 6, 0, 1, 3);
   grid->setColumnStretch(1, 1);
   grid->setRowStretch(6, 1);
-  grid->setRowStretch(7, 0);
 
   auto sliderMoved = [this] {
     if (refreshing_) return;
@@ -234,8 +233,10 @@ void GazePanel::refreshFromScene() {
 void GazePanel::refreshBinocular() {
   const Scene& s = document_->scene();
   binocularBox_->setVisible(s.binocular.has_value());
-  topView_->setVisible(s.binocular.has_value());
-  if (!s.binocular) return;
+  if (!s.binocular) {
+    topView_->setState({});  // "a monocular scene" in place of the eyes
+    return;
+  }
   const double d = fixationMm();
   fixationOn_->setChecked(d > 0);
   fixationCm_->setEnabled(d > 0);
@@ -245,6 +246,7 @@ void GazePanel::refreshBinocular() {
   const std::array<double, 2> right = s.eye.gaze_deg, left = leftGazeDeg(s);
   const gaze::FixationEstimate e = gaze::fixationFromGazes(g, left, right);
   BinocularTopView::State state;
+  state.binocular = true;
   state.ipd_mm = g.ipd_mm;
   state.left_deg = left;
   state.right_deg = right;

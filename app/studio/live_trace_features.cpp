@@ -48,6 +48,8 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
   retinaDock_ = window->addPanel(retinaPanel_, tr("Retina"), "RetinaDock", Qt::RightDockWidgetArea);
   kspaceDock_ = window->addPanel(kspace_, tr("Grating vectors"), "KSpaceDock", Qt::RightDockWidgetArea);
   window->tabifyDockWidget(retinaDock_, kspaceDock_);
+  QDockWidget* topDock = window->addPanel(gaze_->topView(), tr("Top view"), "TopViewDock", Qt::RightDockWidgetArea);
+  window->tabifyDockWidget(kspaceDock_, topDock);
   retinaDock_->raise();
 
   connect(doc, &widgets::SceneDocument::sceneChanged, this, [this, doc] {

@@ -7,6 +7,7 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QTemporaryDir>
@@ -65,7 +66,10 @@ class TestBinocularGaze : public QObject {
     open(kBino);
     widgets::GazePanel* g = gazePanel();
     QVERIFY(g->fixationToggle()->isVisibleTo(g));
-    QVERIFY(g->topView()->isVisibleTo(g));
+    // The top view: its own dock, beside the Retina dock.
+    auto* topDock = w->findChild<QDockWidget*>("TopViewDock");
+    QVERIFY(topDock && topDock->isAncestorOf(g->topView()));
+    QVERIFY(g->topView()->state().binocular);
     QVERIFY(!g->fixationToggle()->isChecked());
     g->setGaze(10.0, 5.0);
     g->setFixationDistanceCm(50.0);
@@ -165,12 +169,14 @@ class TestBinocularGaze : public QObject {
     open(kMono);
     widgets::GazePanel* g = gazePanel();
     QVERIFY(!g->fixationToggle()->isVisibleTo(g));
-    QVERIFY(!g->topView()->isVisibleTo(g));
+    QVERIFY(!g->topView()->state().binocular);
+    QVERIFY(!g->topView()->fixationPixel());
     QVERIFY(!live()->retinaPanel()->eyeSelector()->isVisibleTo(live()->retinaPanel()));
     QCOMPARE(live()->retinaPanel()->eye(), EyeSide::Right);
     // Binocular, then monocular again in the same window: shown, then hidden.
     QVERIFY(w->openFile(kBino, false));
     QTRY_VERIFY(g->fixationToggle()->isVisibleTo(g));
+    QVERIFY(g->topView()->state().binocular);
     QVERIFY(live()->retinaPanel()->eyeSelector()->isVisibleTo(live()->retinaPanel()));
     QVERIFY(w->openFile(kMono, false));
     QTRY_VERIFY(!g->fixationToggle()->isVisibleTo(g));
