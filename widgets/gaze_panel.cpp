@@ -4,12 +4,17 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QGridLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QSlider>
 
 #include <algorithm>
 #include <cmath>
 
+#include "model/gaze/fixation_gazes.h"
+#include "model/gaze/vergence.h"
+#include "model/scene/eye_scene.h"
+#include "widgets/binocular_top_view.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::widgets {
@@ -48,7 +53,38 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   follow_->setToolTip(
       tr("Shift the HOE laterally by the travel x_p that maximises the FOV at this gaze "
          "(searched off the GUI thread; yaw moves it along its x, pitch along its y)"));
-  grid->addWidget(follow_, 2, 0, 1, 3);
+  // Binocular scenes: the fixation distance beside the gaze (row 2), the top view below.
+  binocularBox_ = new QWidget(this);
+  binocularBox_->setObjectName("fixationBox");
+  auto* fixGrid = new QGridLayout(binocularBox_);
+  fixGrid->setContentsMargins(0, 0, 0, 0);
+  fixationOn_ = new QCheckBox(tr("Fixate at"), binocularBox_);
+  fixationOn_->setObjectName("fixationToggle");
+  fixationOn_->setToolTip(
+      tr("Both eyes fixate the point at this distance (from midway between the eyes) in the gaze direction; "
+         "off (∞): the left eye's gaze mirrors the right one's. binocular.fixation_distance_mm"));
+  fixationCm_ = new QDoubleSpinBox(binocularBox_);
+  fixationCm_->setObjectName("fixationDistance");
+  fixationCm_->setRange(kMinFixationCm, kMaxFixationCm);
+  fixationCm_->setDecimals(1);
+  fixationCm_->setSingleStep(5);
+  fixationCm_->setSuffix(tr(" cm"));
+  fixationCm_->setKeyboardTracking(false);
+  fixationCm_->setValue(80);
+  fixationCm_->setToolTip(tr("Fixation distance, 30-250 cm (the focus stage's range, seed C.3)"));
+  fixationReadout_ = new QLabel(binocularBox_);
+  fixationReadout_->setObjectName("fixationReadout");
+  fixationReadout_->setWordWrap(true);
+  fixationReadout_->setTextFormat(Qt::PlainText);
+  fixGrid->addWidget(fixationOn_, 0, 0);
+  fixGrid->addWidget(fixationCm_, 0, 1);
+  fixGrid->addWidget(fixationReadout_, 1, 0, 1, 2);
+  fixGrid->setColumnStretch(1, 1);
+  grid->addWidget(binocularBox_, 2, 0, 1, 3);
+  // The top view has a dock of its own (the studio puts it beside the Retina dock: at
+  // 1366x768 it does not fit under the Gaze dock's controls); this panel keeps it current.
+  topView_ = new BinocularTopView(this);
+  grid->addWidget(follow_, 3, 0, 1, 3);
   // The x_p rule lives in the scene too (view.xp_rule), read by every x_p caller (hoe_travel.h).
   xpRule_ = new QComboBox(this);
   xpRule_->setObjectName("xpRule");
@@ -57,15 +93,15 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   xpRule_->setToolTip(
       tr("How x_p is chosen: the middle of the HOE shifts that keep the FOV within 5° of its best, or the shift "
          "putting the diffracted rays' focus on the rotated pupil centre (the seed's rule); as --xp-rule"));
-  grid->addWidget(new QLabel(tr("x_p rule"), this), 3, 0);
-  grid->addWidget(xpRule_, 3, 1, 1, 2);
+  grid->addWidget(new QLabel(tr("x_p rule"), this), 4, 0);
+  grid->addWidget(xpRule_, 4, 1, 1, 2);
   readout_ = new QLabel(this);
   readout_->setObjectName("gazeReadout");
   readout_->setWordWrap(true);
   readout_->setTextFormat(Qt::PlainText);
-  grid->addWidget(readout_, 4, 0, 1, 3);
+  grid->addWidget(readout_, 5, 0, 1, 3);
   grid->setColumnStretch(1, 1);
-  grid->setRowStretch(5, 1);
+  grid->setRowStretch(6, 1);
 
   auto sliderMoved = [this] {
     if (refreshing_) return;
@@ -98,6 +134,14 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
     if (document_->scene().view.xp_rule != rule)
       document_->applyEdit(tr("x_p rule: %1").arg(xpRule_->currentText()), [rule](Scene& s) { s.view.xp_rule = rule; });
   });
+  connect(fixationOn_, &QCheckBox::toggled, this, [this](bool on) {
+    if (refreshing_) return;
+    commitFixation(on ? std::optional<double>(fixationCm_->value()) : std::nullopt);
+  });
+  connect(fixationCm_, &QDoubleSpinBox::valueChanged, this, [this](double cm) {
+    if (refreshing_ || !fixationOn_->isChecked()) return;
+    commitFixation(cm);
+  });
   connect(document_, &SceneDocument::sceneChanged, this, &GazePanel::refreshFromScene);
   refreshFromScene();
 }
@@ -117,16 +161,56 @@ void GazePanel::setGaze(double yaw, double pitch) {
   commitGaze(yaw, pitch);
 }
 
+double GazePanel::fixationMm() const {
+  const Scene& s = document_->scene();
+  return s.binocular && s.binocular->fixation_distance_mm > s.binocular->ipd_mm / 2 ? s.binocular->fixation_distance_mm
+                                                                                    : 0.0;
+}
+
+std::array<double, 2> GazePanel::shownGaze() const {
+  const Scene& s = document_->scene();
+  if (const double d = fixationMm(); d > 0)
+    return gaze::fixationOnRightGaze(gaze::BinocularGeometry{s.binocular->ipd_mm}, s.eye.gaze_deg, d).direction_deg;
+  return s.eye.gaze_deg;
+}
+
+void GazePanel::setFixationDistanceCm(std::optional<double> cm) {
+  commitFixation(cm);
+}
+
+void GazePanel::commitFixation(std::optional<double> cm) {
+  const Scene& scene = document_->scene();
+  if (!scene.binocular) return;
+  const double mm = cm ? std::clamp(*cm, kMinFixationCm, kMaxFixationCm) * 10 : 0.0;
+  if (mm == fixationMm()) return;
+  // The direction the user sees stays; the right eye turns to fixate the point on it.
+  const std::array<double, 2> direction = shownGaze();
+  const std::array<double, 2> right =
+      mm > 0 ? gaze::gazesFixating(gaze::BinocularGeometry{scene.binocular->ipd_mm}, direction, mm).right_deg
+             : direction;
+  const QString text = mm > 0 ? tr("Fixate at %1 cm").arg(mm / 10, 0, 'f', 1) : tr("Fixation off");
+  const QStringList problems = document_->applyEdit(text, [mm, right](Scene& s) {
+    s.binocular->fixation_distance_mm = mm;
+    s.eye.gaze_deg = right;
+  });
+  if (!problems.isEmpty()) {
+    fixationReadout_->setText(problems.join('\n'));
+    refreshFromScene();
+  }
+}
+
 void GazePanel::commitGaze(double yaw, double pitch) {
-  const auto now = document_->scene().eye.gaze_deg;
+  const auto now = shownGaze();
   if (now[0] == yaw && now[1] == pitch) return;
+  // With a fixation distance the sliders give the fixation point's direction; the scene keeps
+  // the right eye's gaze fixating it.
+  std::array<double, 2> right{yaw, pitch};
+  if (const double d = fixationMm(); d > 0)
+    right =
+        gaze::gazesFixating(gaze::BinocularGeometry{document_->scene().binocular->ipd_mm}, {yaw, pitch}, d).right_deg;
   const QString text = tr("Set gaze to %1°, %2°").arg(yaw, 0, 'f', 1).arg(pitch, 0, 'f', 1);
   const QStringList problems = document_->applyEdit(
-      text,
-      [yaw, pitch](Scene& s) {
-        s.eye.gaze_deg = {yaw, pitch};
-      },
-      gesture_);
+      text, [right](Scene& s) { s.eye.gaze_deg = right; }, gesture_);
   if (!problems.isEmpty()) {
     readout_->setText(problems.join('\n'));
     refreshFromScene();
@@ -135,14 +219,48 @@ void GazePanel::commitGaze(double yaw, double pitch) {
 
 void GazePanel::refreshFromScene() {
   refreshing_ = true;
-  const auto g = document_->scene().eye.gaze_deg;
+  const auto g = shownGaze();
   if (!yaw_->isSliderDown()) yaw_->setValue(static_cast<int>(std::lround(g[0] * kStepsPerDegree)));
   if (!pitch_->isSliderDown()) pitch_->setValue(static_cast<int>(std::lround(g[1] * kStepsPerDegree)));
   yawSpin_->setValue(g[0]);
   pitchSpin_->setValue(g[1]);
   follow_->setChecked(document_->scene().view.hoe_follows_gaze);
   xpRule_->setCurrentIndex(std::max(0, xpRule_->findData(QString::fromStdString(document_->scene().view.xp_rule))));
+  refreshBinocular();
   refreshing_ = false;
+}
+
+void GazePanel::refreshBinocular() {
+  const Scene& s = document_->scene();
+  binocularBox_->setVisible(s.binocular.has_value());
+  if (!s.binocular) {
+    topView_->setState({});  // "a monocular scene" in place of the eyes
+    return;
+  }
+  const double d = fixationMm();
+  fixationOn_->setChecked(d > 0);
+  fixationCm_->setEnabled(d > 0);
+  if (d > 0) fixationCm_->setValue(d / 10);
+  // Both gazes in the head frame (its axes are the bench's), the point where they meet.
+  const gaze::BinocularGeometry g{s.binocular->ipd_mm};
+  const std::array<double, 2> right = s.eye.gaze_deg, left = leftGazeDeg(s);
+  const gaze::FixationEstimate e = gaze::fixationFromGazes(g, left, right);
+  BinocularTopView::State state;
+  state.binocular = true;
+  state.ipd_mm = g.ipd_mm;
+  state.left_deg = left;
+  state.right_deg = right;
+  state.vergence_deg = e.vergence_deg;
+  if (e.valid) state.fixation_mm = e.point;
+  topView_->setState(state);
+  const QString gazes = tr("left eye %1°, %2° · right eye %3°, %4°")
+                            .arg(left[0], 0, 'f', 2)
+                            .arg(left[1], 0, 'f', 2)
+                            .arg(right[0], 0, 'f', 2)
+                            .arg(right[1], 0, 'f', 2);
+  fixationReadout_->setText(
+      d > 0 ? tr("vergence %1° · %2").arg(e.vergence_deg, 0, 'f', 2).arg(gazes)
+            : tr("off (∞): yaw, pitch are the right eye's gaze, the left eye's its mirror · %1").arg(gazes));
 }
 
 void GazePanel::showResult(const std::shared_ptr<const LiveTraceResult>& r, bool busy) {

@@ -30,6 +30,8 @@ class RetinaView : public QWidget {
     double yaw_min = 0, yaw_max = 0, pitch_min = 0, pitch_max = 0;
   };
   const Box& fovBox() const { return box_; }
+  // The trace shown (null before the first).
+  const std::shared_ptr<const LiveTraceResult>& result() const { return result_; }
   int cellsDrawn() const { return cells_; }
   // The view drawn at `size` (for reports and baselines, independent of the dock's size).
   QImage render(const QSize& size);

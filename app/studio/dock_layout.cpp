@@ -23,7 +23,7 @@ const std::vector<DockGroup>& defaultGroups() {
       {Qt::LeftDockWidgetArea, {"SceneTreeDock"}},
       {Qt::LeftDockWidgetArea, {"GazeDock", "RaysDock"}},
       {Qt::RightDockWidgetArea, {"PropertiesDock", "AnalysesDock", "DevicesDock"}},
-      {Qt::RightDockWidgetArea, {"RetinaDock", "KSpaceDock", "PreviewDock"}},
+      {Qt::RightDockWidgetArea, {"RetinaDock", "KSpaceDock", "PreviewDock", "TopViewDock"}},
       {Qt::BottomDockWidgetArea, {"MessagesDock", "PlotsDock"}},
   };
   return groups;

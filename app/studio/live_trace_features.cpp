@@ -11,6 +11,7 @@
 
 #include "app/studio/latency_probe.h"
 #include "app/studio/main_window.h"
+#include "model/scene/eye_scene.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
@@ -20,6 +21,7 @@
 #include "widgets/live_trace.h"
 #include "widgets/preferences.h"
 #include "widgets/preview_panel.h"
+#include "widgets/retina_panel.h"
 #include "widgets/retina_view.h"
 #include "widgets/scene_document.h"
 
@@ -28,12 +30,13 @@ namespace fovea::studio {
 LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), window_(window) {
   widgets::SceneDocument* doc = window->document();
   trace_ = new widgets::LiveTrace(this);
+  leftTrace_ = new widgets::LiveTrace(this);
   probe_ = LatencyProbe::createIfRequested(this);
   overlay_ = std::make_unique<viz::TraceOverlay>(window->sceneView());
   gaze_ = new widgets::GazePanel(doc, window);
   display_ = new widgets::DisplayPanel(window);
-  retina_ = new widgets::RetinaView(window);
-  retina_->setObjectName("RetinaView");
+  retinaPanel_ = new widgets::RetinaPanel(window);
+  retina_ = retinaPanel_->view();
   kspace_ = new viz::KSpaceView(window);
   kspace_->setObjectName("KSpaceView");
   handles_ = new widgets::HandleController(doc, window->sceneView(), this);
@@ -42,15 +45,24 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
   QDockWidget* raysDock = window->addPanel(display_, tr("Rays"), "RaysDock", Qt::LeftDockWidgetArea);
   window->tabifyDockWidget(gazeDock, raysDock);
   gazeDock->raise();
-  retinaDock_ = window->addPanel(retina_, tr("Retina"), "RetinaDock", Qt::RightDockWidgetArea);
+  retinaDock_ = window->addPanel(retinaPanel_, tr("Retina"), "RetinaDock", Qt::RightDockWidgetArea);
   kspaceDock_ = window->addPanel(kspace_, tr("Grating vectors"), "KSpaceDock", Qt::RightDockWidgetArea);
   window->tabifyDockWidget(retinaDock_, kspaceDock_);
+  QDockWidget* topDock = window->addPanel(gaze_->topView(), tr("Top view"), "TopViewDock", Qt::RightDockWidgetArea);
+  window->tabifyDockWidget(kspaceDock_, topDock);
   retinaDock_->raise();
 
   connect(doc, &widgets::SceneDocument::sceneChanged, this, [this, doc] {
     display_->setWavelengths(doc->scene().projector.wavelengths_nm);
+    retinaPanel_->setBinocular(doc->scene().binocular.has_value());
     requestTrace();
   });
+  // The left eye's retina: its own trace, run while it is shown.
+  connect(retinaPanel_, &widgets::RetinaPanel::eyeChanged, this, [this] {
+    requestTrace();
+    redraw();
+  });
+  connect(leftTrace_, &widgets::LiveTrace::resultReady, this, [this] { redraw(); });
   connect(display_, &widgets::DisplayPanel::traceRaysChanged, this, &LiveTraceFeatures::requestTrace);
   connect(display_, &widgets::DisplayPanel::overlayOptionsChanged, this, &LiveTraceFeatures::redraw);
   connect(gaze_, &widgets::GazePanel::followGazeChanged, this, &LiveTraceFeatures::requestTrace);
@@ -73,6 +85,7 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
   dragResolution();
   connect(&widgets::Preferences::instance(), &widgets::Preferences::changed, this, dragResolution);
   display_->setWavelengths(doc->scene().projector.wavelengths_nm);
+  retinaPanel_->setBinocular(doc->scene().binocular.has_value());
   requestTrace();
   if (probe_)  // where a scripted drag grabs the yaw slider (scripts/measure-drag-latency.sh)
     QTimer::singleShot(6000, this, [this] {
@@ -100,8 +113,11 @@ void LiveTraceFeatures::requestTrace() {
   const bool dragging = gaze_->isDragging() || handles_->isDragging();
   // Frames for speed from the first move; the refined result (showResult) restores them.
   if (dragging) window_->sceneView()->setDragRendering(true);
-  trace_->request(window_->document()->scene(), s,
-                  dragging ? widgets::TraceDetail::Coarse : widgets::TraceDetail::Refined);
+  const Scene& scene = window_->document()->scene();
+  const widgets::TraceDetail detail = dragging ? widgets::TraceDetail::Coarse : widgets::TraceDetail::Refined;
+  trace_->request(scene, s, detail);
+  if (scene.binocular && retinaPanel_->eye() == EyeSide::Left)
+    leftTrace_->request(eyeScene(scene, EyeSide::Left), s, detail);
   if (probe_ && dragging) probe_->noteRequest(trace_->newestGeneration());
 }
 
@@ -139,7 +155,7 @@ void LiveTraceFeatures::redraw() {
   } else {
     overlay_->show(r->scene, r->trace, r->grid, r->hoe_shift_mm, o);
   }
-  retina_->setResult(r, o.hidden_wavelengths_nm);
+  retina_->setResult(retinaPanel_->eye() == EyeSide::Left ? leftTrace_->latest() : r, o.hidden_wavelengths_nm);
   // Coarse (dragging) traces carry no grating-vector cloud: the last refined one stays.
   if (r && r->detail == widgets::TraceDetail::Refined) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);
 }
@@ -189,7 +205,8 @@ void LiveTraceFeatures::setStartGaze(double yaw, double pitch) {
 }
 
 bool LiveTraceFeatures::waitForTrace(int timeout_ms) {
-  return trace_->waitForIdle(timeout_ms);
+  return trace_->waitForIdle(timeout_ms) &&
+         (retinaPanel_->eye() != EyeSide::Left || leftTrace_->waitForIdle(timeout_ms));
 }
 
 }  // namespace fovea::studio

@@ -21,6 +21,7 @@ class DisplayPanel;
 class GazePanel;
 class HandleController;
 class LiveTrace;
+class RetinaPanel;
 class RetinaView;
 struct LiveTraceResult;
 }  // namespace fovea::widgets
@@ -40,6 +41,10 @@ class LiveTraceFeatures : public QObject {
   widgets::GazePanel* gazePanel() const { return gaze_; }
   widgets::DisplayPanel* displayPanel() const { return display_; }
   widgets::RetinaView* retinaView() const { return retina_; }
+  // The Retina dock: the view and, on a binocular scene, its eye selector.
+  widgets::RetinaPanel* retinaPanel() const { return retinaPanel_; }
+  // The left eye's trace (binocular scenes, while the Retina dock shows the left eye).
+  widgets::LiveTrace* leftTrace() const { return leftTrace_; }
   viz::KSpaceView* kspaceView() const { return kspace_; }
   viz::TraceOverlay* overlay() const { return overlay_.get(); }
   widgets::HandleController* handles() const { return handles_; }
@@ -64,6 +69,8 @@ class LiveTraceFeatures : public QObject {
   widgets::GazePanel* gaze_ = nullptr;
   widgets::DisplayPanel* display_ = nullptr;
   widgets::RetinaView* retina_ = nullptr;
+  widgets::RetinaPanel* retinaPanel_ = nullptr;
+  widgets::LiveTrace* leftTrace_ = nullptr;
   viz::KSpaceView* kspace_ = nullptr;
   widgets::HandleController* handles_ = nullptr;
   std::unique_ptr<viz::TraceOverlay> overlay_;

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "model/gaze/fixation_gazes.h"
+
 namespace fovea {
 
 namespace {
@@ -110,8 +112,20 @@ Scene eyeScene(const Scene& scene, EyeSide side) {
   Scene eye = side == EyeSide::Right  ? scene
               : scene.binocular->left ? withTrain(scene, *scene.binocular->left)
                                       : mirroredScene(scene, mid_plane_x_mm);
+  // A fixation distance: the left eye fixates the point on the right eye's line of sight (the
+  // bench frame and the head frame share their axes; the head frame's origin is the
+  // mid-plane point level with the right eye's rotation centre, whose offset cancels in the
+  // gaze directions).
+  if (side == EyeSide::Left && scene.binocular->fixation_distance_mm > scene.binocular->ipd_mm / 2)
+    eye.eye.gaze_deg = gaze::fixationOnRightGaze(gaze::BinocularGeometry{scene.binocular->ipd_mm}, scene.eye.gaze_deg,
+                                                 scene.binocular->fixation_distance_mm)
+                           .left_deg;
   eye.binocular.reset();
   return eye;
+}
+
+std::array<double, 2> leftGazeDeg(const Scene& scene) {
+  return eyeScene(scene, EyeSide::Left).eye.gaze_deg;
 }
 
 Scene explicitBinocularScene(const Scene& scene) {

@@ -28,6 +28,7 @@
 //
 // Pure functions of the scene: no I/O, no state.
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -50,6 +51,12 @@ double midPlaneX(const Scene& scene);
 // scene with the block's left train in place of its own, also without the block.
 // Throws std::invalid_argument when the scene has no "binocular" block.
 Scene eyeScene(const Scene& scene, EyeSide side);
+
+// The left eye's gaze (degrees, bench frame): the mirror of the right eye's in mode "mirror",
+// the left train's own in mode "explicit", and with binocular.fixation_distance_mm set the
+// gaze fixating the point at that distance on the right eye's line of sight
+// (model/gaze/fixation_gazes.h fixationOnRightGaze). Throws for a monocular scene.
+std::array<double, 2> leftGazeDeg(const Scene& scene);
 
 // The binocular scene in mode "explicit" whose left train is its left eye's train now (the
 // mirror image for mode "mirror"): the same eyes, the left one written out. Throws

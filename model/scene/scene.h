@@ -199,6 +199,11 @@ struct Binocular {
   std::string mode = "mirror";       // "mirror" or "explicit"
   double ipd_mm = 63.0;              // interpupillary distance (adult mean, Dodgson 2004)
   std::optional<OpticalTrain> left;  // mode "explicit" only: the left eye's train
+  // Issue 30 item 5: 0 (off) or the cyclopean distance (mm, from midway between the rotation
+  // centres) of the point both eyes fixate on the right eye's line of sight (eye.gaze_deg);
+  // the left eye's gaze is then the one fixating it (model/gaze/fixation_gazes.h), not the
+  // mirror of the right one's. Applied when it exceeds ipd_mm / 2.
+  double fixation_distance_mm = 0;
   bool operator==(const Binocular&) const = default;
 };
 

@@ -282,6 +282,11 @@ FieldTable<Binocular> makeBinocular() {
                    {"mirror", "explicit"});
   t.add<&B::ipd_mm>("ipd_mm", "mm", Range::closed(40, 90), kOpt, {"Interpupillary distance"},
                     "distance between the eyes' rotation centres (63 mm: the adult mean)");
+  t.add<&B::fixation_distance_mm>("fixation_distance_mm", "mm", Range::closed(0, 1e5), kOpt, {"Fixation distance"},
+                                  "0: off (the left eye's gaze mirrors the right one's); else the distance from "
+                                  "midway between the eyes of the point both fixate on the right eye's line of sight "
+                                  "(the Gaze dock sets 300-2500 mm)")
+      .omitDefault();
   return t;
 }
 

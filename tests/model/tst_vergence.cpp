@@ -8,9 +8,13 @@
 #include <random>
 #include <vector>
 
+#include "model/gaze/fixation_gazes.h"
 #include "model/gaze/vergence.h"
+#include "model/scene/eye_scene.h"
 #include "model/scene/scene_geometry.h"
+#include "model/scene/scene_io.h"
 #include "model/units.h"
+#include "tests/test_paths.h"
 
 namespace tst_vergence {
 
@@ -42,6 +46,57 @@ class TestVergence : public QObject {
         }
     qInfo("vergence grid: %d points, worst error %.3g mm", n, worst);
     QVERIFY(worst < 1e-9);
+  }
+
+  // The inverse (model/gaze/fixation_gazes.h): the gazes fixating a set point, recomputed by
+  // the closest approach, give the set point back to 1e-9 mm; the point on the right eye's
+  // line of sight at the same distance gives the same gazes and direction.
+  void gazesFixatingAPointAreExact() {
+    double worst = 0, worst_inverse = 0;
+    for (double dist : {300.0, 500.0, 800.0, 1200.0, 2500.0})
+      for (double yaw = -20; yaw <= 20; yaw += 5)
+        for (double pitch : {-10.0, 0.0, 10.0}) {
+          const FixationGazes f = gazesFixating(geom_, {yaw, pitch}, dist);
+          const Eigen::Vector3d set = gazeDirection(yaw, pitch) * dist;
+          const FixationEstimate e = fixationFromGazes(geom_, f.left_deg, f.right_deg);
+          QVERIFY(e.valid);
+          worst = std::max({worst, (e.point - set).norm(), e.miss_mm});
+          QVERIFY(std::abs(e.vergence_deg - f.vergence_deg) < 1e-9);
+          const FixationGazes r = fixationOnRightGaze(geom_, f.right_deg, dist);
+          worst_inverse = std::max({worst_inverse, (r.point - set).norm(), std::abs(r.left_deg[0] - f.left_deg[0]),
+                                    std::abs(r.left_deg[1] - f.left_deg[1]), std::abs(r.direction_deg[0] - yaw),
+                                    std::abs(r.direction_deg[1] - pitch)});
+        }
+    qInfo("gazes fixating a point: worst %.3g mm, inverse %.3g", worst, worst_inverse);
+    QVERIFY(worst < 1e-9);
+    QVERIFY(worst_inverse < 1e-9);
+    // Straight ahead at 50 cm: both eyes turn nasally by atan(31.5 / 500) = 3.6050 deg.
+    const FixationGazes a = gazesFixating(geom_, {0, 0}, 500);
+    QVERIFY(std::abs(a.right_deg[0] + radToDeg(std::atan(31.5 / 500))) < 1e-12);
+    QVERIFY(std::abs(a.left_deg[0] - radToDeg(std::atan(31.5 / 500))) < 1e-12);
+    QVERIFY(std::abs(a.vergence_deg - vergenceForDistanceDeg(geom_, 500)) < 1e-12);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, gazesFixating(geom_, {0, 0}, 30));
+  }
+
+  // A binocular scene with a fixation distance: the left eye's scene gaze fixates the point
+  // on the right eye's line of sight; without one it is the mirror of the right gaze.
+  void binocularSceneFixationDistance() {
+    SceneLoadResult r = loadSceneFile(std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json");
+    QVERIFY(r.ok());
+    Scene s = *r.scene;
+    s.eye.gaze_deg = {8.0, 3.0};
+    QCOMPARE(leftGazeDeg(s)[0], -8.0);
+    s.binocular->fixation_distance_mm = 600;
+    const FixationGazes f = fixationOnRightGaze(geom_, {8.0, 3.0}, 600);
+    QCOMPARE(eyeScene(s, EyeSide::Left).eye.gaze_deg, f.left_deg);
+    QCOMPARE(eyeScene(s, EyeSide::Right).eye.gaze_deg, (std::array<double, 2>{8.0, 3.0}));
+    const FixationEstimate e = fixationFromGazes(geom_, leftGazeDeg(s), s.eye.gaze_deg);
+    QVERIFY(std::abs(e.distance_mm - 600) < 1e-9);
+    // Saved and read back: the field survives, files without it stay as they were.
+    const SceneLoadResult back = parseScene(serializeScene(s), "round trip");
+    QVERIFY(back.ok());
+    QCOMPARE(back.scene->binocular->fixation_distance_mm, 600.0);
+    QVERIFY(!QString::fromStdString(serializeScene(*r.scene)).contains("fixation_distance_mm"));
   }
 
   void divergingOrParallelGazesAreInvalid() {

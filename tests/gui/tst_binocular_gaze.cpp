@@ -1,0 +1,190 @@
+// The binocular Gaze dock and Retina dock (issue 30 item 5): the fixation distance sets both
+// eyes' gazes as model/gaze/fixation_gazes.h says, the top view's fixation point is the
+// closest approach of the two gazes, the Retina dock's left eye is `fovea-cli trace --eye
+// left` of the same scene, and a monocular scene shows none of it.
+#include <QtTest>
+#include "tests/test_paths.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QTemporaryDir>
+#include <QUndoStack>
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "app/studio/live_trace_features.h"
+#include "app/studio/main_window.h"
+#include "model/gaze/fixation_gazes.h"
+#include "model/gaze/vergence.h"
+#include "model/scene/eye_scene.h"
+#include "model/scene/scene_geometry.h"
+#include "model/scene/scene_io.h"
+#include "tests/cli/cli_process.h"
+#include "widgets/binocular_top_view.h"
+#include "widgets/gaze_panel.h"
+#include "widgets/live_trace.h"
+#include "widgets/retina_panel.h"
+#include "widgets/retina_view.h"
+#include "widgets/scene_document.h"
+
+namespace tst_binocular_gaze {
+
+using namespace fovea;
+
+namespace {
+const QString kBino = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json";
+const QString kMono = QString(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
+}  // namespace
+
+class TestBinocularGaze : public QObject {
+  Q_OBJECT
+ private:
+  std::unique_ptr<studio::MainWindow> w;
+  studio::LiveTraceFeatures* live() { return w->liveTraceFeatures(); }
+  widgets::GazePanel* gazePanel() { return live()->gazePanel(); }
+  void open(const QString& path) {
+    w = std::make_unique<studio::MainWindow>();
+    w->resize(1366, 768);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    QVERIFY(w->openFile(path, false));
+    QVERIFY(live()->waitForTrace());
+  }
+
+ private slots:
+  void cleanup() {
+    if (w) w->document()->undoStack()->setClean();
+    w.reset();
+  }
+
+  void fixationDistanceSetsBothGazes() {
+    open(kBino);
+    widgets::GazePanel* g = gazePanel();
+    QVERIFY(g->fixationToggle()->isVisibleTo(g));
+    // The top view: its own dock, beside the Retina dock.
+    auto* topDock = w->findChild<QDockWidget*>("TopViewDock");
+    QVERIFY(topDock && topDock->isAncestorOf(g->topView()));
+    QVERIFY(g->topView()->state().binocular);
+    QVERIFY(!g->fixationToggle()->isChecked());
+    g->setGaze(10.0, 5.0);
+    g->setFixationDistanceCm(50.0);
+    const Scene& s = w->document()->scene();
+    QCOMPARE(s.binocular->fixation_distance_mm, 500.0);
+    const gaze::BinocularGeometry geom{63.0};
+    const gaze::FixationGazes f = gaze::gazesFixating(geom, {10.0, 5.0}, 500.0);
+    const auto left = leftGazeDeg(s);
+    const QString msg = QString("right %1,%2 left %3,%4; model right %5,%6 left %7,%8")
+                            .arg(s.eye.gaze_deg[0], 0, 'g', 12)
+                            .arg(s.eye.gaze_deg[1], 0, 'g', 12)
+                            .arg(left[0], 0, 'g', 12)
+                            .arg(left[1], 0, 'g', 12)
+                            .arg(f.right_deg[0], 0, 'g', 12)
+                            .arg(f.right_deg[1], 0, 'g', 12)
+                            .arg(f.left_deg[0], 0, 'g', 12)
+                            .arg(f.left_deg[1], 0, 'g', 12);
+    qInfo("%s", qPrintable(msg));
+    for (int i = 0; i < 2; ++i) {
+      QVERIFY2(std::abs(s.eye.gaze_deg[i] - f.right_deg[i]) < 1e-9, qPrintable(msg));
+      QVERIFY2(std::abs(left[i] - f.left_deg[i]) < 1e-9, qPrintable(msg));
+    }
+    // Converging: the right eye turns left of the direction, the left eye right of it.
+    QVERIFY(f.right_deg[0] < 10.0 && f.left_deg[0] > 10.0);
+    // The sliders keep showing the direction; the control its distance.
+    QCOMPARE(g->findChild<QDoubleSpinBox*>("gazeYawSpin")->value(), 10.0);
+    QCOMPARE(g->findChild<QDoubleSpinBox*>("gazePitchSpin")->value(), 5.0);
+    QVERIFY(g->fixationToggle()->isChecked());
+    QCOMPARE(g->fixationSpin()->value(), 50.0);
+    const QString readout = g->fixationReadout()->text();
+    QVERIFY2(readout.contains(QString("vergence %1°").arg(f.vergence_deg, 0, 'f', 2)) &&
+                 readout.contains(QString("left eye %1°").arg(f.left_deg[0], 0, 'f', 2)) &&
+                 readout.contains(QString("right eye %1°").arg(f.right_deg[0], 0, 'f', 2)),
+             qPrintable(readout));
+    // The top view's fixation point: the closest approach of the two gazes, the set point.
+    const widgets::BinocularTopView::State& t = g->topView()->state();
+    QVERIFY(t.fixation_mm.has_value());
+    const Eigen::Vector3d set = gazeDirection(10.0, 5.0) * 500.0;
+    QVERIFY2((*t.fixation_mm - set).norm() < 1e-9, qPrintable(QString::number((*t.fixation_mm - set).norm())));
+    QVERIFY(std::abs(t.vergence_deg - f.vergence_deg) < 1e-9);
+    QVERIFY(g->topView()->rect().contains(g->topView()->fixationPixel()->toPoint()));
+    // The spin box moves the point along the same direction.
+    g->fixationSpin()->setValue(120.0);
+    QCOMPARE(s.binocular->fixation_distance_mm, 1200.0);
+    QVERIFY((*g->topView()->state().fixation_mm - gazeDirection(10.0, 5.0) * 1200.0).norm() < 1e-9);
+    // One undo step per change; off: the right eye looks along the direction, the left mirrors it.
+    w->document()->undoStack()->undo();
+    QCOMPARE(s.binocular->fixation_distance_mm, 500.0);
+    g->fixationToggle()->setChecked(false);
+    QCOMPARE(s.binocular->fixation_distance_mm, 0.0);
+    QVERIFY(std::abs(s.eye.gaze_deg[0] - 10.0) < 1e-9 && std::abs(s.eye.gaze_deg[1] - 5.0) < 1e-9);
+    QCOMPARE(leftGazeDeg(s)[0], -s.eye.gaze_deg[0]);
+  }
+
+  void retinaLeftEyeIsTheCliLeftEye() {
+    open(kBino);
+    gazePanel()->setGaze(10.0, 0.0);
+    gazePanel()->setFixationDistanceCm(50.0);
+    widgets::RetinaPanel* panel = live()->retinaPanel();
+    QVERIFY(panel->eyeSelector()->isVisibleTo(panel));
+    QVERIFY(live()->waitForTrace());
+    const auto right = live()->retinaView()->result();
+    QVERIFY(right && right->error.empty());
+    panel->setEye(EyeSide::Left);
+    QVERIFY(live()->waitForTrace());
+    QTRY_VERIFY(live()->retinaView()->result() && live()->retinaView()->result() != right);
+    const auto r = live()->retinaView()->result();
+    QVERIFY(r->error.empty());
+    const Scene& s = w->document()->scene();
+    QCOMPARE(r->scene.eye.gaze_deg, leftGazeDeg(s));
+    // The same scene through the CLI: saved, then `trace --eye left`.
+    QTemporaryDir dir;
+    const QString file = dir.filePath("verged.json");
+    saveSceneFileAtomic(s, file.toStdString());
+    const auto out = testing::runFoveaCli({"trace", file, "--eye", "left", "--json"});
+    QVERIFY2(out.code == 0, out.err.constData());
+    const auto j = nlohmann::json::parse(out.out.toStdString());
+    const double h = j["fov_deg"]["horizontal"].get<double>(), v = j["fov_deg"]["vertical"].get<double>();
+    const QString msg = QString("studio left %1 x %2, cli left %3 x %4 at gaze %5,%6; right eye %7 x %8")
+                            .arg(r->fov.horizontal)
+                            .arg(r->fov.vertical)
+                            .arg(h)
+                            .arg(v)
+                            .arg(r->scene.eye.gaze_deg[0])
+                            .arg(r->scene.eye.gaze_deg[1])
+                            .arg(right->fov.horizontal)
+                            .arg(right->fov.vertical);
+    qInfo("%s", qPrintable(msg));
+    QCOMPARE(QString::fromStdString(j["eye"].get<std::string>()), QString("left"));
+    QVERIFY2(std::abs(r->fov.horizontal - h) < 0.01 && std::abs(r->fov.vertical - v) < 0.01, qPrintable(msg));
+    // Back to the right eye: the scene's own trace.
+    panel->setEye(EyeSide::Right);
+    QTRY_VERIFY(live()->retinaView()->result() == live()->liveTrace()->latest());
+  }
+
+  void monocularSceneHidesTheBinocularControls() {
+    open(kMono);
+    widgets::GazePanel* g = gazePanel();
+    QVERIFY(!g->fixationToggle()->isVisibleTo(g));
+    QVERIFY(!g->topView()->state().binocular);
+    QVERIFY(!g->topView()->fixationPixel());
+    QVERIFY(!live()->retinaPanel()->eyeSelector()->isVisibleTo(live()->retinaPanel()));
+    QCOMPARE(live()->retinaPanel()->eye(), EyeSide::Right);
+    // Binocular, then monocular again in the same window: shown, then hidden.
+    QVERIFY(w->openFile(kBino, false));
+    QTRY_VERIFY(g->fixationToggle()->isVisibleTo(g));
+    QVERIFY(g->topView()->state().binocular);
+    QVERIFY(live()->retinaPanel()->eyeSelector()->isVisibleTo(live()->retinaPanel()));
+    QVERIFY(w->openFile(kMono, false));
+    QTRY_VERIFY(!g->fixationToggle()->isVisibleTo(g));
+    QVERIFY(!live()->retinaPanel()->eyeSelector()->isVisibleTo(live()->retinaPanel()));
+  }
+};
+
+QTEST_MAIN(TestBinocularGaze)
+
+}  // namespace tst_binocular_gaze
+#include "tst_binocular_gaze.moc"
