@@ -4,7 +4,8 @@
 scripts/doc-numbers.json lists, per command, the sentences of a document that print its
 results, with placeholders for the numbers: {PATH:FORMAT} or {PATH*SCALE:FORMAT}, where PATH
 walks the command's JSON output (a.b[2].c) and FORMAT is a Python format spec (".2f"; "s" for
-a string such as a lens part, which --static matches as one word);
+a string such as a lens part, which --static matches as one word); {PATH-(PATH2):FORMAT} is the
+difference of two outputs (a span the document prints, computed before rounding);
 "unicode_minus": true prints negative numbers with U+2212 as the document does.
 A check names either a fovea-cli "command" ("{tmp}" in an argument is a fresh temporary folder:
 an output file the command must write) or a "file", the JSON a regenerating script wrote and
@@ -37,7 +38,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-PLACEHOLDER = re.compile(r"\{([A-Za-z0-9_.\[\]-]+)(?:\*([-0-9.e]+))?:([^{}]*)\}")
+PLACEHOLDER = re.compile(r"\{([A-Za-z0-9_.\[\]-]+?)(?:-\(([A-Za-z0-9_.\[\]-]+)\))?(?:\*([-0-9.e]+))?:([^{}]*)\}")
 NUMBER = r"[-+−]?[0-9][0-9,]*(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?"
 WORD = r"[A-Za-z0-9_.-]+"
 
@@ -59,8 +60,10 @@ def render(text, doc, unicode_minus=False):
         if value is None:
             raise ValueError(f"{m.group(1)} is null")
         if m.group(2):
-            value = value * float(m.group(2))
-        out = format(value, m.group(3))
+            value = value - walk(doc, m.group(2))
+        if m.group(3):
+            value = value * float(m.group(3))
+        out = format(value, m.group(4))
         return out.replace("-", "−") if unicode_minus else out
 
     return PLACEHOLDER.sub(one, text)
@@ -68,11 +71,11 @@ def render(text, doc, unicode_minus=False):
 
 def pattern(text):
     parts = PLACEHOLDER.split(text)
-    # split() yields literal, path, scale, format, literal, ...; a string placeholder (format
-    # "s": a lens part, a detector name) matches one word, a number any number
+    # split() yields literal, path, subtracted path, scale, format, literal, ...; a string
+    # placeholder (format "s": a lens part, a detector name) matches one word, a number any number
     out = re.escape(parts[0])
-    for i in range(1, len(parts), 4):
-        out += (WORD if parts[i + 2].endswith("s") else NUMBER) + re.escape(parts[i + 3])
+    for i in range(1, len(parts), 5):
+        out += (WORD if parts[i + 3].endswith("s") else NUMBER) + re.escape(parts[i + 4])
     return re.compile(out)
 
 

@@ -81,7 +81,7 @@ GazePanel::GazePanel(SceneDocument* document, QWidget* parent) : QWidget(parent)
   fixGrid->addWidget(fixationReadout_, 1, 0, 1, 2);
   fixGrid->setColumnStretch(1, 1);
   grid->addWidget(binocularBox_, 2, 0, 1, 3);
-  // The top view has a dock of its own (the studio puts it beside the Retina dock: at
+  // The top view has a dock of its own (the studio puts it beside the Properties: at
   // 1366x768 it does not fit under the Gaze dock's controls); this panel keeps it current.
   topView_ = new BinocularTopView(this);
   grid->addWidget(follow_, 3, 0, 1, 3);
@@ -275,7 +275,9 @@ void GazePanel::showResult(const std::shared_ptr<const LiveTraceResult>& r, bool
   const TraceResult& t = r->trace;
   // The exact FOV (model/analysis/trace_fov.h), the one `fovea-cli trace` and `sweep` give;
   // named: ours (arrival directions), not the seed's lit footprint.
-  QString text = QString::fromUtf8(
+  // A binocular scene's live trace is its right eye's (the Retina dock shows either eye).
+  QString text = (document_->scene().binocular ? tr("Right eye: ") : QString()) +
+                 QString::fromUtf8(
                      "FOV %1° × %2° (diagonal %3°)\n  ours (arrival directions), exact edges\n"
                      "mean efficiency %4 · %5 of %6 rays in the pupil")
                      .arg(r->fov.horizontal, 0, 'f', 2)

@@ -12,14 +12,27 @@
 // the fitted warps and the true display -> camera maps over the boards (camera pixels).
 // --output DIR keeps the session (manifest.json, one PNG per capture) and calibration.json
 // (per-capture fits and warp coefficients). Exit 1 when a board is not found.
+//
+// fovea-cli calibrate gaze --virtual [--scene SCENE] [--eye left|right|both]
+//                          [--detector classical|learned|auto] [--seed N] [--json]
+// The gaze calibration of the capture wizard's gaze session (seed C.4) on the virtual eye
+// cameras: the pupil tracker on rendered IR frames of the 5 calibration targets, accuracy and
+// precision on the 8 held-out ones (model/gaze/tracked_calibration.h). Every eye camera of
+// the scene (model/gaze/eye_tracker_calibration.h): a binocular scene's two unless --eye
+// picks one, with the seeds of `closed-loop --binocular --seed N` (the same calibrations).
+// --json: the manifest's "gaze_calibration" document (accuracy_mean_deg, precision_rms_s2s_deg,
+// ...); for both eyes the right eye's plus "eyes": {"left", "right"} (app/cli/eye_option.h).
+// Exit 1 when a target keeps too few confident detections.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
 #include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
+#include "app/cli/eye_option.h"
 #include "devices/bench/live_bench.h"
 #include "devices/transport/device_error.h"
+#include "model/gaze/eye_tracker_calibration.h"
 #include "model/image/geometric_calibration.h"
 #include "model/io/output_file.h"
 
@@ -135,6 +148,60 @@ void run(const Args& a) {
               << " px, ground truth " << c["ground_truth_error_px"].get<double>() << " px\n";
 }
 
+struct GazeArgs {
+  bool is_virtual = false, json = false;
+  std::string scene, detector = "classical";
+  unsigned seed = 1;
+};
+
+void runGaze(const GazeArgs& a, const std::string& eye) {
+  if (!a.is_virtual) usageError("calibrate gaze needs --virtual (no eye camera on USB is supported yet)");
+  const auto kind = gaze::parseDetectorKind(a.detector);
+  if (!kind) usageError("--detector: '" + a.detector + "' is not one of " + gaze::kDetectorChoices);
+  if (*kind != gaze::PupilDetectorKind::Classical) {
+    try {
+      gaze::requireLearnedModel();
+    } catch (const std::exception& e) {
+      inputError(std::string("--detector ") + a.detector + ": " + e.what());
+    }
+  }
+  const Scene scene = loadSceneOrExit(a.scene);
+  const std::vector<EyeRun> runs = eyeRuns(scene, eye, a.scene.empty() ? "the embedded scene" : a.scene);
+  std::vector<nlohmann::json> docs;
+  for (const EyeRun& run : runs) {
+    const gaze::TrackedCalibrationOptions o = gaze::eyeTrackerCalibrationOptions(scene, run.side, *kind, a.seed);
+    try {
+      docs.push_back(trackedCalibrationJson(gaze::calibrateWithTracker(o), o));
+    } catch (const std::invalid_argument& e) {
+      throw CliError(1, eyePrefix(run) + e.what());
+    }
+  }
+  if (a.json) {
+    std::cout << combineEyeDocuments(runs, docs).dump(2) << "\n";
+    return;
+  }
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const nlohmann::json& d = docs[i];
+    std::cout << eyePrefix(runs[i]) << "gaze calibration (" << d["detector"].get<std::string>() << "): accuracy "
+              << d["accuracy_mean_deg"].get<double>() << " deg mean (max " << d["accuracy_max_deg"].get<double>()
+              << "), precision " << d["precision_rms_s2s_deg"].get<double>() << " deg RMS sample-to-sample over "
+              << d["held_out_targets"].get<int>() << " held-out targets; " << d["frames"].get<int>() << " frames, "
+              << d["rejected"].get<int>() << " rejected\n";
+  }
+}
+
+void installGaze(CLI::App* cmd) {
+  auto* gz = cmd->add_subcommand("gaze", "Gaze calibration by the pupil tracker on the eye camera(s) (C.4)");
+  auto a = std::make_shared<GazeArgs>();
+  gz->add_flag("--virtual", a->is_virtual, "the virtual bench's eye camera(s) (rendered IR frames)");
+  gz->add_option("--scene", a->scene, "scene file (default: the embedded prototype bench)");
+  gz->add_flag("--json", a->json, "print the calibration document (the capture manifest's \"gaze_calibration\")");
+  gz->add_option("--detector", a->detector, "pupil detector: classical (default), learned or auto");
+  addSeedOption(gz, a->seed, "eye-camera noise seed (default 1; the left eye's is seed + 1000003)");
+  auto eye = addEyeOption(gz);
+  gz->callback([a, eye] { runGaze(*a, *eye); });
+}
+
 void install(CLI::App& app) {
   auto* cmd = app.add_subcommand("calibrate", "Calibration captures on the bench");
   cmd->require_subcommand(1);
@@ -152,6 +219,7 @@ void install(CLI::App& app) {
   addCheckedOption(geo, "--noise", a->noise,
                    analysis::number("noise", "Read noise", "DN", 2.0, 0.0, 50.0, 2, "camera read noise"));
   addSeedOption(geo, a->seed, "camera noise seed (default 1)");
+  installGaze(cmd);
   geo->callback([a] {
     try {
       run(*a);

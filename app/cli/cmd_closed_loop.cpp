@@ -24,6 +24,7 @@
 #include "app/cli/cli_common.h"
 #include "devices/bench/binocular_loop.h"
 #include "devices/bench/closed_gaze_loop.h"
+#include "model/gaze/eye_tracker_calibration.h"
 #include "model/io/json_fields.h"
 #include "model/io/json_input.h"
 
@@ -330,8 +331,9 @@ void install(CLI::App& app) {
       const bool ipd_given = ipd_option->count() > 0;
       bo.geometry.ipd_mm = ipd_given || !scene.binocular ? a->ipd_mm : scene.binocular->ipd_mm;
       const char* ipd_source = ipd_given ? "--ipd" : scene.binocular ? "scene" : "default";
-      bo.seed_right = a->seed;
-      bo.seed_left = a->seed + 1000003u;
+      // The eye cameras' seeds as `calibrate gaze` and the capture wizard's (the same calibrations).
+      bo.seed_right = gaze::eyeCameraSeed(EyeSide::Right, a->seed);
+      bo.seed_left = gaze::eyeCameraSeed(EyeSide::Left, a->seed);
       const auto fixations = fixationsFrom(a->fixations, a->seed);
       devices::BinocularResult br;
       try {

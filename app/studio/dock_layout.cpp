@@ -22,8 +22,8 @@ const std::vector<DockGroup>& defaultGroups() {
   static const std::vector<DockGroup> groups = {
       {Qt::LeftDockWidgetArea, {"SceneTreeDock"}},
       {Qt::LeftDockWidgetArea, {"GazeDock", "RaysDock"}},
-      {Qt::RightDockWidgetArea, {"PropertiesDock", "AnalysesDock", "DevicesDock"}},
-      {Qt::RightDockWidgetArea, {"RetinaDock", "KSpaceDock", "PreviewDock", "TopViewDock"}},
+      {Qt::RightDockWidgetArea, {"PropertiesDock", "AnalysesDock", "DevicesDock", "TopViewDock"}},
+      {Qt::RightDockWidgetArea, {"RetinaDock", "KSpaceDock", "PreviewDock"}},
       {Qt::BottomDockWidgetArea, {"MessagesDock", "PlotsDock"}},
   };
   return groups;

@@ -15,6 +15,7 @@
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
+#include "widgets/binocular_top_view.h"
 #include "widgets/display_panel.h"
 #include "widgets/gaze_panel.h"
 #include "widgets/handle_controller.h"
@@ -48,8 +49,9 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
   retinaDock_ = window->addPanel(retinaPanel_, tr("Retina"), "RetinaDock", Qt::RightDockWidgetArea);
   kspaceDock_ = window->addPanel(kspace_, tr("Grating vectors"), "KSpaceDock", Qt::RightDockWidgetArea);
   window->tabifyDockWidget(retinaDock_, kspaceDock_);
-  QDockWidget* topDock = window->addPanel(gaze_->topView(), tr("Top view"), "TopViewDock", Qt::RightDockWidgetArea);
-  window->tabifyDockWidget(kspaceDock_, topDock);
+  // The binocular top view: beside the Properties (dock_layout.cpp), so it shows with the Gaze
+  // and Retina docks (a fourth tab beside the Retina dock's elides their titles at 1366x768).
+  window->addPanel(gaze_->topView(), tr("Top view"), "TopViewDock", Qt::RightDockWidgetArea);
   retinaDock_->raise();
 
   connect(doc, &widgets::SceneDocument::sceneChanged, this, [this, doc] {

@@ -108,10 +108,12 @@ CaptureSession::CaptureSession(CaptureKind kind, std::vector<CaptureStep> plan, 
   for (const auto& r : j.value("captures", nlohmann::json::array())) records_.push_back(recordFromJson(r));
   for (const auto& m : j.value("measurements", nlohmann::json::array())) measurements_.push_back(m.get<std::string>());
   if (j.contains("gaze_calibration")) gaze_calibration_ = j["gaze_calibration"];
+  if (j.contains("gaze_calibration_left")) left_gaze_calibration_ = j["gaze_calibration_left"];
 }
 
-void CaptureSession::setGazeCalibration(nlohmann::json result) {
+void CaptureSession::setGazeCalibration(nlohmann::json result, nlohmann::json left) {
   gaze_calibration_ = std::move(result);
+  left_gaze_calibration_ = std::move(left);
   save();
 }
 
@@ -286,6 +288,7 @@ nlohmann::json CaptureSession::manifest() const {
   nlohmann::json j{{"format", kFormat}, {"version", kVersion},  {"kind", toString(kind_)},      {"scene", scene_name_},
                    {"steps", steps},    {"captures", captures}, {"measurements", measurements_}};
   if (!gaze_calibration_.is_null()) j["gaze_calibration"] = gaze_calibration_;
+  if (!left_gaze_calibration_.is_null()) j["gaze_calibration_left"] = left_gaze_calibration_;
   return j;
 }
 

@@ -78,8 +78,11 @@ class CaptureSession {
 
   // The gaze session's result (the pupil-tracked 5-point calibration and its accuracy and
   // precision on the held-out grid): kept in the manifest under "gaze_calibration", saved at once.
-  void setGazeCalibration(nlohmann::json result);
-  const nlohmann::json& gazeCalibration() const { return gaze_calibration_; }  // null when none
+  // A binocular scene's session also keeps its left eye camera's under "gaze_calibration_left"
+  // ("gaze_calibration" is then the right eye's); null `left` removes it.
+  void setGazeCalibration(nlohmann::json result, nlohmann::json left = nullptr);
+  const nlohmann::json& gazeCalibration() const { return gaze_calibration_; }           // null when none
+  const nlohmann::json& leftGazeCalibration() const { return left_gaze_calibration_; }  // null when none
 
   nlohmann::json manifest() const;
   void save() const;
@@ -92,7 +95,7 @@ class CaptureSession {
   std::vector<CaptureRecord> records_;
   std::map<std::string, cv::Mat> frames_;
   std::vector<std::string> measurements_;
-  nlohmann::json gaze_calibration_;
+  nlohmann::json gaze_calibration_, left_gaze_calibration_;
 };
 
 }  // namespace fovea::devices

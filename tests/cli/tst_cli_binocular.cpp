@@ -166,6 +166,17 @@ class TestCliBinocular : public QObject {
     for (auto* j : {&ja, &jb}) (*j)["latency_budget_ms"].erase("detect_measured_mean");
     QCOMPARE(jb, ja);
     QCOMPARE(jb["eyes"]["left"]["focus_stage"], jb["focus_stage"]);
+    // The loop's two tracker calibrations are `calibrate gaze`'s (and the capture wizard's) at
+    // the same seed: same eye cameras, same noise (model/gaze/eye_tracker_calibration.h).
+    const Run g = cli({"calibrate", "gaze", "--virtual", "--scene", mirror.c_str(), "--json"});
+    QVERIFY2(g.code == 0, g.err.constData());
+    const auto jg = nlohmann::json::parse(g.out.toStdString());
+    for (const char* eye : {"left", "right"}) {
+      QCOMPARE(ja["eyes"][eye]["calibration"]["accuracy_deg"].get<double>(),
+               jg["eyes"][eye]["accuracy_mean_deg"].get<double>());
+      QCOMPARE(ja["eyes"][eye]["calibration"]["precision_deg"].get<double>(),
+               jg["eyes"][eye]["precision_rms_s2s_deg"].get<double>());
+    }
   }
 
   void detectorOnBothTrackers() {

@@ -66,11 +66,14 @@ class TestBinocularGaze : public QObject {
     open(kBino);
     widgets::GazePanel* g = gazePanel();
     QVERIFY(g->fixationToggle()->isVisibleTo(g));
-    // The top view: its own dock, beside the Retina dock.
+    // The top view: its own dock, a tab beside the Properties.
     auto* topDock = w->findChild<QDockWidget*>("TopViewDock");
     QVERIFY(topDock && topDock->isAncestorOf(g->topView()));
+    QVERIFY(w->tabifiedDockWidgets(w->findChild<QDockWidget*>("PropertiesDock")).contains(topDock));
     QVERIFY(g->topView()->state().binocular);
     QVERIFY(!g->fixationToggle()->isChecked());
+    // The Gaze dock's FOV read-out is the right eye's and says so.
+    QTRY_VERIFY(g->findChild<QLabel*>("gazeReadout")->text().startsWith("Right eye: FOV"));
     g->setGaze(10.0, 5.0);
     g->setFixationDistanceCm(50.0);
     const Scene& s = w->document()->scene();
@@ -124,42 +127,67 @@ class TestBinocularGaze : public QObject {
     QCOMPARE(leftGazeDeg(s)[0], -s.eye.gaze_deg[0]);
   }
 
+  // The left eye's retina in the studio is `trace --eye left` of the saved scene: at a gaze
+  // inside the static eye box (direction 2 deg at 50 cm: left eye 5.6 deg, right -1.6 deg),
+  // and with the HOE following the gaze at direction 10 deg (left eye 13.5 deg, outside the
+  // static box: 0 deg FOV there without the shift) with the studio's left x_p passed on.
   void retinaLeftEyeIsTheCliLeftEye() {
     open(kBino);
-    gazePanel()->setGaze(10.0, 0.0);
-    gazePanel()->setFixationDistanceCm(50.0);
     widgets::RetinaPanel* panel = live()->retinaPanel();
     QVERIFY(panel->eyeSelector()->isVisibleTo(panel));
-    QVERIFY(live()->waitForTrace());
-    const auto right = live()->retinaView()->result();
-    QVERIFY(right && right->error.empty());
-    panel->setEye(EyeSide::Left);
-    QVERIFY(live()->waitForTrace());
-    QTRY_VERIFY(live()->retinaView()->result() && live()->retinaView()->result() != right);
-    const auto r = live()->retinaView()->result();
-    QVERIFY(r->error.empty());
-    const Scene& s = w->document()->scene();
-    QCOMPARE(r->scene.eye.gaze_deg, leftGazeDeg(s));
-    // The same scene through the CLI: saved, then `trace --eye left`.
-    QTemporaryDir dir;
-    const QString file = dir.filePath("verged.json");
-    saveSceneFileAtomic(s, file.toStdString());
-    const auto out = testing::runFoveaCli({"trace", file, "--eye", "left", "--json"});
-    QVERIFY2(out.code == 0, out.err.constData());
-    const auto j = nlohmann::json::parse(out.out.toStdString());
-    const double h = j["fov_deg"]["horizontal"].get<double>(), v = j["fov_deg"]["vertical"].get<double>();
-    const QString msg = QString("studio left %1 x %2, cli left %3 x %4 at gaze %5,%6; right eye %7 x %8")
-                            .arg(r->fov.horizontal)
-                            .arg(r->fov.vertical)
-                            .arg(h)
-                            .arg(v)
-                            .arg(r->scene.eye.gaze_deg[0])
-                            .arg(r->scene.eye.gaze_deg[1])
-                            .arg(right->fov.horizontal)
-                            .arg(right->fov.vertical);
-    qInfo("%s", qPrintable(msg));
-    QCOMPARE(QString::fromStdString(j["eye"].get<std::string>()), QString("left"));
-    QVERIFY2(std::abs(r->fov.horizontal - h) < 0.01 && std::abs(r->fov.vertical - v) < 0.01, qPrintable(msg));
+    for (const double yaw : {2.0, 10.0}) {
+      const bool follow = yaw > 5;
+      gazePanel()->setFollowGaze(follow);
+      gazePanel()->setGaze(yaw, 0.0);
+      gazePanel()->setFixationDistanceCm(50.0);
+      panel->setEye(EyeSide::Right);
+      QVERIFY(live()->waitForTrace());
+      QTRY_VERIFY(live()->retinaView()->result() == live()->liveTrace()->latest());
+      const auto right = live()->retinaView()->result();
+      QVERIFY(right && right->error.empty());
+      panel->setEye(EyeSide::Left);
+      QVERIFY(live()->waitForTrace());
+      QTRY_VERIFY(live()->retinaView()->result() && live()->retinaView()->result() != right);
+      const auto r = live()->retinaView()->result();
+      QVERIFY(r->error.empty());
+      const Scene& s = w->document()->scene();
+      QCOMPARE(r->scene.eye.gaze_deg, leftGazeDeg(s));
+      QTemporaryDir dir;
+      const QString file = dir.filePath("verged.json");
+      saveSceneFileAtomic(s, file.toStdString());
+      QStringList args{"trace", file, "--eye", "left", "--json"};
+      if (follow)
+        args << "--hoe-shift-mm"
+             << QString("%1,%2").arg(r->hoe_shift_mm[0], 0, 'g', 17).arg(r->hoe_shift_mm[1], 0, 'g', 17);
+      const auto out = testing::runFoveaCli(args);
+      QVERIFY2(out.code == 0, out.err.constData());
+      const auto j = nlohmann::json::parse(out.out.toStdString());
+      const double h = j["fov_deg"]["horizontal"].get<double>(), v = j["fov_deg"]["vertical"].get<double>();
+      const QString msg = QString(
+                              "direction %1: studio left %2 x %3 at x_p %4, cli left %5 x %6 at gaze %7,%8; "
+                              "right eye %9 x %10")
+                              .arg(yaw)
+                              .arg(r->fov.horizontal)
+                              .arg(r->fov.vertical)
+                              .arg(r->hoe_shift_mm[0])
+                              .arg(h)
+                              .arg(v)
+                              .arg(r->scene.eye.gaze_deg[0])
+                              .arg(r->scene.eye.gaze_deg[1])
+                              .arg(right->fov.horizontal)
+                              .arg(right->fov.vertical);
+      qInfo("%s", qPrintable(msg));
+      QCOMPARE(QString::fromStdString(j["eye"].get<std::string>()), QString("left"));
+      QVERIFY2(r->fov.horizontal > 80 && right->fov.horizontal > 80, qPrintable(msg));  // a real field, not 0 = 0
+      QVERIFY2(follow == (std::abs(r->hoe_shift_mm[0]) > 0.5), qPrintable(msg));
+      QVERIFY2(std::abs(r->fov.horizontal - h) < 0.01 && std::abs(r->fov.vertical - v) < 0.01, qPrintable(msg));
+      // docs/gaze-tracking.md, "Retina per eye", at the digits it prints.
+      const double want_gaze = follow ? 13.51 : 5.59, want_h = follow ? 90.49 : 90.00, want_v = follow ? 77.21 : 78.31;
+      QVERIFY2(std::abs(r->scene.eye.gaze_deg[0] - want_gaze) <= 0.005 &&
+                   std::abs(r->fov.horizontal - want_h) <= 0.005 && std::abs(r->fov.vertical - want_v) <= 0.005 &&
+                   std::abs(r->hoe_shift_mm[0] - (follow ? 1.94 : 0)) <= 0.005,
+               qPrintable(msg));
+    }
     // Back to the right eye: the scene's own trace.
     panel->setEye(EyeSide::Right);
     QTRY_VERIFY(live()->retinaView()->result() == live()->liveTrace()->latest());
@@ -171,6 +199,7 @@ class TestBinocularGaze : public QObject {
     QVERIFY(!g->fixationToggle()->isVisibleTo(g));
     QVERIFY(!g->topView()->state().binocular);
     QVERIFY(!g->topView()->fixationPixel());
+    QTRY_VERIFY(g->findChild<QLabel*>("gazeReadout")->text().startsWith("FOV"));
     QVERIFY(!live()->retinaPanel()->eyeSelector()->isVisibleTo(live()->retinaPanel()));
     QCOMPARE(live()->retinaPanel()->eye(), EyeSide::Right);
     // Binocular, then monocular again in the same window: shown, then hidden.

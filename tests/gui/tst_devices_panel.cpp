@@ -34,6 +34,7 @@
 #include "model/analysis/hoe_travel.h"
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_io.h"
+#include "tests/cli/cli_process.h"
 #include "tests/test_files.h"
 #include "widgets/bench/capture_wizard.h"
 #include "widgets/bench/devices_panel.h"
@@ -323,6 +324,47 @@ class TestDevicesPanel : public QObject {
     const QString shown = wizard->findChild<QLabel*>("gazeCalibration")->text();
     QVERIFY2(shown.contains(QString::number(accuracy, 'f', 2) + "°"), qPrintable(shown));
     QCOMPARE(wizard->gazeCalibration()["accuracy_mean_deg"].get<double>(), accuracy);
+  }
+
+  void gazeWizardOnABinocularSceneCalibratesBothEyeCameras() {
+    // Issue 30 item 5: on the binocular example the gaze session ends with both eye cameras
+    // calibrated, the left under "gaze_calibration_left", each the `fovea-cli calibrate gaze`
+    // document of its eye (same cameras, same seeds); both shown, and kept across a reopen.
+    Rig rig(true, false, "binocular-prototype.json");
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    rig.panel->openCaptureWizard();
+    widgets::CaptureWizard* wizard = rig.panel->wizard();
+    const auto folder = tmpDir("gui_capture_binocular") / "session";
+    wizard->setKind(devices::CaptureKind::Gaze);
+    wizard->setFolder(QString::fromStdString(folder.string()));
+    QSignalSpy stopped(wizard, &widgets::CaptureWizard::runStopped);
+    wizard->start();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, 60000);
+    QVERIFY(wizard->session()->complete());
+    const nlohmann::json right = wizard->gazeCalibration(), left = wizard->leftGazeCalibration();
+    QVERIFY(!right.is_null() && !left.is_null());
+    const auto cli =
+        testing::runFoveaCli({"calibrate", "gaze", "--virtual", "--scene",
+                              QString(FOVEA_SOURCE_DIR) + "/resources/scenes/binocular-prototype.json", "--json"});
+    QVERIFY2(cli.code == 0, cli.err.constData());
+    const auto j = nlohmann::json::parse(cli.out.toStdString());
+    QCOMPARE(left, j["eyes"]["left"]);
+    QCOMPARE(right, j["eyes"]["right"]);
+    QFile f(QString::fromStdString((folder / "manifest.json").string()));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const auto manifest = nlohmann::json::parse(f.readAll().toStdString());
+    QCOMPARE(manifest["gaze_calibration_left"], left);
+    QCOMPARE(manifest["gaze_calibration"], right);
+    const QString shown = wizard->findChild<QLabel*>("gazeCalibration")->text();
+    for (const auto* r : {&left, &right})
+      QVERIFY2(shown.contains(QString::number((*r)["accuracy_mean_deg"].get<double>(), 'f', 2) + "°"),
+               qPrintable(shown));
+    QVERIFY2(shown.contains("Left eye camera") && shown.contains("Right eye camera"), qPrintable(shown));
+    QVERIFY(wizard->grab().toImage().save(QString::fromStdString((folder.parent_path() / "wizard.png").string())));
+    // Reopened: both calibrations read back from the manifest, nothing run again.
+    devices::CaptureSession again(devices::CaptureKind::Gaze, wizard->session()->plan(), folder, "");
+    QCOMPARE(again.leftGazeCalibration(), left);
+    QCOMPARE(again.gazeCalibration(), right);
   }
 
   void geometricWizardCapturesBothBoardsOverTheGazeRange() {

@@ -76,6 +76,11 @@ class TestVergence : public QObject {
     QVERIFY(std::abs(a.left_deg[0] - radToDeg(std::atan(31.5 / 500))) < 1e-12);
     QVERIFY(std::abs(a.vergence_deg - vergenceForDistanceDeg(geom_, 500)) < 1e-12);
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument, gazesFixating(geom_, {0, 0}, 30));
+    // docs/gaze-tracking.md ("Retina per eye"): direction (10, 0) deg at 50 cm, at its digits.
+    const FixationGazes b = gazesFixating(geom_, {10, 0}, 500);
+    QVERIFY(std::abs(b.vergence_deg - 7.10) <= 0.005);
+    QVERIFY(std::abs(b.left_deg[0] - 13.51) <= 0.005);
+    QVERIFY(std::abs(b.right_deg[0] - 6.41) <= 0.005);
   }
 
   // A binocular scene with a fixation distance: the left eye's scene gaze fixates the point

@@ -17,6 +17,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/gaze/eye_tracker_calibration.h"
 #include "model/gaze/tracked_calibration.h"
 
 namespace fovea::widgets {
@@ -37,7 +38,9 @@ CaptureWizard::CaptureWizard(const Scene& scene, devices::LiveBench* live, QWidg
                  static_cast<int>(devices::CaptureKind::Geometric));
   kind_->addItem(tr("Colour — patch sequence, then import the measurements"),
                  static_cast<int>(devices::CaptureKind::Color));
-  kind_->addItem(tr("Gaze — 5-point fixation sequence"), static_cast<int>(devices::CaptureKind::Gaze));
+  kind_->addItem(scene_.binocular ? tr("Gaze — 5-point fixation sequence, both eye cameras")
+                                  : tr("Gaze — 5-point fixation sequence"),
+                 static_cast<int>(devices::CaptureKind::Gaze));
   top->addWidget(kind_, 0, 1, 1, 2);
   top->addWidget(new QLabel(tr("Folder"), this), 1, 0);
   folder_ = new QLineEdit(this);
@@ -248,8 +251,9 @@ void CaptureWizard::pause() {
 void CaptureWizard::runNext() {
   join();
   const auto next = session_->nextStep();
-  if (!next && kind() == devices::CaptureKind::Gaze && session_->gazeCalibration().is_null() && live_ &&
-      !pause_requested_) {
+  const bool uncalibrated =
+      session_->gazeCalibration().is_null() || (scene_.binocular && session_->leftGazeCalibration().is_null());
+  if (!next && kind() == devices::CaptureKind::Gaze && uncalibrated && live_ && !pause_requested_) {
     calibrateGaze();  // the last part of the gaze session; runStopped when it is done
     return;
   }
@@ -316,35 +320,43 @@ nlohmann::json CaptureWizard::gazeCalibration() const {
   return session_ ? session_->gazeCalibration() : nlohmann::json();
 }
 
+nlohmann::json CaptureWizard::leftGazeCalibration() const {
+  return session_ ? session_->leftGazeCalibration() : nlohmann::json();
+}
+
 void CaptureWizard::calibrateGaze() {
   if (calibrating_ || !session_) return;
   join();
   calibrating_ = true;
   running_ = true;
   updateButtons();
-  status_->setText(tr("Gaze calibration: the pupil tracker on the eye camera, 5 targets × 10 samples…"));
-  gaze::TrackedCalibrationOptions o;
-  o.eye.pupil_diameter_mm = scene_.eye.pupil_diameter_mm;
-  worker_ = std::thread([this, o] {
-    nlohmann::json result;
+  status_->setText(scene_.binocular
+                       ? tr("Gaze calibration: the pupil tracker on both eye cameras, 5 targets × 10 samples each…")
+                       : tr("Gaze calibration: the pupil tracker on the eye camera, 5 targets × 10 samples…"));
+  // Both eye cameras of a binocular scene, each with its own noise and eye, as the
+  // binocular closed loop calibrates them (model/gaze/eye_tracker_calibration.h).
+  worker_ = std::thread([this, scene = scene_] {
+    nlohmann::json result, left;
     QString error;
     try {
-      const gaze::TrackedCalibration c = gaze::calibrateWithTracker(o);
-      result = trackedCalibrationJson(c, o);
+      const gaze::EyeTrackerCalibrations c = gaze::calibrateEyeTrackers(scene);
+      result = trackedCalibrationJson(c.right, c.right_options);
+      if (c.left) left = trackedCalibrationJson(*c.left, *c.left_options);
     } catch (const std::exception& e) {
       error = QString::fromStdString(e.what());
     }
     QMetaObject::invokeMethod(
-        this, [this, result, error] { gazeCalibrationFinished(result, error); }, Qt::QueuedConnection);
+        this, [this, result, left, error] { gazeCalibrationFinished(result, left, error); }, Qt::QueuedConnection);
   });
 }
 
-void CaptureWizard::gazeCalibrationFinished(const nlohmann::json& result, const QString& error) {
+void CaptureWizard::gazeCalibrationFinished(const nlohmann::json& result, const nlohmann::json& left,
+                                            const QString& error) {
   join();
   calibrating_ = false;
   running_ = false;
   if (session_ && error.isEmpty()) {
-    session_->setGazeCalibration(result);
+    session_->setGazeCalibration(result, left);
     status_->setText(tr("Complete: %1 captures and the gaze calibration in %2").arg(captured_).arg(folder()));
     showGazeCalibration();
     emit gazeCalibrated(result["accuracy_mean_deg"].get<double>(), result["precision_rms_s2s_deg"].get<double>());
@@ -357,25 +369,31 @@ void CaptureWizard::gazeCalibrationFinished(const nlohmann::json& result, const 
 }
 
 void CaptureWizard::showGazeCalibration() {
-  const nlohmann::json r = gazeCalibration();
-  if (r.is_null()) {
+  const nlohmann::json right = gazeCalibration(), left = leftGazeCalibration();
+  if (right.is_null()) {
     gaze_result_->clear();
     return;
   }
-  gaze_result_->setText(
-      tr("<b>Gaze calibration</b> (pupil tracker, %1 targets × %2 samples, confidence ≥ %3): accuracy "
-         "<b>%4°</b> mean, %5° max; precision <b>%6°</b> RMS sample-to-sample (%7° SD) over %8 held-out targets; "
-         "%9 frames, %10 rejected. Pupil Core reports 0.6° / 0.08°.")
-          .arg(r["targets"].get<int>())
-          .arg(r["samples_per_target"].get<int>())
-          .arg(r["min_confidence"].get<double>())
-          .arg(r["accuracy_mean_deg"].get<double>(), 0, 'f', 2)
-          .arg(r["accuracy_max_deg"].get<double>(), 0, 'f', 2)
-          .arg(r["precision_rms_s2s_deg"].get<double>(), 0, 'f', 3)
-          .arg(r["precision_sd_deg"].get<double>(), 0, 'f', 3)
-          .arg(r["held_out_targets"].get<int>())
-          .arg(r["frames"].get<int>())
-          .arg(r["rejected"].get<int>()));
+  auto line = [](const QString& title, const nlohmann::json& r) {
+    return tr("<b>%1</b> (pupil tracker, %2 targets × %3 samples, confidence ≥ %4): accuracy "
+              "<b>%5°</b> mean, %6° max; precision <b>%7°</b> RMS sample-to-sample (%8° SD) over %9 held-out "
+              "targets; %10 frames, %11 rejected.")
+        .arg(title)
+        .arg(r["targets"].get<int>())
+        .arg(r["samples_per_target"].get<int>())
+        .arg(r["min_confidence"].get<double>())
+        .arg(r["accuracy_mean_deg"].get<double>(), 0, 'f', 2)
+        .arg(r["accuracy_max_deg"].get<double>(), 0, 'f', 2)
+        .arg(r["precision_rms_s2s_deg"].get<double>(), 0, 'f', 3)
+        .arg(r["precision_sd_deg"].get<double>(), 0, 'f', 3)
+        .arg(r["held_out_targets"].get<int>())
+        .arg(r["frames"].get<int>())
+        .arg(r["rejected"].get<int>());
+  };
+  const QString text = left.is_null()
+                           ? line(tr("Gaze calibration"), right)
+                           : line(tr("Left eye camera"), left) + "<br>" + line(tr("Right eye camera"), right);
+  gaze_result_->setText(text + " " + tr("Pupil Core reports 0.6° / 0.08°."));
 }
 
 bool CaptureWizard::importMeasurement(const QString& file, QString* error) {

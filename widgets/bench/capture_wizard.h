@@ -8,9 +8,9 @@
 //  - Colour: the patch sequence on each display; the spectroradiometer's readings are
 //    imported as a "fovea-color-measurements" file (checked, copied into the folder).
 //  - Gaze: the 5-point fixation sequence; when it is complete the pupil tracker calibrates the
-//    gaze on the (virtual) eye camera's frames (model/gaze/tracked_calibration.h: 10 samples
-//    averaged per target, outliers rejected by detection confidence) and the wizard shows the
-//    accuracy and precision reached on the held-out grid and writes them into the manifest.
+//    gaze on the (virtual) eye camera's frames — both eye cameras on a binocular scene
+//    (model/gaze/tracked_calibration.h: 10 samples averaged per target, outliers rejected by detection confidence) and
+//    the wizard shows the accuracy and precision reached on the held-out grid and writes them into the manifest.
 //
 // Pause finishes the running step (a capture is never cut in half) and stops; Resume goes on
 // from the first step not captured. Opening a folder that already holds a session of the same
@@ -71,9 +71,13 @@ class CaptureWizard : public QDialog {
   int stepCount() const;
   QStringList skipped() const { return skipped_; }
   bool importMeasurement(const QString& file, QString* error = nullptr);
-  // The gaze session's tracked calibration (manifest "gaze_calibration"); null until it ran.
+  // The gaze session's tracked calibration (manifest "gaze_calibration"; on a binocular scene
+  // the right eye camera's); null until it ran.
   nlohmann::json gazeCalibration() const;
-  // Runs the tracked gaze calibration now (a gaze session does it by itself when complete).
+  // A binocular scene's left eye camera's (manifest "gaze_calibration_left"); null otherwise.
+  nlohmann::json leftGazeCalibration() const;
+  // Runs the tracked gaze calibration now (a gaze session does it by itself when complete):
+  // every eye camera of the scene (model/gaze/eye_tracker_calibration.h).
   void calibrateGaze();
 
  public slots:
@@ -98,7 +102,7 @@ class CaptureWizard : public QDialog {
   void updateButtons();
   QString defaultFolder() const;
   void join();
-  void gazeCalibrationFinished(const nlohmann::json& result, const QString& error);
+  void gazeCalibrationFinished(const nlohmann::json& result, const nlohmann::json& left, const QString& error);
   void showGazeCalibration();
 
   Scene scene_;
