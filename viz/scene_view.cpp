@@ -364,15 +364,26 @@ void SceneView::setHoeDisplayShift(const Eigen::Vector3d& shift) {
   requestRender();
 }
 
+void SceneView::setLeftHoeDisplayShift(const std::optional<Eigen::Vector3d>& shift) {
+  if (shift == leftHoeShift_) return;
+  leftHoeShift_ = shift;
+  applyHoeShift();
+  requestRender();
+}
+
+Eigen::Vector3d SceneView::leftHoeDisplayShift() const {
+  return leftHoeShift_ ? *leftHoeShift_ : Eigen::Vector3d(-hoeShift_.x(), hoeShift_.y(), hoeShift_.z());
+}
+
 void SceneView::applyHoeShift() {
   QStringList ids{"hoe"};
   for (int i = 0; i < static_cast<int>(scene_.hoe_layers.size()); ++i) ids << hoeLayerId(i);
+  const Eigen::Vector3d left = leftHoeDisplayShift();
   for (const QString& id : ids) {
     for (vtkProp* p : sceneLayer().propsOf(id))
       if (auto* p3 = vtkProp3D::SafeDownCast(p)) p3->SetPosition(hoeShift_.x(), hoeShift_.y(), hoeShift_.z());
-    // The left train's HOE travels by the mirror image of the shift.
     for (vtkProp* p : layer(QStringLiteral("left-train")).propsOf(id))
-      if (auto* p3 = vtkProp3D::SafeDownCast(p)) p3->SetPosition(-hoeShift_.x(), hoeShift_.y(), hoeShift_.z());
+      if (auto* p3 = vtkProp3D::SafeDownCast(p)) p3->SetPosition(left.x(), left.y(), left.z());
   }
 }
 

@@ -66,6 +66,10 @@ class SceneView : public VtkGlWidget {
   // travel x_p applied by "HOE follows gaze". Kept across setScene().
   void setHoeDisplayShift(const Eigen::Vector3d& shift);
   const Eigen::Vector3d& hoeDisplayShift() const { return hoeShift_; }
+  // A binocular scene's left train: its HOE displaced by its own eye's x_p (bench mm), or, with
+  // none given, by the mirror image of the right one's (the same travel at mirrored gazes).
+  void setLeftHoeDisplayShift(const std::optional<Eigen::Vector3d>& shift);
+  Eigen::Vector3d leftHoeDisplayShift() const;
 
   // The camera ray through a widget position (logical pixels): origin and unit direction.
   std::pair<Eigen::Vector3d, Eigen::Vector3d> viewRay(const QPointF& widgetPos);
@@ -159,6 +163,7 @@ class SceneView : public VtkGlWidget {
   QPointF pressPos_;
   bool pressed_ = false;
   Eigen::Vector3d hoeShift_ = Eigen::Vector3d::Zero();
+  std::optional<Eigen::Vector3d> leftHoeShift_;
   bool printLook_ = false;
   bool dragRendering_ = false;
   double dragRenderScale_ = 0.5;

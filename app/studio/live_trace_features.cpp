@@ -12,6 +12,7 @@
 #include "app/studio/latency_probe.h"
 #include "app/studio/main_window.h"
 #include "model/scene/eye_scene.h"
+#include "model/scene/scene_geometry.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
@@ -118,7 +119,9 @@ void LiveTraceFeatures::requestTrace() {
   const Scene& scene = window_->document()->scene();
   const widgets::TraceDetail detail = dragging ? widgets::TraceDetail::Coarse : widgets::TraceDetail::Refined;
   trace_->request(scene, s, detail);
-  if (scene.binocular && retinaPanel_->eye() == EyeSide::Left)
+  // The left eye: traced while its retina is shown, and while the HOE follows the gaze (its HOE
+  // in the 3-D view travels by its own x_p; both eyes per move, the budget x 2).
+  if (scene.binocular && (retinaPanel_->eye() == EyeSide::Left || s.follow_gaze))
     leftTrace_->request(eyeScene(scene, EyeSide::Left), s, detail);
   if (probe_ && dragging) probe_->noteRequest(trace_->newestGeneration());
 }
@@ -157,6 +160,15 @@ void LiveTraceFeatures::redraw() {
   } else {
     overlay_->show(r->scene, r->trace, r->grid, r->hoe_shift_mm, o);
   }
+  // The left train's HOE at its own eye's x_p (bench frame), when the HOE follows the gaze and
+  // the left trace is of the scene shown; else the mirror of the right one's.
+  std::optional<Eigen::Vector3d> leftShift;
+  if (const auto l = leftTrace_->latest(); r && r->error.empty() && r->settings.follow_gaze && l && l->error.empty() &&
+                                           window_->document()->scene().binocular) {
+    const Frame plate = frameOf(l->scene.hoe.pose);
+    leftShift = l->hoe_shift_mm[0] * plate.x() + l->hoe_shift_mm[1] * plate.y();
+  }
+  window_->sceneView()->setLeftHoeDisplayShift(leftShift);
   retina_->setResult(retinaPanel_->eye() == EyeSide::Left ? leftTrace_->latest() : r, o.hidden_wavelengths_nm);
   // Coarse (dragging) traces carry no grating-vector cloud: the last refined one stays.
   if (r && r->detail == widgets::TraceDetail::Refined) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);

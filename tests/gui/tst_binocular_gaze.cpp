@@ -25,6 +25,7 @@
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 #include "tests/cli/cli_process.h"
+#include "viz/scene_view.h"
 #include "widgets/binocular_top_view.h"
 #include "widgets/gaze_panel.h"
 #include "widgets/live_trace.h"
@@ -181,6 +182,27 @@ class TestBinocularGaze : public QObject {
       QVERIFY2(r->fov.horizontal > 80 && right->fov.horizontal > 80, qPrintable(msg));  // a real field, not 0 = 0
       QVERIFY2(follow == (std::abs(r->hoe_shift_mm[0]) > 0.5), qPrintable(msg));
       QVERIFY2(std::abs(r->fov.horizontal - h) < 0.01 && std::abs(r->fov.vertical - v) < 0.01, qPrintable(msg));
+      // The 3-D view's left HOE travels by the left eye's own x_p (not the mirror of the right's).
+      {
+        const Frame plate = frameOf(r->scene.hoe.pose);
+        const Eigen::Vector3d want = r->hoe_shift_mm[0] * plate.x() + r->hoe_shift_mm[1] * plate.y();
+        const Eigen::Vector3d shown = w->sceneView()->leftHoeDisplayShift(),
+                              right_shown = w->sceneView()->hoeDisplayShift();
+        const Eigen::Vector3d mirror(-right_shown.x(), right_shown.y(), right_shown.z());
+        const QString m = QString("left HOE shown at %1,%2,%3, its x_p %4,%5,%6, mirror of the right %7,%8,%9")
+                              .arg(shown.x())
+                              .arg(shown.y())
+                              .arg(shown.z())
+                              .arg(want.x())
+                              .arg(want.y())
+                              .arg(want.z())
+                              .arg(mirror.x())
+                              .arg(mirror.y())
+                              .arg(mirror.z());
+        qInfo("%s", qPrintable(m));
+        QVERIFY2((shown - want).norm() < 1e-9, qPrintable(m));
+        if (follow) QVERIFY2((shown - mirror).norm() > 0.1, qPrintable(m));  // the eyes' gazes are not mirrored
+      }
       // docs/gaze-tracking.md, "Retina per eye", at the digits it prints.
       const double want_gaze = follow ? 13.51 : 5.59, want_h = follow ? 90.49 : 90.00, want_v = follow ? 77.21 : 78.31;
       QVERIFY2(std::abs(r->scene.eye.gaze_deg[0] - want_gaze) <= 0.005 &&
