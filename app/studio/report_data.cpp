@@ -225,8 +225,22 @@ std::optional<ReportData> computeReportData(const Scene& loaded, const QString& 
   sweep["gaze-from"] = lo;
   sweep["gaze-to"] = hi;
   sweep["gaze-step"] = std::max(0.5, options.sweep_step_deg);
-  if (auto j = step("sweep", scene, sweep, control, 0.2, 0.6, d.problems, &cancelled)) d.sweep = *j;
+  if (auto j = step("sweep", scene, sweep, control, 0.2, bothEyes ? 0.5 : 0.6, d.problems, &cancelled)) d.sweep = *j;
   if (cancelled) return std::nullopt;
+  // Both eyes: each eye's eye box over the same gaze range (the left eye's own sweep: its own
+  // train in mode "explicit", the mirror image in mode "mirror", where it equals the right's).
+  if (bothEyes) {
+    auto eyeBox = [](const nlohmann::json& j) {
+      return nlohmann::json{{"eyebox_mm", j.value("eyebox_mm", nlohmann::json())},
+                            {"eyebox", j.value("eyebox", nlohmann::json())}};
+    };
+    if (!d.sweep.is_null()) d.eyes["right"].update(eyeBox(d.sweep));
+    QStringList problems;
+    if (auto j = step("sweep", eyeScene(loaded, EyeSide::Left), sweep, control, 0.5, 0.6, problems, &cancelled))
+      d.eyes["left"].update(eyeBox(*j));
+    for (const QString& problem : problems) d.problems << QString("left eye: %1").arg(problem);
+    if (cancelled) return std::nullopt;
+  }
 
   // Resolution at the first gaze (10 %), selectivity (5 %).
   AnalysisParams res = defaultParameters(*findAnalysis("resolution"));

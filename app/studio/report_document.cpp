@@ -177,14 +177,30 @@ ReportSection bothEyesSection(const ReportData& d, const DisplayUnits& u) {
     }
   }
   h += "</table>";
+  // Each eye's eye box over the design gaze range (the sweep's HOE-shift eye box per eye).
+  QStringList boxes;
+  for (const char* side : {"left", "right"}) {
+    const nlohmann::json& eye = d.eyes.value(side, nlohmann::json::object());
+    if (!eye.contains("eyebox_mm")) continue;
+    boxes << QString("%1 eye <b>%2</b>").arg(side, u.length(jsonNumber(eye, {"eyebox_mm"})));
+  }
+  const QString boxText = boxes.isEmpty()
+                              ? QString()
+                              : QString(
+                                    " Eye box (HOE following the gaze, over the design gaze range, as in the key "
+                                    "numbers): %1.")
+                                    .arg(boxes.join(", "));
+  const bool explicitLeft = d.scene.binocular && d.scene.binocular->left.has_value();
   const QString intro =
       QString(
-          "The scene is binocular (IPD %1): its train is the right eye's, the left eye's its mirror image about "
-          "the mid-plane. Each eye traced at the chosen gazes (a gaze in the bench frame: the same direction for "
-          "both eyes), with the FOV-maximising HOE shift x_p of that eye (applied only when the HOE follows "
-          "the gaze); the rest of the report is the right eye's.")
-          .arg(u.length(d.scene.binocular ? d.scene.binocular->ipd_mm : NAN));
-  return ReportSection{"Both eyes", intro + h, {}};
+          "The scene is binocular (IPD %1): its train is the right eye's, the left eye's %2. Each eye traced at "
+          "the chosen gazes (a gaze in the bench frame: the same direction for both eyes), with the "
+          "FOV-maximising HOE shift x_p of that eye (applied only when the HOE follows the gaze); the rest of "
+          "the report is the right eye's.")
+          .arg(u.length(d.scene.binocular ? d.scene.binocular->ipd_mm : NAN),
+               explicitLeft ? QString("its own train (mode explicit)")
+                            : QString("its mirror image about the mid-plane"));
+  return ReportSection{"Both eyes", intro + boxText + h, {}};
 }
 
 QImage capture3d(viz::SceneView* view) {

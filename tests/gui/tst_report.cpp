@@ -278,6 +278,16 @@ class TestReport : public QObject {
     const QString text = QString::fromUtf8(f.readAll());
     QVERIFY(text.contains("<h2>Both eyes</h2>") && text.contains("IPD 63 mm"));
     QVERIFY(text.contains("<td>left</td>") && text.contains("<td>right</td>"));
+    QVERIFY(text.contains("the left eye's its mirror image about the mid-plane"));
+    // Each eye's eye box: the left eye's own sweep, equal to the right eye's for mirrored trains
+    // (and the key numbers' eye box: the right eye's).
+    const double lbox = m["eyes"]["left"]["eyebox_mm"].get<double>(),
+                 rbox = m["eyes"]["right"]["eyebox_mm"].get<double>();
+    qInfo("eye box: left %.12g mm, right %.12g mm", lbox, rbox);
+    QVERIFY2(rbox > 5 && std::abs(lbox - rbox) < 1e-9, qPrintable(QString("%1 %2").arg(lbox).arg(rbox)));
+    QVERIFY2(text.contains(
+                 QString("left eye <b>%1 mm</b>, right eye <b>%2 mm</b>").arg(lbox, 0, 'g', 4).arg(rbox, 0, 'g', 4)),
+             qPrintable(text.mid(text.indexOf("Eye box (HOE following"), 200)));
 
     const Run mono = run(FOVEA_CLI_PATH, {"report", "", "--out", tmpDir() + "/r.pdf", "--eye", "left"});
     QCOMPARE(mono.code, 2);
