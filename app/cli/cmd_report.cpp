@@ -1,11 +1,14 @@
 // fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--follow-gaze]
-//                 [--tolerance-trials N [--tolerance-spec FILE]] [--eye left|right|both] [--json]
+//                 [--tolerance-trials N [--tolerance-spec FILE]] [--eye left|right|both]
+//                 [--retina-speckle N] [--retina-grain pixel|pupil] [--retina-calibration one|per-laser] [--json]
 // The design report of a scene: title page with the scene summary, 3-D views, the bench at
 // each gaze, retina maps, the analyses' plots and key numbers, and with --tolerance-trials the
 // Tolerance section (app/studio/report_document.h, report_tolerance.h). A binocular scene: the
 // report of one eye (--eye left|right: the manifest's "eye"), or by default (--eye both) the right
 // eye's with a "Both eyes" section and the manifest's "eyes": {"left": {"gazes": [...]},
 // "right": {...}}, each eye's FOV, efficiency and x_p per chosen gaze (app/studio/report_data.h).
+// --retina-*: the retinal image figure's speckle and calibration, as the studio's Foveated preview
+// sets them (issue 29); the manifest's "retina_image" echoes them.
 //
 // Why this command drives `fovea-studio --report` instead of linking the GUI: the report's
 // 3-D figures need VTK's OpenGL rendering inside a Qt window, i.e. an X display (Xvfb when
@@ -44,6 +47,8 @@ struct ReportArgs {
   std::string tolerance_spec;
   bool follow_gaze = false;
   bool json = false;
+  int retina_speckle = 0;  // the retinal image's options (the preview's Retina image controls)
+  std::string retina_grain = "pixel", retina_calibration = "one";
 };
 
 std::string lower(std::string s) {
@@ -128,6 +133,14 @@ void install(CLI::App& app) {
   cmd->add_flag("--json", a->json,
                 "print the manifest {\"out\",\"format\",\"pages\",\"figures\",\"problems\",\"gaze_figures\","
                 "\"sections\"}");
+  cmd->add_option("--retina-speckle", a->retina_speckle,
+                  "the retinal image's independent speckle patterns per laser (0: off, default; up to 16)")
+      ->check(CLI::Range(0, 16));
+  cmd->add_option("--retina-grain", a->retina_grain, "speckle grain: pixel (default) or pupil")
+      ->check(CLI::IsMember({"pixel", "pupil"}));
+  cmd->add_option("--retina-calibration", a->retina_calibration,
+                  "geometric calibration of the retinal image: one (default, the laser nearest 555 nm) or per-laser")
+      ->check(CLI::IsMember({"one", "per-laser"}));
   const auto eye = addEyeOption(cmd);
   cmd->callback([a, eye] {
     const std::string ext = lower(std::filesystem::path(a->out).extension().string());
@@ -163,6 +176,8 @@ void install(CLI::App& app) {
     argv.push_back(std::to_string(a->rays));
     if (a->follow_gaze) argv.push_back("--follow-gaze");
     if (!eye->empty()) argv.push_back("--report-eye=" + *eye);
+    argv.push_back("--report-retina=" + std::to_string(a->retina_speckle) + "," + a->retina_grain + "," +
+                   a->retina_calibration);
     if (a->tolerance_trials > 0) {
       argv.push_back("--report-tolerance");
       argv.push_back(std::to_string(a->tolerance_trials));

@@ -99,8 +99,14 @@ int main(int argc, char** argv) {
   QCommandLineOption reportEyeOpt(
       "report-eye", "With --report on a binocular scene: the eye the report is of, left, right or both (default).",
       "EYE");
+  QCommandLineOption reportRetinaOpt(
+      "report-retina",
+      "With --report: the retinal image's speckle patterns (0..16), grain (pixel|pupil) and calibration "
+      "(one|per-laser).",
+      "SPECKLE,GRAIN,CALIBRATION");
   parser.addOption(reportOpt);
   parser.addOption(reportEyeOpt);
+  parser.addOption(reportRetinaOpt);
   parser.addOption(reportToleranceOpt);
   parser.addOption(reportToleranceSpecOpt);
   parser.addOption(gazeOpt);
@@ -205,7 +211,8 @@ int main(int argc, char** argv) {
       return 2;
     }
     return fovea::studio::runReportMode(window, parser.value(reportOpt), parser.values(gazeOpt), rays, trials,
-                                        parser.value(reportToleranceSpecOpt), parser.value(reportEyeOpt));
+                                        parser.value(reportToleranceSpecOpt), parser.value(reportEyeOpt),
+                                        parser.value(reportRetinaOpt));
   }
   if (!screenshot) {
     window.show();

@@ -15,12 +15,13 @@
 #include "app/studio/main_window.h"
 #include "app/studio/report_data.h"
 #include "widgets/message_log.h"
+#include "widgets/preview_panel.h"
 #include "widgets/scene_document.h"
 
 namespace fovea::studio {
 
 int runReportMode(MainWindow& window, const QString& out, const QStringList& gazes, int rays, int toleranceTrials,
-                  const QString& toleranceSpec, const QString& eye) {
+                  const QString& toleranceSpec, const QString& eye, const QString& retina) {
   QTextStream err(stderr);
   const QString ext = QFileInfo(out).suffix().toLower();
   if (ext != "pdf" && ext != "html" && ext != "htm") {
@@ -34,6 +35,22 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
   if (!eye.isEmpty() && !window.document()->scene().binocular) {
     err << "fovea-studio: --report-eye " << eye << ": the scene is monocular (no \"binocular\" block)\n";
     return 2;
+  }
+  // The retinal image's options go where the report reads them: the Foveated preview's controls.
+  if (!retina.isEmpty()) {
+    const QStringList parts = retina.split(',');
+    bool ok = parts.size() == 3;
+    const int speckle = ok ? parts[0].toInt(&ok) : 0;
+    ok = ok && speckle >= 0 && speckle <= 16 && (parts[1] == "pixel" || parts[1] == "pupil") &&
+         (parts[2] == "one" || parts[2] == "per-laser");
+    if (!ok) {
+      err << "fovea-studio: --report-retina: expected SPECKLE,GRAIN,CALIBRATION (0..16, pixel|pupil, "
+             "one|per-laser), got \""
+          << retina << "\"\n";
+      return 2;
+    }
+    if (widgets::PreviewPanel* preview = window.previewPanel())
+      preview->setRetinaOptions({speckle, parts[1] == "pupil", parts[2] == "per-laser"});
   }
   ReportOptions options;
   options.eye = eye;
@@ -88,6 +105,12 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
                        {"problems", problems},
                        {"gaze_figures", gazeJson},
                        {"sections", QJsonArray::fromStringList(sections)}};
+  if (const widgets::PreviewPanel* preview = window.previewPanel()) {  // the options the report used
+    const widgets::RetinaPreviewOptions r = preview->retinaOptions();
+    manifest.insert("retina_image", QJsonObject{{"speckle_patterns", r.speckle_patterns},
+                                                {"speckle_grain", r.speckle_grain_pupil ? "pupil" : "pixel"},
+                                                {"calibration", r.per_laser_calibration ? "per-laser" : "one"}});
+  }
   if (eyes.is_object())  // "eye" or "eyes" (report_data.h)
     for (auto it = eyes.begin(); it != eyes.end(); ++it)
       manifest.insert(
