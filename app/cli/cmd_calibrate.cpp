@@ -29,6 +29,7 @@
 
 #include "app/cli/analysis_options.h"
 #include "app/cli/cli_common.h"
+#include "app/cli/detector_option.h"
 #include "app/cli/eye_option.h"
 #include "devices/bench/live_bench.h"
 #include "devices/transport/device_error.h"
@@ -156,20 +157,12 @@ struct GazeArgs {
 
 void runGaze(const GazeArgs& a, const std::string& eye) {
   if (!a.is_virtual) usageError("calibrate gaze needs --virtual (no eye camera on USB is supported yet)");
-  const auto kind = gaze::parseDetectorKind(a.detector);
-  if (!kind) usageError("--detector: '" + a.detector + "' is not one of " + gaze::kDetectorChoices);
-  if (*kind != gaze::PupilDetectorKind::Classical) {
-    try {
-      gaze::requireLearnedModel();
-    } catch (const std::exception& e) {
-      inputError(std::string("--detector ") + a.detector + ": " + e.what());
-    }
-  }
+  const gaze::PupilDetectorKind kind = detectorOrExit(a.detector);
   const Scene scene = loadSceneOrExit(a.scene);
   const std::vector<EyeRun> runs = eyeRuns(scene, eye, a.scene.empty() ? "the embedded scene" : a.scene);
   std::vector<nlohmann::json> docs;
   for (const EyeRun& run : runs) {
-    const gaze::TrackedCalibrationOptions o = gaze::eyeTrackerCalibrationOptions(scene, run.side, *kind, a.seed);
+    const gaze::TrackedCalibrationOptions o = gaze::eyeTrackerCalibrationOptions(scene, run.side, kind, a.seed);
     try {
       docs.push_back(trackedCalibrationJson(gaze::calibrateWithTracker(o), o));
     } catch (const std::invalid_argument& e) {

@@ -22,6 +22,7 @@
 #include <limits>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/detector_option.h"
 #include "devices/bench/binocular_loop.h"
 #include "devices/bench/closed_gaze_loop.h"
 #include "model/gaze/eye_tracker_calibration.h"
@@ -305,15 +306,7 @@ void install(CLI::App& app) {
                   "with --binocular: the focus stages' model (default: the micro-OLED's)")
       ->check(CLI::IsMember({"MTS25-Z8", "Z825B", "DDSM50"}));
   cmd->callback([a, ipd_option] {
-    const auto kind = gaze::parseDetectorKind(a->detector);
-    if (!kind) usageError("--detector: '" + a->detector + "' is not one of " + gaze::kDetectorChoices);
-    if (*kind != gaze::PupilDetectorKind::Classical) {
-      try {
-        gaze::requireLearnedModel();
-      } catch (const std::exception& e) {
-        inputError(std::string("--detector ") + a->detector + ": " + e.what());
-      }
-    }
+    const gaze::PupilDetectorKind kind = detectorOrExit(a->detector);
     if (!a->binocular && (!a->fixations.empty() || !a->focus_stage_model.empty()))
       usageError("closed-loop: --fixations and --focus-stage-model need --binocular");
     if (a->binocular && a->fixations.empty()) usageError("closed-loop: --binocular needs --fixations FILE|N");
@@ -322,7 +315,7 @@ void install(CLI::App& app) {
     if (a->binocular) {
       devices::BinocularOptions bo;
       bo.loop.camera_fps = a->fps;
-      bo.loop.detector = *kind;  // both eye trackers (and their calibrations)
+      bo.loop.detector = kind;  // both eye trackers (and their calibrations)
       if (bo.loop.exposure_s + bo.loop.readout_s > 1.0 / bo.loop.camera_fps)
         bo.loop.exposure_s = 0.5 / bo.loop.camera_fps, bo.loop.readout_s = 0.4 / bo.loop.camera_fps;
       if (!a->stage_model.empty()) bo.loop.stage_model = a->stage_model;
@@ -348,7 +341,7 @@ void install(CLI::App& app) {
       out["scene"] = scene.name;
       out["seed"] = a->seed;
       out["binocular"] = true;
-      out["detector"] = gaze::detectorName(*kind);
+      out["detector"] = gaze::detectorName(kind);
       out["camera"] = {{"fps", bo.loop.camera_fps}, {"exposure_ms", bo.loop.exposure_s * 1000}};
       if (a->json) {
         printJson(out);
@@ -364,7 +357,7 @@ void install(CLI::App& app) {
     o.saccades = a->saccades;
     o.seed = a->seed;
     o.camera_fps = a->fps;
-    o.detector = *kind;
+    o.detector = kind;
     if (o.exposure_s + o.readout_s > 1.0 / o.camera_fps)
       o.exposure_s = 0.5 / o.camera_fps, o.readout_s = 0.4 / o.camera_fps;
     if (!a->stage_model.empty()) o.stage_model = a->stage_model;
@@ -384,7 +377,7 @@ void install(CLI::App& app) {
     nlohmann::json out = resultJson(r);
     out["scene"] = scene.name;
     out["saccades"] = a->saccades;
-    out["detector"] = gaze::detectorName(*kind);
+    out["detector"] = gaze::detectorName(kind);
     out["seed"] = a->seed;
     out["camera"] = {{"fps", o.camera_fps}, {"exposure_ms", o.exposure_s * 1000}};
     nlohmann::json rows = nlohmann::json::array();

@@ -21,6 +21,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/detector_option.h"
 #include "model/color/srgb.h"
 #include "model/gaze/pupil_benchmark.h"
 #include "model/gaze/pupil_detector.h"
@@ -99,19 +100,11 @@ void install(CLI::App& app) {
   cmd->callback([a, v] {
     const bool virt = v->count() > 0;
     if (virt == !a->images.empty()) usageError("track: give either IMAGE files or --virtual N");
-    const auto kind = gaze::parseDetectorKind(a->detector);
-    if (!kind) usageError("--detector: '" + a->detector + "' is not one of " + gaze::kDetectorChoices);
     if (a->domain != "classic" && a->domain != "wide")
       usageError("--domain: '" + a->domain + "' is not one of classic, wide");
     if (!virt && a->domain != "classic") usageError("--domain: only with --virtual");
     const bool wide = a->domain == "wide";
-    if (*kind != gaze::PupilDetectorKind::Classical) {
-      try {
-        gaze::requireLearnedModel();
-      } catch (const std::exception& e) {
-        inputError(std::string("--detector ") + a->detector + ": " + e.what());
-      }
-    }
+    const gaze::PupilDetectorKind kind = detectorOrExit(a->detector);
     const gaze::PupilDetectorOptions options;
     nlohmann::json frames = nlohmann::json::array();
     double total_ms = 0, max_ms = 0;
@@ -124,7 +117,7 @@ void install(CLI::App& app) {
     std::string first_error;
     const auto timed = [&](const cv::Mat& img, gaze::PupilDetection& d) {
       const auto t0 = std::chrono::steady_clock::now();
-      d = gaze::detectPupilWith(*kind, img, options);
+      d = gaze::detectPupilWith(kind, img, options);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       total_ms += ms;
       max_ms = std::max(max_ms, ms);
@@ -222,7 +215,7 @@ void install(CLI::App& app) {
       summary["unreadable"] = unreadable;
     }
     const nlohmann::json out{{"source", virt ? "virtual" : "images"},
-                             {"detector", gaze::detectorName(*kind)},
+                             {"detector", gaze::detectorName(kind)},
                              {"domain", virt ? nlohmann::json(a->domain) : nlohmann::json(nullptr)},
                              {"seed", virt ? nlohmann::json(a->seed) : nlohmann::json(nullptr)},
                              {"frames", frames},
