@@ -103,7 +103,8 @@ constexpr double kPrintMargin[3] = {1.0, 1.0, 1.0};
 // eye's own marks around it, the handles, and the stages' travel bars and end stops (drawn
 // mechanics: from the pupil the micro-OLED's stops were two big magenta balls at the top).
 // (the left eye's train of a binocular scene too: the view is from the right eye's pupil)
-const char* const kHiddenInEyeView[] = {"frustum", "rays", "eye_marks", "handles", "stages", "left-train"};
+const char* const kHiddenInEyeView[] = {"frustum", "rays",       "eye_marks", "handles",
+                                        "stages",  "left-train", "left-rays", "left-eye_marks"};
 }  // namespace
 
 void SceneView::applyMarginColors() {

@@ -239,7 +239,7 @@ bool wavelengthShown(const TraceOverlayOptions& o, double nm) {
                       [nm](double h) { return std::abs(h - nm) < 1e-6; });
 }
 
-TraceOverlay::TraceOverlay(SceneView* view) : view_(view) {
+TraceOverlay::TraceOverlay(SceneView* view, OverlayRole role) : view_(view), role_(role) {
   colorBar_ = efficiencyColorBar();
   colorBar_->VisibilityOff();
   // In the view's right margin (its own renderer), title and labels inside the strip.
@@ -248,11 +248,22 @@ TraceOverlay::TraceOverlay(SceneView* view) : view_(view) {
   colorBar_->SetHeight(0.62);
   colorBar_->SetMaximumWidthInPixels(200);
   colorBar_->SetBarRatio(0.32);
-  view_->legendRenderer()->AddViewProp(colorBar_);
+  if (role_ == OverlayRole::Main) view_->legendRenderer()->AddViewProp(colorBar_);
 }
 
 TraceOverlay::~TraceOverlay() {
-  view_->legendRenderer()->RemoveViewProp(colorBar_);
+  if (role_ == OverlayRole::Main) view_->legendRenderer()->RemoveViewProp(colorBar_);
+}
+
+QString TraceOverlay::layerName(const char* base) const {
+  return role_ == OverlayRole::LeftEye ? QStringLiteral("left-") + base : QString(base);
+}
+
+void TraceOverlay::setPlateShift(const Eigen::Vector3d& shift_bench) {
+  if (role_ == OverlayRole::Main)
+    view_->setHoeDisplayShift(shift_bench);
+  else
+    view_->setLeftHoeDisplayShift(shift_bench);
 }
 
 vtkScalarBarActor* TraceOverlay::colorBar() const {
@@ -260,19 +271,22 @@ vtkScalarBarActor* TraceOverlay::colorBar() const {
 }
 
 void TraceOverlay::clear() {
-  for (const char* name : {"rays", "eye_marks", "effmap", "seen"}) view_->layer(name).clear();
+  for (const char* name : {"rays", "eye_marks", "effmap", "seen"}) view_->layer(layerName(name)).clear();
   colorBar_->VisibilityOff();
-  view_->setHoeDisplayShift(Eigen::Vector3d::Zero());
+  if (role_ == OverlayRole::Main)
+    view_->setHoeDisplayShift(Eigen::Vector3d::Zero());
+  else
+    view_->setLeftHoeDisplayShift(std::nullopt);  // the mirror of the right one's again
   stats_ = {};
   view_->requestRender();
 }
 
 void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std::array<int, 2>& grid,
                         const std::array<double, 2>& shift, const TraceOverlayOptions& o) {
-  SceneLayer& rays = view_->layer("rays");
-  SceneLayer& marks = view_->layer("eye_marks");
-  SceneLayer& effmap = view_->layer("effmap");
-  SceneLayer& seen = view_->layer("seen");
+  SceneLayer& rays = view_->layer(layerName("rays"));
+  SceneLayer& marks = view_->layer(layerName("eye_marks"));
+  SceneLayer& effmap = view_->layer(layerName("effmap"));
+  SceneLayer& seen = view_->layer(layerName("seen"));
   rays.clear();
   marks.clear();
   effmap.clear();
@@ -280,7 +294,7 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
   stats_ = {};
   const Frame nominal = frameOf(scene.hoe.pose);
   const Eigen::Vector3d shift_bench = shift[0] * nominal.x() + shift[1] * nominal.y();
-  view_->setHoeDisplayShift(shift_bench);
+  setPlateShift(shift_bench);
   const EyePlacement eye = placeEye(scene, trace.gaze_deg[0], trace.gaze_deg[1]);
 
   // Pupil outline and fovea (Fig. S5: green pupil, orange fovea).
@@ -333,7 +347,7 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
     }
   }
 
-  if (grid[0] > 1 && grid[1] > 1 && !trace.ray_list.empty()) {
+  if (role_ == OverlayRole::Main && grid[0] > 1 && grid[1] > 1 && !trace.ray_list.empty()) {
     // Per pixel: plate point and mean efficiency over the shown wavelengths, of every ray
     // (the efficiency map) and of the rays entering the pupil (what the eye sees).
     const std::size_t blocks = trace.ray_list.size() / per;
@@ -362,7 +376,7 @@ void TraceOverlay::show(const Scene& scene, const TraceResult& trace, const std:
     // The eye's side of the plate is the one facing the eye (-z of the HOE, scene.h).
     addPixelMesh(seen, grid, where, hit, sum_seen, count_seen, -1.05 * plate.z());
   }
-  colorBar_->SetVisibility(o.rays || o.efficiency_map);
+  colorBar_->SetVisibility(role_ == OverlayRole::Main && (o.rays || o.efficiency_map));
   view_->requestRender();
 }
 

@@ -13,9 +13,18 @@
 //  - the plate shifted by the "HOE follows gaze" travel (SceneView::setHoeDisplayShift).
 // Layers: "rays", "eye_marks", "effmap", "seen". Per-wavelength toggles hide a wavelength's
 // rays. The colour bar lives in the view's right margin (SceneView::legendRenderer).
+//
+// A binocular scene's left eye has an overlay of its own (role LeftEye): its ray fans and its
+// pupil and fovea in the layers "left-rays" and "left-eye_marks", the left train's HOE shifted
+// by its own x_p (SceneView::setLeftHoeDisplayShift); no colour bar (the main one's scale is
+// the same), no efficiency map and no "seen" layer (the eye's view is the right eye's).
 
 #include <array>
 #include <vector>
+
+#include <QString>
+
+#include <Eigen/Core>
 
 #include <vtkSmartPointer.h>
 
@@ -29,6 +38,8 @@ namespace fovea::viz {
 class SceneView;
 
 enum class FanPattern { Horizontal, Vertical, Grid };
+
+enum class OverlayRole { Main, LeftEye };
 
 struct TraceOverlayOptions {
   bool rays = true;
@@ -52,7 +63,7 @@ struct TraceOverlayStats {
 
 class TraceOverlay {
  public:
-  explicit TraceOverlay(SceneView* view);
+  explicit TraceOverlay(SceneView* view, OverlayRole role = OverlayRole::Main);
   ~TraceOverlay();
   TraceOverlay(const TraceOverlay&) = delete;
   TraceOverlay& operator=(const TraceOverlay&) = delete;
@@ -64,9 +75,13 @@ class TraceOverlay {
   void clear();
   const TraceOverlayStats& stats() const { return stats_; }
   vtkScalarBarActor* colorBar() const;
+  // The view's layer this overlay draws `base` ("rays", "eye_marks", ...) into.
+  QString layerName(const char* base) const;
 
  private:
+  void setPlateShift(const Eigen::Vector3d& shift_bench);
   SceneView* view_;
+  OverlayRole role_;
   vtkSmartPointer<vtkScalarBarActor> colorBar_;
   TraceOverlayStats stats_;
 };

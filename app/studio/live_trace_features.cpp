@@ -12,7 +12,6 @@
 #include "app/studio/latency_probe.h"
 #include "app/studio/main_window.h"
 #include "model/scene/eye_scene.h"
-#include "model/scene/scene_geometry.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
 #include "viz/trace_overlay.h"
@@ -35,6 +34,7 @@ LiveTraceFeatures::LiveTraceFeatures(MainWindow* window) : QObject(window), wind
   leftTrace_ = new widgets::LiveTrace(this);
   probe_ = LatencyProbe::createIfRequested(this);
   overlay_ = std::make_unique<viz::TraceOverlay>(window->sceneView());
+  leftOverlay_ = std::make_unique<viz::TraceOverlay>(window->sceneView(), viz::OverlayRole::LeftEye);
   gaze_ = new widgets::GazePanel(doc, window);
   display_ = new widgets::DisplayPanel(window);
   retinaPanel_ = new widgets::RetinaPanel(window);
@@ -119,10 +119,9 @@ void LiveTraceFeatures::requestTrace() {
   const Scene& scene = window_->document()->scene();
   const widgets::TraceDetail detail = dragging ? widgets::TraceDetail::Coarse : widgets::TraceDetail::Refined;
   trace_->request(scene, s, detail);
-  // The left eye: traced while its retina is shown, and while the HOE follows the gaze (its HOE
-  // in the 3-D view travels by its own x_p; both eyes per move, the budget x 2).
-  if (scene.binocular && (retinaPanel_->eye() == EyeSide::Left || s.follow_gaze))
-    leftTrace_->request(eyeScene(scene, EyeSide::Left), s, detail);
+  // A binocular scene's left eye: traced on every move too (its fans, pupil and HOE travel in
+  // the 3-D view, its retina; both eyes per move, the budget x 2).
+  if (scene.binocular) leftTrace_->request(eyeScene(scene, EyeSide::Left), s, detail);
   if (probe_ && dragging) probe_->noteRequest(trace_->newestGeneration());
 }
 
@@ -160,15 +159,12 @@ void LiveTraceFeatures::redraw() {
   } else {
     overlay_->show(r->scene, r->trace, r->grid, r->hoe_shift_mm, o);
   }
-  // The left train's HOE at its own eye's x_p (bench frame), when the HOE follows the gaze and
-  // the left trace is of the scene shown; else the mirror of the right one's.
-  std::optional<Eigen::Vector3d> leftShift;
-  if (const auto l = leftTrace_->latest(); r && r->error.empty() && r->settings.follow_gaze && l && l->error.empty() &&
-                                           window_->document()->scene().binocular) {
-    const Frame plate = frameOf(l->scene.hoe.pose);
-    leftShift = l->hoe_shift_mm[0] * plate.x() + l->hoe_shift_mm[1] * plate.y();
-  }
-  window_->sceneView()->setLeftHoeDisplayShift(leftShift);
+  // The left eye's fans, pupil and fovea, its HOE at its own x_p (a binocular scene only).
+  const auto l = leftTrace_->latest();
+  if (r && r->error.empty() && l && l->error.empty() && window_->document()->scene().binocular)
+    leftOverlay_->show(l->scene, l->trace, l->grid, l->hoe_shift_mm, o);
+  else
+    leftOverlay_->clear();
   retina_->setResult(retinaPanel_->eye() == EyeSide::Left ? leftTrace_->latest() : r, o.hidden_wavelengths_nm);
   // Coarse (dragging) traces carry no grating-vector cloud: the last refined one stays.
   if (r && r->detail == widgets::TraceDetail::Refined) kspace_->setCloud(r->cloud, o.hidden_wavelengths_nm);
@@ -220,7 +216,7 @@ void LiveTraceFeatures::setStartGaze(double yaw, double pitch) {
 
 bool LiveTraceFeatures::waitForTrace(int timeout_ms) {
   return trace_->waitForIdle(timeout_ms) &&
-         (retinaPanel_->eye() != EyeSide::Left || leftTrace_->waitForIdle(timeout_ms));
+         (!window_->document()->scene().binocular || leftTrace_->waitForIdle(timeout_ms));
 }
 
 }  // namespace fovea::studio

@@ -47,6 +47,7 @@ class LiveTraceFeatures : public QObject {
   widgets::LiveTrace* leftTrace() const { return leftTrace_; }
   viz::KSpaceView* kspaceView() const { return kspace_; }
   viz::TraceOverlay* overlay() const { return overlay_.get(); }
+  viz::TraceOverlay* leftOverlay() const { return leftOverlay_.get(); }
   widgets::HandleController* handles() const { return handles_; }
 
   // --show: any of "rays", "effmap", "kcloud", "retina" (rays and effmap switch the 3D
@@ -74,8 +75,9 @@ class LiveTraceFeatures : public QObject {
   viz::KSpaceView* kspace_ = nullptr;
   widgets::HandleController* handles_ = nullptr;
   std::unique_ptr<viz::TraceOverlay> overlay_;
-  LatencyProbe* probe_ = nullptr;       // FOVEA_LATENCY_LOG only
-  bool dragRenderingPrepared_ = false;  // SceneView::prepareDragRendering() ran
+  std::unique_ptr<viz::TraceOverlay> leftOverlay_;  // a binocular scene's left eye
+  LatencyProbe* probe_ = nullptr;                   // FOVEA_LATENCY_LOG only
+  bool dragRenderingPrepared_ = false;              // SceneView::prepareDragRendering() ran
   QDockWidget* retinaDock_ = nullptr;
   QDockWidget* kspaceDock_ = nullptr;
 };

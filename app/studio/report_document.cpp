@@ -328,6 +328,16 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
     layerWasVisible[k] = l.isVisible();
     l.setVisible(true);
   }
+  // A binocular live view's left-eye overlay is not the report's (its figures are of one eye's
+  // trace): hidden, and the left HOE back at the mirror of the drawn one's; restored below.
+  const char* leftLayers[] = {"left-rays", "left-eye_marks"};
+  bool leftWasVisible[2];
+  for (int k = 0; k < 2; ++k) {
+    viz::SceneLayer& l = view->layer(leftLayers[k]);
+    leftWasVisible[k] = l.isVisible();
+    l.setVisible(false);
+  }
+  view->setLeftHoeDisplayShift(std::nullopt);
   overlay->clear();  // the standard views: the bench alone
   view->setScene(d.scene);
 
@@ -449,6 +459,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
   overlay->clear();
   own.reset();
   for (int k = 0; k < 3; ++k) view->layer(overlayLayers[k]).setVisible(layerWasVisible[k]);
+  for (int k = 0; k < 2; ++k) view->layer(leftLayers[k]).setVisible(leftWasVisible[k]);
   view->setScene(shown);
   if (live)
     live->redraw();  // the live fans, effmap, retina and plate shift as they were
