@@ -79,12 +79,7 @@ std::optional<ReportRetinaImage> reportRetinaImage(const Scene& scene, std::arra
     o.per_laser_calibration = options.retina_per_laser_calibration;
     const image::RetinaImageResult r = image::renderRetinaImage(scene, target, o);
     ReportRetinaImage out;
-    out.gaze_deg = gaze_deg;
-    out.accommodation_d = o.accommodation_d;
-    out.hoe_shift_mm = o.hoe_shift_mm;
-    out.speckle_patterns = o.speckle_patterns;
-    out.speckle_grain_pupil = o.speckle_grain_pupil;
-    out.per_laser_calibration = o.per_laser_calibration;
+    out.options = o;
     out.speckle_contrast = r.speckle_contrast;
     out.speckle_expected = r.speckle_expected;
     out.lateral_colour_arcmin = image::lateralColourShownArcmin(r, o);

@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/analysis/study_runner.h"
+#include "model/image/retina_image.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene.h"
 
@@ -62,11 +63,9 @@ struct GazeTrace {
 // model/image/retina_image.h), sRGB for the page, with its line-of-sight numbers.
 struct ReportRetinaImage {
   QImage image;
-  std::array<double, 2> gaze_deg{0, 0};
-  double accommodation_d = 0;
-  std::array<double, 2> hoe_shift_mm{0, 0};  // x_p at the gaze with follow_gaze, else 0
-  int speckle_patterns = 0;
-  bool speckle_grain_pupil = false, per_laser_calibration = false;
+  // What it was rendered with: gaze, accommodation, HOE shift (x_p at the gaze with
+  // follow_gaze, else 0), speckle and calibration.
+  image::RetinaImageOptions options;
   std::optional<double> speckle_contrast, speckle_expected;     // speckle on
   std::optional<double> lateral_colour_arcmin;                  // shown at the line of sight, the largest laser's
   double peripheral_spot_arcmin = 0, peripheral_mtf50_cpd = 0;  // 0 when the line of sight misses the HOE

@@ -60,22 +60,22 @@ QString gazeText(const std::array<double, 2>& gz, const DisplayUnits& u) {
 
 // The retinal image's options and their figures, for its caption (the preview's Retina image options).
 QString retinaImageOptionsText(const ReportRetinaImage& ri) {
-  QString t = ri.speckle_patterns == 0 ? QString(" Speckle off")
-                                       : QString(" Speckle: %1 pattern%2 per laser, %3 grain (seed 1)")
-                                             .arg(ri.speckle_patterns)
-                                             .arg(ri.speckle_patterns == 1 ? "" : "s")
-                                             .arg(ri.speckle_grain_pupil ? "pupil" : "pixel");
+  QString t = ri.options.speckle_patterns == 0 ? QString(" Speckle off")
+                                               : QString(" Speckle: %1 pattern%2 per laser, %3 grain (seed 1)")
+                                                     .arg(ri.options.speckle_patterns)
+                                                     .arg(ri.options.speckle_patterns == 1 ? "" : "s")
+                                                     .arg(ri.options.speckle_grain_pupil ? "pupil" : "pixel");
   if (ri.speckle_contrast) {
     t += QString(", contrast %1").arg(*ri.speckle_contrast, 0, 'f', 3);
     if (ri.speckle_expected) t += QString(" (expected %1)").arg(*ri.speckle_expected, 0, 'f', 3);
   }
-  t += ri.per_laser_calibration ? "; each laser warped on its own (per-laser calibration)"
-                                : "; one geometric calibration (the laser nearest 555 nm)";
+  t += ri.options.per_laser_calibration ? "; each laser warped on its own (per-laser calibration)"
+                                        : "; one geometric calibration (the laser nearest 555 nm)";
   if (ri.lateral_colour_arcmin) t += QString(", lateral colour %1 arcmin").arg(*ri.lateral_colour_arcmin, 0, 'f', 1);
-  if (ri.hoe_shift_mm != std::array<double, 2>{0, 0})
+  if (ri.options.hoe_shift_mm != std::array<double, 2>{0, 0})
     t += QString("; HOE shifted by x_p (%1, %2) mm")
-             .arg(ri.hoe_shift_mm[0], 0, 'f', 2)
-             .arg(ri.hoe_shift_mm[1], 0, 'f', 2);
+             .arg(ri.options.hoe_shift_mm[0], 0, 'f', 2)
+             .arg(ri.options.hoe_shift_mm[1], 0, 'f', 2);
   return t + ".";
 }
 
@@ -515,7 +515,7 @@ ReportContent composeReport(MainWindow& window, const ReportData& d, const QList
         QString("The retinal image at gaze %1, accommodation %2 D (the foveal image's distance). Line of sight: "
                 "peripheral spot %3 arcmin (MTF50 %4 cpd), foveal spot %5 arcmin (MTF50 %6 cpd); power on the "
                 "retina %7 of %8 entering the pupil.")
-                .arg(gazeText(ri.gaze_deg, u), QString::number(ri.accommodation_d, 'g', 3),
+                .arg(gazeText(ri.options.gaze_deg, u), QString::number(ri.options.accommodation_d, 'g', 3),
                      QString::number(ri.peripheral_spot_arcmin, 'f', 1),
                      QString::number(ri.peripheral_mtf50_cpd, 'g', 3), QString::number(ri.foveal_spot_arcmin, 'f', 2),
                      QString::number(ri.foveal_mtf50_cpd, 'g', 3), QString::number(ri.power_on_retina, 'g', 8),
