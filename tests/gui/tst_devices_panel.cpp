@@ -134,6 +134,28 @@ class TestDevicesPanel : public QObject {
     QVERIFY(std::abs(rig.emulator("hoe", "x").position() - (start - 0.25)) < 1e-4);  // x untouched
   }
 
+  // The loaded-run flake of jogMovesTheVirtualAxisByTheStep, made deterministic: two jogs finish on
+  // the worker while the GUI thread runs no events, so both reports still wait in its queue. The
+  // third click is a new jog, not key auto-repeat behind a running one, and must not be dropped.
+  void aJogWhoseReportIsStillQueuedDoesNotBlockTheNextOne() {
+    Rig rig(true);
+    QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);
+    devices::AxisWorker* worker = rig.panel->liveBench()->bench().find("hoe", "x");
+    QVERIFY(worker);
+    const double start = rig.emulator("hoe", "x").position();
+    rig.panel->setStepSize(0.25);
+    rig.panel->setSelectedAxis("hoe.x");
+    rig.panel->setFocus();
+    for (int i = 0; i < 2; ++i) {
+      QTest::keyClick(rig.panel.get(), Qt::Key_Right);
+      worker->submit([](devices::Stage&) {}).get();  // behind the jog: the jog has finished (no Qt events run)
+    }
+    QTest::keyClick(rig.panel.get(), Qt::Key_Right);
+    QTRY_VERIFY2_WITH_TIMEOUT(
+        std::abs(rig.emulator("hoe", "x").position() - (start + 0.75)) < 1e-4,
+        qPrintable(QString("emulator at start %1").arg(rig.emulator("hoe", "x").position() - start)), 5000);
+  }
+
   void escapeStopsEveryAxisMidMove() {
     Rig rig(false);  // real time: a 7 mm move at 0.5 mm/s takes ~14 s unless stopped
     QTRY_VERIFY_WITH_TIMEOUT(rig.ready(), 10000);

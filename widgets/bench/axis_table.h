@@ -75,7 +75,12 @@ class AxisTable : public QGroupBox {
     QLabel *name = nullptr, *position = nullptr, *state = nullptr;
     QPushButton *reverse = nullptr, *forward = nullptr, *home = nullptr, *go = nullptr;
     QDoubleSpinBox* target = nullptr;
+    // Commands submitted and not yet reported back on the GUI thread.
     std::shared_ptr<std::atomic<int>> pending = std::make_shared<std::atomic<int>>(0);
+    // Commands submitted and not yet finished on the worker thread: the jog throttle counts these,
+    // not `pending`, whose count-down waits for the GUI thread's queue (a jog that has finished but
+    // whose report is still queued must not block the next one).
+    std::shared_ptr<std::atomic<int>> unfinished = std::make_shared<std::atomic<int>>(0);
     QString note, note_tip;  // shown instead of the computed state while set
     bool note_error = false;
     bool stop_pending = false;  // Esc while it moved: say where it stopped once it stands
