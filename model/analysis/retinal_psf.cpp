@@ -13,6 +13,7 @@
 
 #include "model/analysis/foveal_optics.h"
 #include "model/physics/eye_model.h"
+#include "model/physics/eye_oblique_focus.h"
 #include "model/physics/hologram_astigmatism.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/schematic_eye.h"
@@ -174,6 +175,28 @@ PeripheralSpot peripheralSpotAt(const Scene& scene, double wavelength_nm, double
   const double a = 0.5 * scene.eye.pupil_diameter_mm;
   s.pupil_transmission = 1.0 - std::exp(-2.0 * a * a / (s.beam_radius_pupil_mm * s.beam_radius_pupil_mm));
   const SchematicEyeState e = navarroEye(accommodation_d, wavelength_nm);
+  // The eye off its axis (eye_oblique_focus.h): at the ray's angle theta from the line of sight
+  // the real eye focuses the tangential and the sagittal pencil with extra powers P_t, P_s over
+  // its paraxial matrix; they act as a thin astigmatic lens at the entrance pupil,
+  // Q^-1 -> Q^-1 - P with P = P_t tau tau^T + P_s sigma sigma^T (tau: the field's radial
+  // direction in the (yaw, pitch) basis, sigma normal to it). Beyond 60 deg the 60 deg values.
+  {
+    const double cos_theta = std::clamp(-u_out.dot(eye.gaze), -1.0, 1.0);
+    s.eye_field_deg = std::acos(cos_theta) / kDeg;
+    const Eigen::Vector3d radial = -eye.gaze - cos_theta * u_out;
+    if (s.eye_field_deg > 1e-6 && radial.norm() > 1e-12) {
+      const EyeObliqueFocus ob = eyeObliqueFocus(e, std::min(s.eye_field_deg, 60.0));
+      if (ob.valid) {
+        s.eye_power_d = {ob.power_tangential_d, ob.power_sagittal_d};
+        Eigen::Vector2d tau(radial.dot(basis.col(0)), radial.dot(basis.col(1)));
+        tau.normalize();
+        const Eigen::Vector2d sigma(-tau.y(), tau.x());
+        const Eigen::Matrix2d p =
+            (ob.power_tangential_d * tau * tau.transpose() + ob.power_sagittal_d * sigma * sigma.transpose()) / 1000.0;
+        qm = (qm.inverse() - p.cast<std::complex<double>>()).inverse();
+      }
+    }
+  }
   qm = through(e.pupil_to_retina, qm);
   const Eigen::Matrix2d cov_retina = covariance(qm);
   s.beam_radius_retina_mm = meanRadius(cov_retina);

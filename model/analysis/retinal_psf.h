@@ -14,10 +14,12 @@
 // HOE has different tangential and sagittal powers (the holographic Coddington equations), and
 // it stretches the beam's footprint by cos theta_out / cos theta_in in the plane of incidence,
 // so the outgoing beam is astigmatic: a 2x2 complex curvature matrix, propagated through free
-// space and the eye as Q -> (A Q + B)(C Q + D)^-1. The plate's finite thickness is neglected,
-// the eye is paraxial (the same ABCD at every field angle: its own off-axis aberrations are
-// not modelled). Then free space to the entrance pupil (on the trace's pupil disc) and the
-// schematic eye (schematic_eye.h) to the retina. The spot on the retina is an elliptical
+// space and the eye as Q -> (A Q + B)(C Q + D)^-1. The plate's finite thickness is neglected;
+// then free space to the entrance pupil (on the trace's pupil disc) and the schematic eye
+// (schematic_eye.h) to the retina: its paraxial matrix plus, off the line of sight, its oblique
+// astigmatism and field curvature at the ray's angle (eye_oblique_focus.h: the Coddington
+// pencil of the Navarro eye's conic surfaces onto its curved retina) as a thin astigmatic lens at
+// the entrance pupil. The spot on the retina is an elliptical
 // Gaussian (1/e^2 radii w_major, w_minor); as a visual angle w_r / B (B = retina mm per radian
 // of the chief ray). Its reported size is that of the circle of equal area, w = sqrt(w_major
 // w_minor): FWHM = 1.1774 w is the equal-area diameter of the half-maximum ellipse, which holds
@@ -73,6 +75,10 @@ struct PeripheralSpot {
   double orientation_deg = 0;                               // long axis from +yaw towards +pitch
   std::array<double, 3> covariance_arcmin2{0, 0, 0};        // yaw-yaw, pitch-pitch, yaw-pitch (sigma^2)
   SpotMetrics metrics_major;                                // along the long axis
+  // The eye off its axis (eye_oblique_focus.h): the ray's angle from the line of sight and the
+  // extra tangential and sagittal powers of the real eye there (D; 0 on the line of sight).
+  double eye_field_deg = 0;
+  std::array<double, 2> eye_power_d{0, 0};
 };
 
 // The peripheral pixel on the line of sight for a gaze, HOE shift (HOE local x, y) and accommodation.

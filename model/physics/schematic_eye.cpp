@@ -34,20 +34,15 @@ double chromaticRefractionD(double wavelength_nm) {
   return 1.68524 - 633.46 / (wavelength_nm - 214.102);
 }
 
-namespace {
-
-struct NavarroSurfaces {
-  double R[4];  // mm
-  double t[3];  // cornea, aqueous, lens thickness (mm)
-  double n[4];  // cornea, aqueous, lens, vitreous
-};
-
 NavarroSurfaces navarroSurfaces(double a) {
   const double l = std::log(1.0 + a);
   return {{7.72, 6.50, 10.2 - 1.75 * l, -6.0 + 0.2294 * l},
+          {-0.26, 0.0, -3.1316 - 0.34 * l, -1.0 - 0.125 * l},
           {0.55, 3.05 - 0.05 * l, 4.0 + 0.1 * l},
           {1.3771, 1.3374, 1.42 + 9e-5 * (10.0 * a + a * a), 1.3360}};
 }
+
+namespace {
 
 // Corneal vertex (air side) to the stop plane (the lens' front vertex, aqueous side).
 RayMatrix navarroCorneaToStop(const NavarroSurfaces& s) {

@@ -53,6 +53,21 @@ inline constexpr double kEyeReferenceWavelengthNm = 555.0;
 // Thibos et al. (1992) chromatic difference of refraction (diopters), 0 at ~590 nm.
 double chromaticRefractionD(double wavelength_nm);
 
+// The Navarro eye's surfaces for lens parameter A (Navarro's formulae above; indices at the
+// reference wavelength), with their conic constants, which only the off-axis trace
+// (eye_oblique_focus.h) uses: cornea -0.26 and 0, lens -3.1316 - 0.34 ln(1+A) and
+// -1 - 0.125 ln(1+A) (Navarro et al. 1985). Surface sag z = c r^2 / (1 + sqrt(1 - (1+Q) c^2 r^2)).
+struct NavarroSurfaces {
+  double R[4];  // mm
+  double Q[4];  // conic constants
+  double t[3];  // cornea, aqueous, lens thickness (mm)
+  double n[4];  // cornea, aqueous, lens, vitreous
+};
+NavarroSurfaces navarroSurfaces(double lens_parameter_d);
+// The retina of the wide-angle version of the eye (Escudero-Sanz & Navarro 1999, JOSA A 16,
+// 1881): a sphere of radius -12 mm, its vertex at the axial length.
+inline constexpr double kNavarroRetinaRadiusMm = -12.0;
+
 struct SchematicEyeState {
   double accommodation_d = 0;   // requested: vergence in focus at the entrance pupil (555 nm)
   double lens_parameter_d = 0;  // Navarro's A that achieves it

@@ -56,10 +56,14 @@ class TestBench : public QObject {
     bench.moveElement("hoe", "x", 2.0).get();
     QVERIFY(std::abs(bench.virtualController("hoe", "x")->position() - 14.5) < 1e-4);
     QTRY_VERIFY_WITH_TIMEOUT(std::abs(hx->snapshot().element_position - 2.0) < 1e-4, 2000);
-    {
-      std::lock_guard lock(m);
-      QVERIFY(!seen.empty());
-    }
+    // The worker updates its snapshot first and calls the listener after (publish): wait for the
+    // listener too (a single look right after the snapshot changed failed once in an idle full run).
+    QTRY_VERIFY_WITH_TIMEOUT(
+        [&] {
+          std::lock_guard lock(m);
+          return !seen.empty() && std::abs(seen.back().element_position - 2.0) < 1e-4;
+        }(),
+        2000);
     hx->setListener(nullptr);
     const std::size_t seen_after_detach = [&] {
       std::lock_guard lock(m);

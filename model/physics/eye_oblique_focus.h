@@ -1,0 +1,67 @@
+#pragma once
+// The schematic eye off its axis (issue 29): oblique astigmatism and field curvature of the
+// Navarro eye (schematic_eye.h) for a narrow beam along the chief ray, by Coddington's equations.
+//
+// The paraxial eye (schematic_eye.h) has one ray matrix for every field angle. A Maxwellian
+// pixel beam is narrow (about 1 mm at the pupil) and enters near the pupil centre, so what the
+// eye does to it off axis is the focus of a thin pencil along the chief ray: its tangential and
+// sagittal foci, which the four conic surfaces split (oblique astigmatism) and which the curved
+// retina meets at different distances (field curvature).
+//
+// Method, in the meridional plane (y up, z from the corneal vertex towards the retina):
+//  - the real chief ray: the ray at field angle theta in air that crosses the stop (the lens'
+//    front vertex plane) at its centre, found by secant iteration on where it crosses the
+//    paraxial entrance-pupil plane (pupil aberration makes that point move off axis);
+//  - at each surface (conic: sag z = c r^2 / (1 + sqrt(1 - (1+Q) c^2 r^2))) Snell's law for
+//    the ray and Coddington's equations for the pencil (Welford, "Aberrations of Optical
+//    Systems", ch. 10; Born & Wolf 4.6), written with the curvatures v = 1/distance along the ray:
+//      tangential  n' cos^2 I' v_t' = n cos^2 I v_t + (n' cos I' - n cos I) k_m
+//      sagittal    n' v_s'          = n v_s         + (n' cos I' - n cos I) k_s
+//    with the surface's principal curvatures at the hit point (derived from the sag z(r):
+//    k_s = z' / (r sqrt(1 + z'^2)), k_m = z'' / (1 + z'^2)^(3/2)):
+//      k_s = c / (1 - Q c^2 r^2)^(1/2),  k_m = c / (1 - Q c^2 r^2)^(3/2)
+//    and the transfer by a distance d along the ray v -> v / (1 - d v);
+//  - the retina: the sphere of Escudero-Sanz & Navarro (1999), radius -12 mm, vertex at the
+//    axial length (schematic_eye.h); the distance along the chief ray to it, d_r;
+//  - the vergence at the entrance pupil (an object point 1/V along the chief ray from where it
+//    crosses the paraxial entrance-pupil plane; V < 0: in front) that each pencil focuses on the
+//    retina, v'(V) = 1/d_r after the last surface, by secant iteration (the chain is a Moebius
+//    map of V, so it converges in a few steps).
+// On axis both equal the paraxial eye's focus (-accommodation, at 555 nm); the result is given
+// relative to it, as the extra power a thin astigmatic lens at the entrance pupil would add to
+// the paraxial eye to focus like the real one at theta:
+//      P_t = V_axis - V_t,  P_s = V_axis - V_s  (diopters; > 0: the eye is stronger there).
+// Indices are the reference-wavelength ones (the chromatic difference is a thin lens at the
+// pupil in schematic_eye.h, the same at every field to this order). Departures, all stated: the
+// pencil follows the chief ray, not the actual entry point of each pixel beam in the pupil (its
+// coma is not modelled); the retina's local magnification (distortion) is not applied.
+
+namespace fovea {
+
+struct SchematicEyeState;
+
+// The chief ray's pencil at one field angle and entrance-pupil vergence, after the last surface.
+struct ChiefRayFoci {
+  bool valid = false;
+  double pupil_height_mm = 0;                   // where the real chief ray crosses the paraxial entrance-pupil plane
+  double last_hit_y_mm = 0, last_hit_z_mm = 0;  // on the lens' back surface
+  double direction_y = 0, direction_z = 1;      // unit, in the vitreous
+  double tangential_mm = 0, sagittal_mm = 0;    // focus distances from the last hit along the ray (inf: collimated)
+  double retina_mm = 0;                         // distance from the last hit along the ray to the retina
+};
+
+// theta in degrees (0..60, the eye's axis = the line of sight); vergence in diopters.
+ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d);
+
+struct EyeObliqueFocus {
+  bool valid = false;
+  double field_deg = 0;
+  double tangential_d = 0, sagittal_d = 0;              // entrance-pupil vergences focused on the retina (D)
+  double axis_d = 0;                                    // the same on axis (= -accommodation at 555 nm)
+  double power_tangential_d = 0, power_sagittal_d = 0;  // V_axis - V_t, V_axis - V_s
+  double astigmatism_d = 0;                             // |P_t - P_s|
+};
+
+EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg);
+
+}  // namespace fovea
