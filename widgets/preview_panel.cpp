@@ -130,6 +130,7 @@ class PreviewWorker : public QObject {
     o.speckle_patterns = q.options.speckle_patterns;
     o.speckle_grain_pupil = q.options.speckle_grain_pupil;
     o.per_laser_calibration = q.options.per_laser_calibration;
+    o.speckle_seed = static_cast<std::uint64_t>(q.options.speckle_seed);
     try {
       const auto t0 = std::chrono::steady_clock::now();
       o.hoe_shift_mm = hoeShift(gaze);

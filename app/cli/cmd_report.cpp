@@ -1,6 +1,7 @@
 // fovea-cli report SCENE --out FILE.pdf|FILE.html [--gaze-deg A[,B] ...] [--rays N] [--follow-gaze]
 //                 [--tolerance-trials N [--tolerance-spec FILE]] [--eye left|right|both]
-//                 [--retina-speckle N] [--retina-grain pixel|pupil] [--retina-calibration one|per-laser] [--json]
+//                 [--retina-speckle N] [--retina-grain pixel|pupil] [--retina-seed S]
+//                 [--retina-calibration one|per-laser] [--json]
 // The design report of a scene: title page with the scene summary, 3-D views, the bench at
 // each gaze, retina maps, the analyses' plots and key numbers, and with --tolerance-trials the
 // Tolerance section (app/studio/report_document.h, report_tolerance.h). A binocular scene: the
@@ -49,6 +50,7 @@ struct ReportArgs {
   bool json = false;
   int retina_speckle = 0;  // the retinal image's options (the preview's Retina image controls)
   std::string retina_grain = "pixel", retina_calibration = "one";
+  int retina_seed = 1;
 };
 
 std::string lower(std::string s) {
@@ -138,6 +140,8 @@ void install(CLI::App& app) {
       ->check(CLI::Range(0, 16));
   cmd->add_option("--retina-grain", a->retina_grain, "speckle grain: pixel (default) or pupil")
       ->check(CLI::IsMember({"pixel", "pupil"}));
+  cmd->add_option("--retina-seed", a->retina_seed, "the speckle patterns' seed (default 1; 1..999, the studio's range)")
+      ->check(CLI::Range(1, 999));
   cmd->add_option("--retina-calibration", a->retina_calibration,
                   "geometric calibration of the retinal image: one (default, the laser nearest 555 nm) or per-laser")
       ->check(CLI::IsMember({"one", "per-laser"}));
@@ -177,7 +181,7 @@ void install(CLI::App& app) {
     if (a->follow_gaze) argv.push_back("--follow-gaze");
     if (!eye->empty()) argv.push_back("--report-eye=" + *eye);
     argv.push_back("--report-retina=" + std::to_string(a->retina_speckle) + "," + a->retina_grain + "," +
-                   a->retina_calibration);
+                   a->retina_calibration + "," + std::to_string(a->retina_seed));
     if (a->tolerance_trials > 0) {
       argv.push_back("--report-tolerance");
       argv.push_back(std::to_string(a->tolerance_trials));

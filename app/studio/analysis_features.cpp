@@ -241,12 +241,7 @@ bool AnalysisFeatures::exportReport(const QString& path, const ReportOptions& re
   if (window_->liveTraceFeatures() && window_->liveTraceFeatures()->gazePanel()->followGaze())
     options.follow_gaze = true;
   // The report's retinal image takes the Foveated preview's Retina image options.
-  if (const widgets::PreviewPanel* preview = window_->previewPanel()) {
-    const widgets::RetinaPreviewOptions r = preview->retinaOptions();
-    options.retina_speckle_patterns = r.speckle_patterns;
-    options.retina_speckle_grain_pupil = r.speckle_grain_pupil;
-    options.retina_per_laser_calibration = r.per_laser_calibration;
-  }
+  if (const widgets::PreviewPanel* preview = window_->previewPanel()) options.retina = preview->retinaOptions();
   const Scene scene = window_->document()->scene();
   const QString scenePath = window_->document()->filePath();
   auto cancel = std::make_shared<std::atomic<bool>>(false);

@@ -101,9 +101,9 @@ int main(int argc, char** argv) {
       "EYE");
   QCommandLineOption reportRetinaOpt(
       "report-retina",
-      "With --report: the retinal image's speckle patterns (0..16), grain (pixel|pupil) and calibration "
-      "(one|per-laser).",
-      "SPECKLE,GRAIN,CALIBRATION");
+      "With --report: the retinal image's speckle patterns (0..16), grain (pixel|pupil), calibration "
+      "(one|per-laser) and optional speckle seed (1..999, default 1).",
+      "SPECKLE,GRAIN,CALIBRATION[,SEED]");
   parser.addOption(reportOpt);
   parser.addOption(reportEyeOpt);
   parser.addOption(reportRetinaOpt);

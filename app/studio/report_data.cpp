@@ -74,9 +74,10 @@ std::optional<ReportRetinaImage> reportRetinaImage(const Scene& scene, std::arra
     const double d_f = scene.foveal_display.combiner.image_distance_mm;
     o.accommodation_d = d_f > 250 ? std::clamp(1000.0 / d_f, 0.0, 4.0) : 1.25;
     o.hoe_shift_mm = hoe_shift_mm;
-    o.speckle_patterns = options.retina_speckle_patterns;
-    o.speckle_grain_pupil = options.retina_speckle_grain_pupil;
-    o.per_laser_calibration = options.retina_per_laser_calibration;
+    o.speckle_patterns = options.retina.speckle_patterns;
+    o.speckle_grain_pupil = options.retina.speckle_grain_pupil;
+    o.per_laser_calibration = options.retina.per_laser_calibration;
+    o.speckle_seed = static_cast<std::uint64_t>(options.retina.speckle_seed);
     const image::RetinaImageResult r = image::renderRetinaImage(scene, target, o);
     ReportRetinaImage out;
     out.options = o;

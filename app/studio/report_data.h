@@ -26,6 +26,7 @@
 #include "model/image/retina_image.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene.h"
+#include "widgets/retina_image_controls.h"
 
 namespace fovea::studio {
 
@@ -44,11 +45,9 @@ struct ReportOptions {
   int tolerance_seed = 1;
   // A binocular scene's eye: "left", "right" or "both"; empty: both. Ignored for a monocular scene.
   QString eye;
-  // The retinal image's speckle and lateral-colour options (the studio passes the Foveated
-  // preview's Retina image options; model/image/retina_image.h, seed 1).
-  int retina_speckle_patterns = 0;
-  bool retina_speckle_grain_pupil = false;
-  bool retina_per_laser_calibration = false;
+  // The retinal image's speckle and lateral-colour options: the Foveated preview's Retina image
+  // options, which the studio passes (model/image/retina_image.h).
+  widgets::RetinaPreviewOptions retina;
 };
 
 struct GazeTrace {

@@ -61,10 +61,11 @@ QString gazeText(const std::array<double, 2>& gz, const DisplayUnits& u) {
 // The retinal image's options and their figures, for its caption (the preview's Retina image options).
 QString retinaImageOptionsText(const ReportRetinaImage& ri) {
   QString t = ri.options.speckle_patterns == 0 ? QString(" Speckle off")
-                                               : QString(" Speckle: %1 pattern%2 per laser, %3 grain (seed 1)")
+                                               : QString(" Speckle: %1 pattern%2 per laser, %3 grain (seed %4)")
                                                      .arg(ri.options.speckle_patterns)
                                                      .arg(ri.options.speckle_patterns == 1 ? "" : "s")
-                                                     .arg(ri.options.speckle_grain_pupil ? "pupil" : "pixel");
+                                                     .arg(ri.options.speckle_grain_pupil ? "pupil" : "pixel")
+                                                     .arg(static_cast<qulonglong>(ri.options.speckle_seed));
   if (ri.speckle_contrast) {
     t += QString(", contrast %1").arg(*ri.speckle_contrast, 0, 'f', 3);
     if (ri.speckle_expected) t += QString(" (expected %1)").arg(*ri.speckle_expected, 0, 'f', 3);

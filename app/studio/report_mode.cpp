@@ -39,18 +39,21 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
   // The retinal image's options go where the report reads them: the Foveated preview's controls.
   if (!retina.isEmpty()) {
     const QStringList parts = retina.split(',');
-    bool ok = parts.size() == 3;
+    bool ok = parts.size() == 3 || parts.size() == 4;
     const int speckle = ok ? parts[0].toInt(&ok) : 0;
-    ok = ok && speckle >= 0 && speckle <= 16 && (parts[1] == "pixel" || parts[1] == "pupil") &&
-         (parts[2] == "one" || parts[2] == "per-laser");
+    bool seed_ok = true;
+    const int seed = parts.size() == 4 ? parts[3].toInt(&seed_ok) : 1;
+    ok = ok && seed_ok && speckle >= 0 && speckle <= 16 && (parts[1] == "pixel" || parts[1] == "pupil") &&
+         (parts[2] == "one" || parts[2] == "per-laser") && seed >= 1 &&
+         seed <= widgets::RetinaImageControls::kMaxSpeckleSeed;
     if (!ok) {
-      err << "fovea-studio: --report-retina: expected SPECKLE,GRAIN,CALIBRATION (0..16, pixel|pupil, "
-             "one|per-laser), got \""
-          << retina << "\"\n";
+      err << "fovea-studio: --report-retina: expected SPECKLE,GRAIN,CALIBRATION[,SEED] (0..16, pixel|pupil, "
+             "one|per-laser, 1.."
+          << widgets::RetinaImageControls::kMaxSpeckleSeed << "), got \"" << retina << "\"\n";
       return 2;
     }
     if (widgets::PreviewPanel* preview = window.previewPanel())
-      preview->setRetinaOptions({speckle, parts[1] == "pupil", parts[2] == "per-laser"});
+      preview->setRetinaOptions({speckle, parts[1] == "pupil", parts[2] == "per-laser", seed});
   }
   ReportOptions options;
   options.eye = eye;
@@ -109,7 +112,8 @@ int runReportMode(MainWindow& window, const QString& out, const QStringList& gaz
     const widgets::RetinaPreviewOptions r = preview->retinaOptions();
     manifest.insert("retina_image", QJsonObject{{"speckle_patterns", r.speckle_patterns},
                                                 {"speckle_grain", r.speckle_grain_pupil ? "pupil" : "pixel"},
-                                                {"calibration", r.per_laser_calibration ? "per-laser" : "one"}});
+                                                {"calibration", r.per_laser_calibration ? "per-laser" : "one"},
+                                                {"speckle_seed", r.speckle_seed}});
   }
   if (eyes.is_object())  // "eye" or "eyes" (report_data.h)
     for (auto it = eyes.begin(); it != eyes.end(); ++it)

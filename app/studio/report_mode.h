@@ -1,7 +1,7 @@
 #pragma once
 // `fovea-studio [SCENE] --report FILE.pdf|FILE.html [--gaze-deg A[,B]]... [--rays N]
 // [--report-tolerance N [--report-tolerance-spec FILE]] [--report-eye left|right|both]
-// [--report-retina SPECKLE,GRAIN,CALIBRATION]`: the
+// [--report-retina SPECKLE,GRAIN,CALIBRATION[,SEED]]`: the
 // headless report (what `fovea-cli report` drives). The window is shown (an X display, e.g.
 // Xvfb, gives VTK its OpenGL context), the analyses are computed, the report is written and
 // a JSON manifest {"out","format","pages","figures","problems","gaze_figures","sections"} is
@@ -9,8 +9,9 @@
 // the shipped default spec).
 // --report-retina sets the retinal image's options as the Foveated preview's Retina image
 // controls do (the report takes them from there): speckle patterns per laser 0..16, grain
-// "pixel" or "pupil", calibration "one" or "per-laser"; the manifest echoes them under
-// "retina_image" {"speckle_patterns", "speckle_grain", "calibration"}.
+// "pixel" or "pupil", calibration "one" or "per-laser", speckle seed 1..999 (default 1); the
+// manifest echoes them under "retina_image" {"speckle_patterns", "speckle_grain", "calibration",
+// "speckle_seed"}.
 // Exit codes: 0 written, 1 the report could not be written, 2 bad arguments.
 
 #include <QString>

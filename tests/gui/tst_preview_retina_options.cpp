@@ -76,9 +76,12 @@ class TestPreviewRetinaOptions : public QObject {
     QCOMPARE(speckle->minimum(), 0);
     QCOMPARE(speckle->maximum(), 16);
     QCOMPARE(speckle->text(), QString("off"));
-    QVERIFY(!grain->isEnabled());  // no speckle, no grain to choose
+    auto* seed = controls->findChild<QSpinBox*>("RetinaSpeckleSeed");
+    QVERIFY(seed);
+    QVERIFY(!grain->isEnabled() && !seed->isEnabled());  // no speckle, no grain or seed to choose
+    QCOMPARE(seed->value(), 1);
     speckle->setValue(3);
-    QVERIFY(grain->isEnabled());
+    QVERIFY(grain->isEnabled() && seed->isEnabled());
     grain->setCurrentIndex(1);
     calibration->setCurrentIndex(1);
     QCOMPARE(panel->retinaOptions(), (RetinaPreviewOptions{3, true, true}));
@@ -147,6 +150,29 @@ class TestPreviewRetinaOptions : public QObject {
                                .arg(*f.speckle_contrast, 0, 'f', 3)
                                .arg(*f.speckle_expected, 0, 'f', 3)),
              qPrintable(info));
+    // Another seed (the options row's seed box): other patterns, the model's and fovea-cli's
+    // `--seed 7` to 1e-9, and a contrast other than seed 1's.
+    auto* seedBox = panel->findChild<QSpinBox*>("RetinaSpeckleSeed");
+    QVERIFY(seedBox && seedBox->isEnabled());
+    seedBox->setValue(7);
+    const RetinaPreviewOptions seeded{4, true, false, 7};
+    QCOMPARE(panel->retinaOptions(), seeded);
+    QTRY_VERIFY_WITH_TIMEOUT(retinaFrameOf(panel, gaze, 1.25, seeded), 120000);
+    o.speckle_seed = 7;
+    const image::RetinaImageResult r7 = image::renderRetinaImage(scene, target, o);
+    const double c7 = *panel->lastFrame().speckle_contrast;
+    qInfo("speckle contrast, seed 7: studio %.12f, model %.12f", c7, *r7.speckle_contrast);
+    QVERIFY(std::abs(c7 - *r7.speckle_contrast) <= 1e-9);
+    QVERIFY(std::abs(c7 - *f.speckle_contrast) > 1e-6);
+    QProcess cli7;
+    cli7.start(FOVEA_CLI_PATH,
+               {"retina-image", "--image", QString::fromStdString(png), "--out", out, "--gaze-deg", "5,0",
+                "--accommodation-d", "1.25", "--speckle", "4", "--speckle-grain", "pupil", "--seed", "7", "--json"});
+    QVERIFY(cli7.waitForFinished(120000));
+    QVERIFY2(cli7.exitCode() == 0, cli7.readAllStandardError().constData());
+    QVERIFY(std::abs(
+                nlohmann::json::parse(cli7.readAllStandardOutput().toStdString()).at("speckle_contrast").get<double>() -
+                c7) <= 1e-9);
     // Off again: no speckle figure.
     panel->setRetinaOptions({0, true, false});
     QTRY_VERIFY_WITH_TIMEOUT(retinaFrameOf(panel, gaze, 1.25, {0, true, false}), 120000);

@@ -301,21 +301,24 @@ class TestReport : public QObject {
   // caption with the speckle contrast; out-of-range values are refused before the studio starts.
   void retinaImageOptionsFromTheCommandLine() {
     const QString html = tmpDir() + "/retina-options.html";
-    const Run r = run(FOVEA_CLI_PATH, {"report", "", "--out", html, "--rays", "100", "--retina-speckle", "4",
-                                       "--retina-grain", "pupil", "--retina-calibration", "per-laser", "--json"});
+    const Run r =
+        run(FOVEA_CLI_PATH, {"report", "", "--out", html, "--rays", "100", "--retina-speckle", "4", "--retina-grain",
+                             "pupil", "--retina-seed", "7", "--retina-calibration", "per-laser", "--json"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     const nlohmann::json m = nlohmann::json::parse(r.out.toStdString());
     QVERIFY2(m["problems"].empty(), r.out.toUtf8().constData());
-    QCOMPARE(m["retina_image"],
-             nlohmann::json({{"speckle_patterns", 4}, {"speckle_grain", "pupil"}, {"calibration", "per-laser"}}));
+    QCOMPARE(
+        m["retina_image"],
+        nlohmann::json(
+            {{"speckle_patterns", 4}, {"speckle_grain", "pupil"}, {"calibration", "per-laser"}, {"speckle_seed", 7}}));
     QFile f(html);
     QVERIFY(f.open(QIODevice::ReadOnly));
     const QString text = QString::fromUtf8(f.readAll());
-    const int at = text.indexOf("Speckle: 4 patterns per laser, pupil grain (seed 1), contrast ");
+    const int at = text.indexOf("Speckle: 4 patterns per laser, pupil grain (seed 7), contrast ");
     QVERIFY2(at > 0, qPrintable(text.mid(text.indexOf("The retinal image at gaze"), 600)));
     QVERIFY(text.mid(at, 300).contains("each laser warped on its own (per-laser calibration), lateral colour 0.0"));
     for (const QStringList& bad : {QStringList{"--retina-speckle", "17"}, QStringList{"--retina-grain", "coarse"},
-                                   QStringList{"--retina-calibration", "two"}}) {
+                                   QStringList{"--retina-calibration", "two"}, QStringList{"--retina-seed", "0"}}) {
       const Run b = run(FOVEA_CLI_PATH, QStringList{"report", "", "--out", tmpDir() + "/bad.html"} + bad);
       QVERIFY2(b.code == 2, qPrintable(bad.join(' ') + ": " + b.err));
     }
