@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <nlopt.hpp>
 
+#include "model/physics/snell.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 
@@ -120,10 +121,9 @@ bool refractAt(Eigen::Vector3d& p, Eigen::Vector3d& d, const Eigen::Vector3d& ve
     if ((off - off.dot(axis) * axis).norm() > clear_radius_mm) return false;
   }
   if (normal.dot(d) > 0) normal = -normal;
-  const double eta = n_from / n_to, cos_i = -normal.dot(d);
-  const double k = 1 - eta * eta * (1 - cos_i * cos_i);
-  if (k < 0) return false;
-  d = (eta * d + (eta * cos_i - std::sqrt(k)) * normal).normalized();
+  const auto r = refractDirection(d, normal, n_from, n_to);
+  if (!r) return false;
+  d = r->direction.normalized();
   return true;
 }
 
