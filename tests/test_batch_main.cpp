@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "model/memory_policy.h"
 #include "tests/test_batch.h"
 
 namespace fovea::testing {
@@ -38,6 +39,7 @@ const char* currentTestName() {
 
 int main(int argc, char** argv) {
   using namespace fovea::testing;
+  fovea::keepFreedMemoryForReuse();  // as the executables run (model/memory_policy.h)
   const auto& tests = registry();
   if (argc >= 1) {
     if (const auto it = tests.find(fileName(argv[0])); it != tests.end()) {

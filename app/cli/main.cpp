@@ -5,8 +5,10 @@
 #include "app/cli/cli_common.h"
 #include "fovea/version.h"
 #include "model/io/output_file.h"
+#include "model/memory_policy.h"
 
 int main(int argc, char** argv) {
+  fovea::keepFreedMemoryForReuse();  // large buffers reused between renders (model/memory_policy.h)
   CLI::App app{"fovea-cli: headless Foveated AR Studio (JSON output)", "fovea-cli"};
   app.set_version_flag("--version", FOVEA_VERSION_STRING);
   app.require_subcommand(1);

@@ -4,10 +4,14 @@
 
 #include "app/python/py_bindings.h"
 #include "fovea/version.h"
+#include "model/memory_policy.h"
 
 PYBIND11_MODULE(fovea, m) {
   m.doc() = "Foveated AR Studio's model: scenes, traces, the registered analyses and grating physics.";
   m.attr("__version__") = FOVEA_VERSION_STRING;
+  // Large buffers reused between renders, as in fovea-cli (model/memory_policy.h): the
+  // interpreter keeps its high-water mark of memory.
+  fovea::keepFreedMemoryForReuse();
   fovea::python::bindScene(m);
   fovea::python::bindAnalyses(m);
   fovea::python::bindGratings(m);

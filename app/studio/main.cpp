@@ -24,6 +24,7 @@
 #include "app/studio/report_mode.h"
 #include "app/studio/window_capture.h"
 #include "fovea/version.h"
+#include "model/memory_policy.h"
 #include "model/vector_state.h"
 #include "viz/kspace_view.h"
 #include "viz/scene_view.h"
@@ -47,6 +48,7 @@ void settle(int ms) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fovea::keepFreedMemoryForReuse();                 // large buffers reused between renders (model/memory_policy.h)
   fovea::viz::matchSoftwareRasterizerToAffinity();  // before any OpenGL context
   // VTK's OpenGL2 backend needs a 3.2+ core profile, set before the QApplication exists.
   fovea::viz::installDefaultSurfaceFormat();

@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "app/embedded_scene.h"
+#include "model/memory_policy.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
@@ -72,6 +73,7 @@ BENCHMARK(BM_SceneViewFrame)
 }  // namespace
 
 int main(int argc, char** argv) {
+  fovea::keepFreedMemoryForReuse();  // as the studio (model/memory_policy.h)
   fovea::viz::installDefaultSurfaceFormat();
   QApplication app(argc, argv);
   benchmark::Initialize(&argc, argv);
