@@ -4,7 +4,9 @@
 // Python at run time. The frame (any size; CV_8U grey, BGR or float as detectPupil takes)
 // is padded to a square, downscaled to 96 x 96 (INTER_AREA, as the training frames were)
 // and the network regresses the full pupil ellipse (centre, axes, angle) and whether a
-// pupil is visible; its probability is the confidence. It returns the classical detector's
+// pupil is visible; its probability is the confidence. The frame and its mirror image run as
+// one batch of two and their outputs are averaged (test-time flip augmentation), so the
+// detector is mirror-equivariant. It returns the classical detector's
 // PupilDetection (no glints: the network does not locate them).
 //
 // The model file is read at run time, never compiled in (build time, issue 25). Looked for:
@@ -23,6 +25,7 @@
 namespace fovea::gaze {
 
 inline constexpr int kLearnedPupilInputPx = 96;
+inline constexpr int kLearnedPupilOutputs = 7;  // centre x, y, axes, cos 2θ, sin 2θ, visibility
 
 // The candidate paths in search order, and the first that exists; findPupilModel throws
 // std::runtime_error naming every path tried when none does.

@@ -151,6 +151,33 @@ class TestLearnedPupil : public QObject {
                        dc.ellipse.centre.y + 40 - f.truth.pupil.centre.y) < 6);
   }
 
+  // Test-time flip augmentation makes the detector mirror-equivariant: a mirrored frame gives
+  // the mirrored ellipse (x -> side - x, the network's own mirror, and angle -> -angle), which one
+  // pass of the network alone does not (measured there: up to several px apart).
+  void mirroredFrameGivesTheMirroredPupil() {
+    LearnedPupilDetector net(shippedModel());
+    for (int i = 0; i < 4; ++i) {
+      const EyeFrame f = renderWideFrame(WideSubset::Hard, i, 2026);
+      cv::Mat mirrored;
+      cv::flip(f.image, mirrored, 1);
+      const PupilDetection d = net.detect(f.image), m = net.detect(mirrored);
+      QCOMPARE(d.found, m.found);
+      QVERIFY(std::abs(d.confidence - m.confidence) < 1e-4);
+      if (!d.found) continue;
+      const double side = f.image.cols;
+      qInfo("hard frame %d: x %.3f + mirrored x %.3f = %.3f (side %.0f), y %.3f / %.3f", i, d.ellipse.centre.x,
+            m.ellipse.centre.x, d.ellipse.centre.x + m.ellipse.centre.x, side, d.ellipse.centre.y, m.ellipse.centre.y);
+      // INTER_AREA's 400 -> 96 weights are mirror-symmetric, so only float rounding remains.
+      QVERIFY(std::abs(d.ellipse.centre.x + m.ellipse.centre.x - side) < 0.01);
+      QVERIFY(std::abs(d.ellipse.centre.y - m.ellipse.centre.y) < 0.01);
+      QVERIFY(std::abs(d.ellipse.major_px - m.ellipse.major_px) < 0.01);
+      QVERIFY(std::abs(d.ellipse.minor_px - m.ellipse.minor_px) < 0.01);
+      const double angle_sum = std::fmod(d.ellipse.angle_deg + m.ellipse.angle_deg + 360.0, 180.0);
+      QVERIFY2(std::min(angle_sum, 180.0 - angle_sum) < 0.1 || d.ellipse.major_px - d.ellipse.minor_px < 0.5,
+               qPrintable(QString("angles %1 and %2").arg(d.ellipse.angle_deg).arg(m.ellipse.angle_deg)));
+    }
+  }
+
   void heldOutRates_data() {
     QTest::addColumn<int>("kind");
     QTest::addColumn<int>("subset");
