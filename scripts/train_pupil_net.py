@@ -33,10 +33,13 @@ SIZE = 96
 
 
 def load(dirs):
-    images, targets = [], []
+    """Frames and targets (centre and axes as fractions of the frame width w), and the mirror of
+    a centre, (w - 1) / w (every directory's frames share w)."""
+    images, targets, widths = [], [], set()
     for d in dirs:
         meta = json.load(open(os.path.join(d, "dataset.json")))
         w, h = meta["frame_size_px"]
+        widths.add(w)
         s = meta["stored_size_px"][0]
         if s != SIZE:
             sys.exit(f"{d}: frames stored at {s} px, the network reads {SIZE}")
@@ -52,7 +55,10 @@ def load(dirs):
             t[i] = [float(r["cx_px"]) / w, float(r["cy_px"]) / h, float(r["major_px"]) / w,
                     float(r["minor_px"]) / w, math.cos(2 * a), math.sin(2 * a), float(r["visible"])]
         targets.append(t)
-    return np.concatenate(images), np.concatenate(targets)
+    if len(widths) != 1:
+        sys.exit(f"frames of several widths {sorted(widths)}: the flip needs one")
+    w = widths.pop()
+    return np.concatenate(images), np.concatenate(targets), (w - 1) / w
 
 
 def block(cin, cout, stride):
@@ -167,8 +173,8 @@ def main():
     torch.manual_seed(a.seed)
     np.random.seed(a.seed)
     torch.set_num_threads(a.threads)
-    x, t = load(a.data)
-    xv, tv = load([a.val])
+    x, t, mirror_x = load(a.data)
+    xv, tv, _ = load([a.val])
     print(f"train {len(x)} frames ({int(t[:, 6].sum())} with a pupil), validation {len(xv)}", flush=True)
     model = PupilNet()
     opt = torch.optim.AdamW(model.parameters(), lr=2e-3, weight_decay=1e-4)
@@ -185,10 +191,13 @@ def main():
         for i in range(0, len(order) - bs + 1, bs):
             idx = order[i:i + bs]
             xb = torch.from_numpy(x[idx]).float() / 255 - 0.5
-            if gen.random() < 0.5:  # horizontal flip: a mirrored eye is an eye (x -> 1 - x, angle -> -angle)
+            if gen.random() < 0.5:  # horizontal flip: a mirrored eye is an eye (angle -> -angle)
                 xb = torch.flip(xb, dims=[3])
                 tb = t[idx].copy()
-                tb[:, 0] = 1 - tb[:, 0]
+                # Pixel centres at integers (OpenCV's, the renderer's labels): a mirrored w-px
+                # frame takes cx to (w - 1) - cx, i.e. x -> (w - 1) / w - x. (Until 2026-12-05 the
+                # trainer used 1 - x: flipped labels 1 px off, a +0.5 px bias in x.)
+                tb[:, 0] = mirror_x - tb[:, 0]
                 tb[:, 5] = -tb[:, 5]
             else:
                 tb = t[idx]

@@ -92,6 +92,8 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
   // subsets at seed 99 (100 frames each, not the benchmark's seed) it placed more centres within
   // 5 px than one pass: hard 39 -> 52, occlusion 55 -> 59, easy 96 -> 98, glints 89 -> 91,
   // off-axis 83 -> 85, partial 59 -> 60, motion blur 90 -> 89 (docs/gaze-tracking.md).
+  // Pixel centres are at integers (OpenCV's convention, the labels'): mirroring the square
+  // takes x to (side - 1) - x, a centre fraction f to (side - 1) / side - f.
   cv::Mat mirrored;
   cv::flip(small, mirrored, 1);
   const cv::Mat blob = cv::dnn::blobFromImages(std::vector<cv::Mat>{small, mirrored}, 1.0 / 255, {}, cv::Scalar(127.5),
@@ -103,9 +105,10 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
   const float* a = out.ptr<float>();
   const float* b = a + kLearnedPupilOutputs;
   // Outputs: centre x, y (fractions of the side), axes, cos 2θ, sin 2θ, visibility logit. The
-  // mirror x -> 1 - x takes θ to -θ: sin 2θ changes sign, cos 2θ does not.
-  const double o[kLearnedPupilOutputs] = {0.5 * (a[0] + 1.0 - b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]),
-                                          0.5 * (a[3] + b[3]),       0.5 * (a[4] + b[4]), 0.5 * (a[5] - b[5]),
+  // mirror takes θ to -θ: sin 2θ changes sign, cos 2θ does not.
+  const double mirror = (side - 1.0) / side;
+  const double o[kLearnedPupilOutputs] = {0.5 * (a[0] + mirror - b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]),
+                                          0.5 * (a[3] + b[3]),          0.5 * (a[4] + b[4]), 0.5 * (a[5] - b[5]),
                                           0.5 * (a[6] + b[6])};
   d.confidence = 1.0 / (1.0 + std::exp(-o[6]));
   if (d.confidence < min_confidence) {
