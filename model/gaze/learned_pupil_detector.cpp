@@ -1,6 +1,7 @@
 #include "model/gaze/learned_pupil_detector.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
@@ -100,7 +101,7 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
                                                false, false, CV_32F);
   net_->dnn.setInput(blob);
   const cv::Mat out = net_->dnn.forward();
-  if (out.total() != 2 * kLearnedPupilOutputs)
+  if (out.total() != 2 * static_cast<std::size_t>(kLearnedPupilOutputs))
     throw std::runtime_error("pupil model " + path_ + ": expected 7 outputs per frame");
   const float* a = out.ptr<float>();
   const float* b = a + kLearnedPupilOutputs;
