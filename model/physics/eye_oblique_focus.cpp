@@ -37,6 +37,11 @@ void requireField(double field_deg) {
     throw std::invalid_argument("eye field angle must be within -60..60 deg");
 }
 
+void requireStopHeight(double stop_height_mm) {
+  if (!std::isfinite(stop_height_mm) || std::abs(stop_height_mm) > kMaxStopHeightMm)
+    throw std::invalid_argument("height in the eye's stop must be within -4..4 mm (an 8 mm pupil)");
+}
+
 // Nearest forward intersection with the conic's branch through its vertex.
 std::optional<P2> hitConic(const ConicSurface& s, const P2& p, const P2& u) {
   const double w0 = p.y() - s.vertex_z, k1 = 1.0 + s.Q;
@@ -94,11 +99,17 @@ std::optional<double> heightAtStop(const std::array<ConicSurface, 4>& s, double 
   return p.x() + (s[2].vertex_z - p.y()) / u.y() * u.x();
 }
 
-// The real chief ray at field theta, the one through the stop centre: its height h where it
-// crosses the paraxial entrance-pupil plane, by secant iteration.
-std::optional<double> chiefRayHeight(const std::array<ConicSurface, 4>& s, double entrance_z, const P2& u) {
+// The real ray at field theta that crosses the stop at height `stop` (0: the chief ray): its
+// height h where it crosses the paraxial entrance-pupil plane, by secant iteration.
+std::optional<double> chiefRayHeight(const std::array<ConicSurface, 4>& s, double entrance_z, const P2& u,
+                                     double stop) {
   double h0 = 0.0, h1 = 0.01;
-  auto f0 = heightAtStop(s, entrance_z, h0, u), f1 = heightAtStop(s, entrance_z, h1, u);
+  auto miss = [&](double h) -> std::optional<double> {
+    const auto at = heightAtStop(s, entrance_z, h, u);
+    if (!at) return std::nullopt;
+    return *at - stop;
+  };
+  auto f0 = miss(h0), f1 = miss(h1);
   for (int it = 0; it < 60 && f0 && f1; ++it) {
     if (std::abs(*f1) < 1e-13) break;
     const double den = *f1 - *f0;
@@ -107,7 +118,7 @@ std::optional<double> chiefRayHeight(const std::array<ConicSurface, 4>& s, doubl
     h0 = h1;
     f0 = f1;
     h1 = h2;
-    f1 = heightAtStop(s, entrance_z, h1, u);
+    f1 = miss(h1);
   }
   if (!f1 || std::abs(*f1) > 1e-9) return std::nullopt;
   return h1;
@@ -123,12 +134,13 @@ struct ChiefPath {
   double retina = 0;
 };
 
-// The chief ray at field_deg traced through the eye to its retina; empty when it misses.
+// The ray at field_deg through the stop at stop_mm (0: the chief ray) traced through the eye to
+// its retina; empty when it misses.
 std::optional<ChiefPath> traceChiefRay(const std::array<ConicSurface, 4>& s, const SchematicEyeState& eye,
-                                       double field_deg) {
+                                       double field_deg, double stop_mm) {
   const double theta = field_deg * kDeg;
   const P2 u0(std::sin(theta), std::cos(theta));
-  const auto h = chiefRayHeight(s, eye.entrance_pupil_mm, u0);
+  const auto h = chiefRayHeight(s, eye.entrance_pupil_mm, u0, stop_mm);
   if (!h) return std::nullopt;
   ChiefPath path;
   path.pupil_height = *h;
@@ -202,11 +214,13 @@ std::optional<double> focusedVergence(const std::array<ConicSurface, 4>& s, cons
 
 }  // namespace
 
-ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d) {
+ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d,
+                                 double stop_height_mm) {
   requireField(field_deg);
+  requireStopHeight(stop_height_mm);
   const auto surfaces = eyeSurfaces(eye);
   ChiefRayFoci f;
-  const auto path = traceChiefRay(surfaces, eye, field_deg);
+  const auto path = traceChiefRay(surfaces, eye, field_deg, stop_height_mm);
   if (!path) return f;
   const auto v = pencil(surfaces, *path, vergence_d / 1000.0);
   f.valid = true;
@@ -221,20 +235,24 @@ ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg,
   return f;
 }
 
-EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg) {
+EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, double stop_height_mm) {
   requireField(field_deg);
+  requireStopHeight(stop_height_mm);
   const auto surfaces = eyeSurfaces(eye);
   EyeObliqueFocus out;
   out.field_deg = field_deg;
-  auto focusAt = [&](double theta_deg) -> std::optional<std::array<double, 2>> {
-    const auto path = traceChiefRay(surfaces, eye, theta_deg);
+  out.stop_height_mm = stop_height_mm;
+  auto focusAt = [&](double theta_deg, double stop) -> std::optional<std::array<double, 2>> {
+    const auto path = traceChiefRay(surfaces, eye, theta_deg, stop);
     if (!path) return std::nullopt;
     const double start = -eye.accommodation_d / 1000.0;
     const auto t = focusedVergence(surfaces, *path, 0, start), s = focusedVergence(surfaces, *path, 1, start);
     if (!t || !s) return std::nullopt;
     return std::array<double, 2>{*t * 1000.0, *s * 1000.0};
   };
-  const auto axis = focusAt(0.0), at = focusAt(std::abs(field_deg));
+  // A negative field mirrors the meridional plane: the stop height changes sign with it.
+  const double sign = field_deg < 0 ? -1.0 : 1.0;
+  const auto axis = focusAt(0.0, 0.0), at = focusAt(std::abs(field_deg), sign * stop_height_mm);
   if (!axis || !at) return out;
   out.axis_d = (*axis)[0];
   out.tangential_d = (*at)[0];

@@ -32,9 +32,16 @@
 // the paraxial eye to focus like the real one at theta:
 //      P_t = V_axis - V_t,  P_s = V_axis - V_s  (diopters; > 0: the eye is stronger there).
 // Indices are the reference-wavelength ones (the chromatic difference is a thin lens at the
-// pupil in schematic_eye.h, the same at every field to this order). Departures, all stated: the
-// pencil follows the chief ray, not the actual entry point of each pixel beam in the pupil (its
-// coma is not modelled); the retina's local magnification (distortion) is not applied.
+// pupil in schematic_eye.h, the same at every field to this order).
+// A beam that enters off the pupil centre: the same pencil along the ray at theta that crosses
+// the stop at height h in the meridional plane (stop_height_mm; the secant iteration solves for
+// it instead of 0). On axis this is the zonal pencil of the eye's spherical aberration (its
+// tangential power grows about three times as fast as its sagittal, as W040 rho^4 curves 12 and 4
+// W040 h^2). Departures, all stated: the retinal image (retina_image.h) uses the chief ray's
+// pencil for every pixel beam (a decentred beam's extra power is bounded in docs/physics.md, not
+// applied); a decentration out of the meridional plane (a skew pencil) is not traced; the coma
+// across a beam's own width is not modelled; the retina's local magnification (distortion) is not
+// applied.
 
 namespace fovea {
 
@@ -50,18 +57,26 @@ struct ChiefRayFoci {
   double retina_mm = 0;                         // distance from the last hit along the ray to the retina
 };
 
-// theta in degrees (0..60, the eye's axis = the line of sight); vergence in diopters.
-ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d);
+inline constexpr double kMaxStopHeightMm = 4.0;  // an 8 mm pupil
+
+// theta in degrees (-60..60, the eye's axis = the line of sight); vergence in diopters;
+// stop_height_mm: where the ray crosses the stop in the meridional plane (0: the chief ray).
+ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d,
+                                 double stop_height_mm = 0);
 
 struct EyeObliqueFocus {
   bool valid = false;
   double field_deg = 0;
+  double stop_height_mm = 0;
   double tangential_d = 0, sagittal_d = 0;              // entrance-pupil vergences focused on the retina (D)
   double axis_d = 0;                                    // the same on axis (= -accommodation at 555 nm)
   double power_tangential_d = 0, power_sagittal_d = 0;  // V_axis - V_t, V_axis - V_s
   double astigmatism_d = 0;                             // |P_t - P_s|
 };
 
-EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg);
+// Relative to the axis's chief-ray pencil (axis_d), so a decentred beam's powers carry the
+// spherical aberration at its height. Throws std::invalid_argument for a field beyond 60 deg or a
+// stop height beyond 4 mm.
+EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, double stop_height_mm = 0);
 
 }  // namespace fovea

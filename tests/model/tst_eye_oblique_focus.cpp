@@ -104,12 +104,22 @@ class TestEyeObliqueFocus : public QObject {
   // The pencil's foci against neighbouring real rays from the same object point: tangential
   // rays offset in the meridional plane cross each other at the tangential focus; a sagittal
   // ray offset normal to it crosses the meridional plane at the sagittal focus.
+  // The same for a beam that enters off the pupil centre (stop heights 1.5 and -2 mm; theta 0:
+  // the zonal pencil).
+  void coddingtonFociMatchAFiniteRayTrace_data() {
+    QTest::addColumn<double>("stop");
+    QTest::newRow("chief ray") << 0.0;
+    QTest::newRow("stop +1.5 mm") << 1.5;
+    QTest::newRow("stop -2 mm") << -2.0;
+  }
   void coddingtonFociMatchAFiniteRayTrace() {
+    QFETCH(double, stop);
     for (double acc : {0.0, 2.0}) {
       const SchematicEyeState eye = navarroEye(acc);
-      for (double theta : {10.0, 30.0, 45.0}) {
-        const double v_d = -acc;  // in focus on axis
-        const ChiefRayFoci f = navarroChiefRayFoci(eye, theta, v_d);
+      for (double theta : {0.0, 10.0, 30.0, 45.0}) {
+        if (theta == 0.0 && stop == 0.0) continue;  // the axis: no pencil to compare off it
+        const double v_d = -acc;                    // in focus on axis
+        const ChiefRayFoci f = navarroChiefRayFoci(eye, theta, v_d, stop);
         QVERIFY(f.valid);
         const double th = theta * kDeg;
         const V3 u(0, std::sin(th), std::cos(th));
@@ -143,14 +153,17 @@ class TestEyeObliqueFocus : public QObject {
         const double s_par = -side->p.x() / side->u.x();
         const V3 meet = side->p + s_par * side->u;
         const double s_focus = (meet - chief->p).dot(chief->u);
-        const QString what = QString("A %1 D, theta %2: tangential %3 vs %4 mm, sagittal %5 vs %6 mm, retina %7 mm")
+        const QString what = QString(
+                                 "stop %8 mm, A %1 D, theta %2: tangential %3 vs %4 mm, sagittal %5 vs %6 mm, "
+                                 "retina %7 mm")
                                  .arg(acc)
                                  .arg(theta)
                                  .arg(f.tangential_mm, 0, 'f', 5)
                                  .arg(t_focus, 0, 'f', 5)
                                  .arg(f.sagittal_mm, 0, 'f', 5)
                                  .arg(s_focus, 0, 'f', 5)
-                                 .arg(f.retina_mm, 0, 'f', 4);
+                                 .arg(f.retina_mm, 0, 'f', 4)
+                                 .arg(stop);
         qInfo("%s", qPrintable(what));
         // docs/physics.md: "the same tangential and sagittal foci, to 1e-5 mm".
         QVERIFY2(std::abs(f.tangential_mm - t_focus) < 1e-5, qPrintable(what));
@@ -182,6 +195,38 @@ class TestEyeObliqueFocus : public QObject {
     }
     QVERIFY(std::abs(o.power_tangential_d - 0.37) <= 0.005 && std::abs(o.power_sagittal_d + 1.63) <= 0.005);
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument, eyeObliqueFocus(eye, 61.0));
+  }
+
+  // A beam entering h off the pupil centre on the axis: the zonal pencil of the eye's spherical
+  // aberration. Seidel: W = W040 (x^2 + y^2)^2 curves 12 W040 h^2 radially (tangential) and
+  // 4 W040 h^2 across (sagittal) at (0, h), so for small h P_t / P_s -> 3 and both grow as h^2;
+  // +h and -h, and (theta, h) and (-theta, -h), are mirror images.
+  void aDecentredBeamSeesTheZonalSphericalAberration() {
+    const SchematicEyeState eye = navarroEye(0.0);
+    const EyeObliqueFocus a = eyeObliqueFocus(eye, 0.0, 0.25), b = eyeObliqueFocus(eye, 0.0, 0.5);
+    QVERIFY(a.valid && b.valid);
+    QVERIFY(a.power_tangential_d > 0 && a.power_sagittal_d > 0);  // positive spherical aberration
+    const double ratio_ts = a.power_tangential_d / a.power_sagittal_d;
+    const double growth = b.power_sagittal_d / a.power_sagittal_d;
+    qInfo("h 0.25 mm: P_t %.5f D, P_s %.5f D (ratio %.3f); P_s(0.5) / P_s(0.25) = %.3f", a.power_tangential_d,
+          a.power_sagittal_d, ratio_ts, growth);
+    QVERIFY2(std::abs(ratio_ts - 3.0) < 0.05, qPrintable(QString::number(ratio_ts)));
+    QVERIFY2(std::abs(growth - 4.0) < 0.05, qPrintable(QString::number(growth)));
+    const EyeObliqueFocus m = eyeObliqueFocus(eye, 0.0, -0.5);
+    QVERIFY(std::abs(m.power_tangential_d - b.power_tangential_d) < 1e-9);
+    const EyeObliqueFocus p = eyeObliqueFocus(eye, 20.0, 1.0), q = eyeObliqueFocus(eye, -20.0, -1.0);
+    QVERIFY(std::abs(p.power_tangential_d - q.power_tangential_d) < 1e-9);
+    QVERIFY(std::abs(p.power_sagittal_d - q.power_sagittal_d) < 1e-9);
+    // Decentring changes the pencil off the axis too (the chief ray's value is another number).
+    QVERIFY(std::abs(p.power_tangential_d - eyeObliqueFocus(eye, 20.0).power_tangential_d) > 1e-3);
+    // docs/physics.md prints these (relaxed eye, on the axis and at 20 deg).
+    for (double h : {1.0, 2.0, 3.0}) {
+      const EyeObliqueFocus z = eyeObliqueFocus(eye, 0.0, h), o = eyeObliqueFocus(eye, 20.0, h);
+      qInfo("h %.0f mm: on axis P_t %+.3f P_s %+.3f D; at 20 deg P_t %+.3f P_s %+.3f D (chief ray %+.3f %+.3f)", h,
+            z.power_tangential_d, z.power_sagittal_d, o.power_tangential_d, o.power_sagittal_d,
+            eyeObliqueFocus(eye, 20.0).power_tangential_d, eyeObliqueFocus(eye, 20.0).power_sagittal_d);
+    }
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, eyeObliqueFocus(eye, 0.0, 4.5));
   }
 };
 
