@@ -175,24 +175,37 @@ PeripheralSpot peripheralSpotAt(const Scene& scene, double wavelength_nm, double
   const double a = 0.5 * scene.eye.pupil_diameter_mm;
   s.pupil_transmission = 1.0 - std::exp(-2.0 * a * a / (s.beam_radius_pupil_mm * s.beam_radius_pupil_mm));
   const SchematicEyeState e = navarroEye(accommodation_d, wavelength_nm);
-  // The eye off its axis (eye_oblique_focus.h): at the ray's angle theta from the line of sight
-  // the real eye focuses the tangential and the sagittal pencil with extra powers P_t, P_s over
-  // its paraxial matrix; they act as a thin astigmatic lens at the entrance pupil,
-  // Q^-1 -> Q^-1 - P with P = P_t tau tau^T + P_s sigma sigma^T (tau: the field's radial
-  // direction in the (yaw, pitch) basis, sigma normal to it). Beyond 60 deg the 60 deg values.
+  // The eye off its axis (eye_oblique_focus.h): at the ray's angle theta from the line of sight,
+  // entering the pupil h from its centre, the real eye focuses the beam's pencil with an extra
+  // power P over its paraxial matrix; it acts as a thin astigmatic lens at the entrance pupil,
+  // Q^-1 -> Q^-1 - P, with P = P_mm m m^T + P_ss s s^T + P_ms (m s^T + s m^T) in the field's
+  // (yaw, pitch) basis: m the meridional direction normal to the ray (towards the side it travels
+  // to), s across it. The pupil centre stands for the chief ray's crossing (the scene's pupil is
+  // the paraxial entrance pupil). Beyond 60 deg the 60 deg values; offsets beyond 4 mm, 4 mm.
   {
     const double cos_theta = std::clamp(-u_out.dot(eye.gaze), -1.0, 1.0);
     s.eye_field_deg = std::acos(cos_theta) / kDeg;
-    const Eigen::Vector3d radial = -eye.gaze - cos_theta * u_out;
-    if (s.eye_field_deg > 1e-6 && radial.norm() > 1e-12) {
-      const EyeObliqueFocus ob = eyeObliqueFocus(e, std::min(s.eye_field_deg, 60.0));
-      if (ob.valid) {
-        s.eye_power_d = {ob.power_tangential_d, ob.power_sagittal_d};
-        Eigen::Vector2d tau(radial.dot(basis.col(0)), radial.dot(basis.col(1)));
-        tau.normalize();
-        const Eigen::Vector2d sigma(-tau.y(), tau.x());
-        const Eigen::Matrix2d p =
-            (ob.power_tangential_d * tau * tau.transpose() + ob.power_sagittal_d * sigma * sigma.transpose()) / 1000.0;
+    const Eigen::Vector3d offset = hit + t * u_out - eye.pupil_center;  // in the pupil plane
+    // The meridional direction in the pupil plane: where the ray travels; on the axis, the offset's.
+    Eigen::Vector3d lateral = u_out + cos_theta * eye.gaze;
+    if (lateral.norm() < 1e-9) lateral = offset;
+    if (lateral.norm() > 1e-12) {
+      const Eigen::Vector3d m_pupil = lateral.normalized();
+      const Eigen::Vector3d s_dir = eye.gaze.cross(m_pupil).normalized();  // across, normal to the ray too
+      double h_m = offset.dot(m_pupil), h_s = offset.dot(s_dir);
+      const double rho = std::hypot(h_m, h_s);
+      if (rho > kMaxPupilOffsetMm) h_m *= kMaxPupilOffsetMm / rho, h_s *= kMaxPupilOffsetMm / rho;
+      s.pupil_offset_mm = {h_m, h_s};
+      const EyePencilPower ep = eyePencilPower(e, std::min(s.eye_field_deg, 60.0), h_m, h_s);
+      if (ep.valid) {
+        s.eye_power_d = {ep.meridional_d, ep.sagittal_d};
+        s.eye_power_cross_d = ep.cross_d;
+        const Eigen::Vector3d m_ray = (m_pupil - m_pupil.dot(u_out) * u_out).normalized();
+        const Eigen::Vector2d mt(m_ray.dot(basis.col(0)), m_ray.dot(basis.col(1)));
+        const Eigen::Vector2d st(s_dir.dot(basis.col(0)), s_dir.dot(basis.col(1)));
+        const Eigen::Matrix2d p = (ep.meridional_d * mt * mt.transpose() + ep.sagittal_d * st * st.transpose() +
+                                   ep.cross_d * (mt * st.transpose() + st * mt.transpose())) /
+                                  1000.0;
         qm = (qm.inverse() - p.cast<std::complex<double>>()).inverse();
       }
     }

@@ -78,7 +78,9 @@ struct PeripheralSpot {
   // The eye off its axis (eye_oblique_focus.h): the ray's angle from the line of sight and the
   // extra tangential and sagittal powers of the real eye there (D; 0 on the line of sight).
   double eye_field_deg = 0;
-  std::array<double, 2> eye_power_d{0, 0};
+  std::array<double, 2> eye_power_d{0, 0};      // the eye's extra power: meridional, sagittal (D)
+  double eye_power_cross_d = 0;                 // and their cross term (a decentred beam's skew part)
+  std::array<double, 2> pupil_offset_mm{0, 0};  // where the beam enters: meridional, sagittal from the pupil centre
 };
 
 // The peripheral pixel on the line of sight for a gaze, HOE shift (HOE local x, y) and accommodation.

@@ -37,9 +37,9 @@ void requireField(double field_deg) {
     throw std::invalid_argument("eye field angle must be within -60..60 deg");
 }
 
-void requireStopHeight(double stop_height_mm) {
-  if (!std::isfinite(stop_height_mm) || std::abs(stop_height_mm) > kMaxStopHeightMm)
-    throw std::invalid_argument("height in the eye's stop must be within -4..4 mm (an 8 mm pupil)");
+void requirePupilOffset(double pupil_offset_mm) {
+  if (!std::isfinite(pupil_offset_mm) || std::abs(pupil_offset_mm) > kMaxPupilOffsetMm)
+    throw std::invalid_argument("offset in the eye's entrance pupil must be within -4..4 mm (an 8 mm pupil)");
 }
 
 // Nearest forward intersection with the conic's branch through its vertex.
@@ -99,17 +99,11 @@ std::optional<double> heightAtStop(const std::array<ConicSurface, 4>& s, double 
   return p.x() + (s[2].vertex_z - p.y()) / u.y() * u.x();
 }
 
-// The real ray at field theta that crosses the stop at height `stop` (0: the chief ray): its
-// height h where it crosses the paraxial entrance-pupil plane, by secant iteration.
-std::optional<double> chiefRayHeight(const std::array<ConicSurface, 4>& s, double entrance_z, const P2& u,
-                                     double stop) {
+// The real chief ray at field theta, the one through the stop centre: its height h where it
+// crosses the paraxial entrance-pupil plane, by secant iteration.
+std::optional<double> chiefRayHeight(const std::array<ConicSurface, 4>& s, double entrance_z, const P2& u) {
   double h0 = 0.0, h1 = 0.01;
-  auto miss = [&](double h) -> std::optional<double> {
-    const auto at = heightAtStop(s, entrance_z, h, u);
-    if (!at) return std::nullopt;
-    return *at - stop;
-  };
-  auto f0 = miss(h0), f1 = miss(h1);
+  auto f0 = heightAtStop(s, entrance_z, h0, u), f1 = heightAtStop(s, entrance_z, h1, u);
   for (int it = 0; it < 60 && f0 && f1; ++it) {
     if (std::abs(*f1) < 1e-13) break;
     const double den = *f1 - *f0;
@@ -118,7 +112,7 @@ std::optional<double> chiefRayHeight(const std::array<ConicSurface, 4>& s, doubl
     h0 = h1;
     f0 = f1;
     h1 = h2;
-    f1 = miss(h1);
+    f1 = heightAtStop(s, entrance_z, h1, u);
   }
   if (!f1 || std::abs(*f1) > 1e-9) return std::nullopt;
   return h1;
@@ -134,17 +128,17 @@ struct ChiefPath {
   double retina = 0;
 };
 
-// The ray at field_deg through the stop at stop_mm (0: the chief ray) traced through the eye to
-// its retina; empty when it misses.
+// The ray at field_deg that crosses the entrance-pupil plane offset_mm from the chief ray (0: the
+// chief ray) traced through the eye to its retina; empty when it misses.
 std::optional<ChiefPath> traceChiefRay(const std::array<ConicSurface, 4>& s, const SchematicEyeState& eye,
-                                       double field_deg, double stop_mm) {
+                                       double field_deg, double offset_mm) {
   const double theta = field_deg * kDeg;
   const P2 u0(std::sin(theta), std::cos(theta));
-  const auto h = chiefRayHeight(s, eye.entrance_pupil_mm, u0, stop_mm);
-  if (!h) return std::nullopt;
+  const auto chief = chiefRayHeight(s, eye.entrance_pupil_mm, u0);
+  if (!chief) return std::nullopt;
   ChiefPath path;
-  path.pupil_height = *h;
-  const P2 pupil(*h, eye.entrance_pupil_mm);
+  path.pupil_height = *chief + offset_mm;
+  const P2 pupil(path.pupil_height, eye.entrance_pupil_mm);
   P2 p = pupil - 30.0 * u0, u = u0;
   for (int i = 0; i < 4; ++i) {
     const auto hit = hitConic(s[i], p, u);
@@ -215,12 +209,12 @@ std::optional<double> focusedVergence(const std::array<ConicSurface, 4>& s, cons
 }  // namespace
 
 ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d,
-                                 double stop_height_mm) {
+                                 double pupil_offset_mm) {
   requireField(field_deg);
-  requireStopHeight(stop_height_mm);
+  requirePupilOffset(pupil_offset_mm);
   const auto surfaces = eyeSurfaces(eye);
   ChiefRayFoci f;
-  const auto path = traceChiefRay(surfaces, eye, field_deg, stop_height_mm);
+  const auto path = traceChiefRay(surfaces, eye, field_deg, pupil_offset_mm);
   if (!path) return f;
   const auto v = pencil(surfaces, *path, vergence_d / 1000.0);
   f.valid = true;
@@ -235,24 +229,24 @@ ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg,
   return f;
 }
 
-EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, double stop_height_mm) {
+EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, double pupil_offset_mm) {
   requireField(field_deg);
-  requireStopHeight(stop_height_mm);
+  requirePupilOffset(pupil_offset_mm);
   const auto surfaces = eyeSurfaces(eye);
   EyeObliqueFocus out;
   out.field_deg = field_deg;
-  out.stop_height_mm = stop_height_mm;
-  auto focusAt = [&](double theta_deg, double stop) -> std::optional<std::array<double, 2>> {
-    const auto path = traceChiefRay(surfaces, eye, theta_deg, stop);
+  out.pupil_offset_mm = pupil_offset_mm;
+  auto focusAt = [&](double theta_deg, double offset) -> std::optional<std::array<double, 2>> {
+    const auto path = traceChiefRay(surfaces, eye, theta_deg, offset);
     if (!path) return std::nullopt;
     const double start = -eye.accommodation_d / 1000.0;
     const auto t = focusedVergence(surfaces, *path, 0, start), s = focusedVergence(surfaces, *path, 1, start);
     if (!t || !s) return std::nullopt;
     return std::array<double, 2>{*t * 1000.0, *s * 1000.0};
   };
-  // A negative field mirrors the meridional plane: the stop height changes sign with it.
+  // A negative field mirrors the meridional plane: the offset changes sign with it.
   const double sign = field_deg < 0 ? -1.0 : 1.0;
-  const auto axis = focusAt(0.0, 0.0), at = focusAt(std::abs(field_deg), sign * stop_height_mm);
+  const auto axis = focusAt(0.0, 0.0), at = focusAt(std::abs(field_deg), sign * pupil_offset_mm);
   if (!axis || !at) return out;
   out.axis_d = (*axis)[0];
   out.tangential_d = (*at)[0];
@@ -260,6 +254,31 @@ EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, 
   out.power_tangential_d = out.axis_d - out.tangential_d;
   out.power_sagittal_d = out.axis_d - out.sagittal_d;
   out.astigmatism_d = std::abs(out.power_tangential_d - out.power_sagittal_d);
+  out.valid = true;
+  return out;
+}
+
+EyePencilPower eyePencilPower(const SchematicEyeState& eye, double field_deg, double offset_meridional_mm,
+                              double offset_sagittal_mm) {
+  const double rho = std::hypot(offset_meridional_mm, offset_sagittal_mm);
+  requirePupilOffset(rho);
+  EyePencilPower out;
+  const EyeObliqueFocus chief = eyeObliqueFocus(eye, field_deg);
+  if (!chief.valid) return out;
+  out.meridional_d = chief.power_tangential_d;
+  out.sagittal_d = chief.power_sagittal_d;
+  if (rho > 0) {
+    const EyeObliqueFocus plus = eyeObliqueFocus(eye, field_deg, rho), minus = eyeObliqueFocus(eye, field_deg, -rho);
+    if (!plus.valid || !minus.valid) return out;
+    const double even_t = 0.5 * (plus.power_tangential_d + minus.power_tangential_d) - chief.power_tangential_d;
+    const double even_s = 0.5 * (plus.power_sagittal_d + minus.power_sagittal_d) - chief.power_sagittal_d;
+    const double odd_t = 0.5 * (plus.power_tangential_d - minus.power_tangential_d);
+    const double odd_s = 0.5 * (plus.power_sagittal_d - minus.power_sagittal_d);
+    const double c = offset_meridional_mm / rho, sn = offset_sagittal_mm / rho;
+    out.meridional_d += even_t * c * c + even_s * sn * sn + odd_t * c;
+    out.sagittal_d += even_s * c * c + even_t * sn * sn + odd_s * c;
+    out.cross_d = (even_t - even_s) * c * sn + odd_s * sn;
+  }
   out.valid = true;
   return out;
 }

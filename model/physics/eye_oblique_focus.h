@@ -34,14 +34,13 @@
 // Indices are the reference-wavelength ones (the chromatic difference is a thin lens at the
 // pupil in schematic_eye.h, the same at every field to this order).
 // A beam that enters off the pupil centre: the same pencil along the ray at theta that crosses
-// the stop at height h in the meridional plane (stop_height_mm; the secant iteration solves for
-// it instead of 0). On axis this is the zonal pencil of the eye's spherical aberration (its
-// tangential power grows about three times as fast as its sagittal, as W040 rho^4 curves 12 and 4
-// W040 h^2). Departures, all stated: the retinal image (retina_image.h) uses the chief ray's
-// pencil for every pixel beam (a decentred beam's extra power is bounded in docs/physics.md, not
-// applied); a decentration out of the meridional plane (a skew pencil) is not traced; the coma
-// across a beam's own width is not modelled; the retina's local magnification (distortion) is not
-// applied.
+// the paraxial entrance-pupil plane h from the chief ray's crossing, in the meridional plane
+// (pupil_offset_mm; h > 0 towards the side the ray travels to). On axis this is the zonal pencil of the eye's spherical
+// aberration (its tangential power grows about three times as fast as its sagittal, as W040 rho^4 curves 12 and 4 W040
+// h^2). Departures, all stated: the retinal image (retina_image.h) uses the chief ray's pencil for every pixel beam (a
+// decentred beam's extra power is bounded in docs/physics.md, not applied); a decentration out of the meridional plane
+// (a skew pencil) is not traced; the coma across a beam's own width is not modelled; the retina's local magnification
+// (distortion) is not applied.
 
 namespace fovea {
 
@@ -50,24 +49,25 @@ struct SchematicEyeState;
 // The chief ray's pencil at one field angle and entrance-pupil vergence, after the last surface.
 struct ChiefRayFoci {
   bool valid = false;
-  double pupil_height_mm = 0;                   // where the real chief ray crosses the paraxial entrance-pupil plane
+  double pupil_height_mm = 0;  // where the ray (the chief ray + the offset) crosses the paraxial entrance-pupil plane
   double last_hit_y_mm = 0, last_hit_z_mm = 0;  // on the lens' back surface
   double direction_y = 0, direction_z = 1;      // unit, in the vitreous
   double tangential_mm = 0, sagittal_mm = 0;    // focus distances from the last hit along the ray (inf: collimated)
   double retina_mm = 0;                         // distance from the last hit along the ray to the retina
 };
 
-inline constexpr double kMaxStopHeightMm = 4.0;  // an 8 mm pupil
+inline constexpr double kMaxPupilOffsetMm = 4.0;  // an 8 mm pupil
 
 // theta in degrees (-60..60, the eye's axis = the line of sight); vergence in diopters;
-// stop_height_mm: where the ray crosses the stop in the meridional plane (0: the chief ray).
+// pupil_offset_mm: where the ray crosses the entrance-pupil plane, from the chief ray's crossing,
+// in the meridional plane (0: the chief ray).
 ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d,
-                                 double stop_height_mm = 0);
+                                 double pupil_offset_mm = 0);
 
 struct EyeObliqueFocus {
   bool valid = false;
   double field_deg = 0;
-  double stop_height_mm = 0;
+  double pupil_offset_mm = 0;
   double tangential_d = 0, sagittal_d = 0;              // entrance-pupil vergences focused on the retina (D)
   double axis_d = 0;                                    // the same on axis (= -accommodation at 555 nm)
   double power_tangential_d = 0, power_sagittal_d = 0;  // V_axis - V_t, V_axis - V_s
@@ -76,7 +76,24 @@ struct EyeObliqueFocus {
 
 // Relative to the axis's chief-ray pencil (axis_d), so a decentred beam's powers carry the
 // spherical aberration at its height. Throws std::invalid_argument for a field beyond 60 deg or a
-// stop height beyond 4 mm.
-EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, double stop_height_mm = 0);
+// pupil offset beyond 4 mm.
+EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, double pupil_offset_mm = 0);
+
+// The extra power (D) of the pencil of a beam at field theta that crosses the entrance-pupil
+// plane (h_m, h_s) from the chief ray's crossing: h_m in the meridional plane (towards the side
+// the ray travels to), h_s across it; the 2 x 2 power in that (meridional, sagittal) basis.
+// Exact (traced) for h_s = 0, and on the axis for any direction (rotational symmetry). A skew
+// offset takes the Seidel form of the Hessian of W040 rho^4 + W131 theta (rho . tau) rho^2 at h,
+// its coefficients measured by the meridional traces at +|h| and -|h| (even part E: spherical
+// aberration, 12 and 4 W040 |h|^2; odd part O: coma, 6 and 2 W131 theta |h|), with c = h_m/|h|,
+// s = h_s/|h|:
+//   P_mm = P_t(0) + E_t c^2 + E_s s^2 + O_t c,   P_ss = P_s(0) + E_s c^2 + E_t s^2 + O_s c,
+//   P_ms = (E_t - E_s) c s + O_s s.
+struct EyePencilPower {
+  bool valid = false;
+  double meridional_d = 0, sagittal_d = 0, cross_d = 0;
+};
+EyePencilPower eyePencilPower(const SchematicEyeState& eye, double field_deg, double offset_meridional_mm,
+                              double offset_sagittal_mm);
 
 }  // namespace fovea

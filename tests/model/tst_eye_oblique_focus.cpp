@@ -104,22 +104,22 @@ class TestEyeObliqueFocus : public QObject {
   // The pencil's foci against neighbouring real rays from the same object point: tangential
   // rays offset in the meridional plane cross each other at the tangential focus; a sagittal
   // ray offset normal to it crosses the meridional plane at the sagittal focus.
-  // The same for a beam that enters off the pupil centre (stop heights 1.5 and -2 mm; theta 0:
+  // The same for a beam that enters off the pupil centre (pupil offsets 1.5 and -2 mm; theta 0:
   // the zonal pencil).
   void coddingtonFociMatchAFiniteRayTrace_data() {
-    QTest::addColumn<double>("stop");
+    QTest::addColumn<double>("pupil_offset");
     QTest::newRow("chief ray") << 0.0;
-    QTest::newRow("stop +1.5 mm") << 1.5;
-    QTest::newRow("stop -2 mm") << -2.0;
+    QTest::newRow("offset +1.5 mm") << 1.5;
+    QTest::newRow("offset -2 mm") << -2.0;
   }
   void coddingtonFociMatchAFiniteRayTrace() {
-    QFETCH(double, stop);
+    QFETCH(double, pupil_offset);
     for (double acc : {0.0, 2.0}) {
       const SchematicEyeState eye = navarroEye(acc);
       for (double theta : {0.0, 10.0, 30.0, 45.0}) {
-        if (theta == 0.0 && stop == 0.0) continue;  // the axis: no pencil to compare off it
-        const double v_d = -acc;                    // in focus on axis
-        const ChiefRayFoci f = navarroChiefRayFoci(eye, theta, v_d, stop);
+        if (theta == 0.0 && pupil_offset == 0.0) continue;  // the axis: no pencil to compare off it
+        const double v_d = -acc;                            // in focus on axis
+        const ChiefRayFoci f = navarroChiefRayFoci(eye, theta, v_d, pupil_offset);
         QVERIFY(f.valid);
         const double th = theta * kDeg;
         const V3 u(0, std::sin(th), std::cos(th));
@@ -154,7 +154,7 @@ class TestEyeObliqueFocus : public QObject {
         const V3 meet = side->p + s_par * side->u;
         const double s_focus = (meet - chief->p).dot(chief->u);
         const QString what = QString(
-                                 "stop %8 mm, A %1 D, theta %2: tangential %3 vs %4 mm, sagittal %5 vs %6 mm, "
+                                 "offset %8 mm, A %1 D, theta %2: tangential %3 vs %4 mm, sagittal %5 vs %6 mm, "
                                  "retina %7 mm")
                                  .arg(acc)
                                  .arg(theta)
@@ -163,7 +163,7 @@ class TestEyeObliqueFocus : public QObject {
                                  .arg(f.sagittal_mm, 0, 'f', 5)
                                  .arg(s_focus, 0, 'f', 5)
                                  .arg(f.retina_mm, 0, 'f', 4)
-                                 .arg(stop);
+                                 .arg(pupil_offset);
         qInfo("%s", qPrintable(what));
         // docs/physics.md: "the same tangential and sagittal foci, to 1e-5 mm".
         QVERIFY2(std::abs(f.tangential_mm - t_focus) < 1e-5, qPrintable(what));
@@ -227,6 +227,34 @@ class TestEyeObliqueFocus : public QObject {
             eyeObliqueFocus(eye, 20.0).power_tangential_d, eyeObliqueFocus(eye, 20.0).power_sagittal_d);
     }
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument, eyeObliqueFocus(eye, 0.0, 4.5));
+  }
+
+  // The 2 x 2 power of a decentred beam: the traced meridional values where the offset is
+  // meridional; on the axis, the zonal pencil rotated with the offset (rotational symmetry:
+  // P = a r r^T + b (I - r r^T)); the cross term odd in the sagittal offset.
+  void aSkewOffsetRotatesTheZonalPencil() {
+    const SchematicEyeState eye = navarroEye(1.0);
+    for (double theta : {0.0, 25.0}) {
+      const EyeObliqueFocus plus = eyeObliqueFocus(eye, theta, 1.5), minus = eyeObliqueFocus(eye, theta, -1.5);
+      const EyePencilPower a = eyePencilPower(eye, theta, 1.5, 0.0), b = eyePencilPower(eye, theta, -1.5, 0.0);
+      QVERIFY(a.valid && b.valid);
+      QVERIFY(std::abs(a.meridional_d - plus.power_tangential_d) < 1e-9);
+      QVERIFY(std::abs(a.sagittal_d - plus.power_sagittal_d) < 1e-9);
+      QVERIFY(std::abs(b.meridional_d - minus.power_tangential_d) < 1e-9);
+      QCOMPARE(a.cross_d, 0.0);
+      const EyePencilPower up = eyePencilPower(eye, theta, 0.6, 0.8), down = eyePencilPower(eye, theta, 0.6, -0.8);
+      QVERIFY(std::abs(up.meridional_d - down.meridional_d) < 1e-12);
+      QVERIFY(std::abs(up.cross_d + down.cross_d) < 1e-12);
+      QVERIFY(std::abs(up.cross_d) > 1e-3);
+    }
+    // On the axis: an offset of 1 mm at 40 deg from the meridional direction.
+    const EyeObliqueFocus zonal = eyeObliqueFocus(eye, 0.0, 1.0);
+    const double phi = 40 * kDeg, c = std::cos(phi), sn = std::sin(phi);
+    const EyePencilPower r = eyePencilPower(eye, 0.0, c, sn);
+    const double pa = zonal.power_tangential_d, pb = zonal.power_sagittal_d;
+    QVERIFY(std::abs(r.meridional_d - (pa * c * c + pb * sn * sn)) < 1e-9);
+    QVERIFY(std::abs(r.sagittal_d - (pa * sn * sn + pb * c * c)) < 1e-9);
+    QVERIFY(std::abs(r.cross_d - (pa - pb) * c * sn) < 1e-9);
   }
 };
 

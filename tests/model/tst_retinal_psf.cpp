@@ -358,11 +358,23 @@ class TestRetinalPsf : public QObject {
             f.spot.eye_field_deg, f.spot.eye_power_d[0], f.spot.eye_power_d[1]);
         // docs/physics.md: the HOE's 5.5 D there dwarfs the eye's own (0.85 D at 19.5 deg).
         QVERIFY2(std::abs(f.spot.astigmatism_d - 5.5) <= 0.05, qPrintable(QString::number(f.spot.astigmatism_d)));
-        const EyeObliqueFocus eye =
-            eyeObliqueFocus(navarroEye(o.accommodation_d, f.spot.wavelength_nm), f.spot.eye_field_deg);
+        // The beam enters the pupil off its centre (a 10 deg gaze the HOE does not follow): the
+        // eye's power is the decentred pencil's (eye_oblique_focus.h), not the chief ray's.
+        const SchematicEyeState eye_state = navarroEye(o.accommodation_d, f.spot.wavelength_nm);
+        const EyeObliqueFocus eye = eyeObliqueFocus(eye_state, f.spot.eye_field_deg);
+        const EyePencilPower pencil =
+            eyePencilPower(eye_state, f.spot.eye_field_deg, f.spot.pupil_offset_mm[0], f.spot.pupil_offset_mm[1]);
+        qInfo(
+            "  enters %.2f / %.2f mm (meridional / sagittal) off the pupil centre: eye powers %+.2f / %+.2f D, cross "
+            "%+.2f D"
+            " (the chief ray's %+.2f / %+.2f)",
+            f.spot.pupil_offset_mm[0], f.spot.pupil_offset_mm[1], pencil.meridional_d, pencil.sagittal_d,
+            pencil.cross_d, eye.power_tangential_d, eye.power_sagittal_d);
         QVERIFY(f.spot.eye_field_deg > 15 && f.spot.eye_field_deg < 25);
-        QCOMPARE(f.spot.eye_power_d[0], eye.power_tangential_d);
-        QCOMPARE(f.spot.eye_power_d[1], eye.power_sagittal_d);
+        QVERIFY(std::hypot(f.spot.pupil_offset_mm[0], f.spot.pupil_offset_mm[1]) > 1.0);
+        QCOMPARE(f.spot.eye_power_d[0], pencil.meridional_d);
+        QCOMPARE(f.spot.eye_power_d[1], pencil.sagittal_d);
+        QCOMPARE(f.spot.eye_power_cross_d, pencil.cross_d);
         QVERIFY2(std::abs(eye.astigmatism_d - 0.85) <= 0.005, qPrintable(QString::number(eye.astigmatism_d)));
       }
     }
@@ -405,10 +417,11 @@ class TestRetinalPsf : public QObject {
           expected, sigma_a * ppd, sigma_b * ppd);
     QVERIFY(width > 0 && expected > 0);
     QVERIFY2(std::abs(width / expected - 1) < 0.03, qPrintable(QString::number(width / expected)));
-    // docs/physics.md prints "70.27 px against 70.11 px": held to those digits (70.29 / 70.13
-    // before the eye's own off-axis astigmatism entered the spots).
-    QVERIFY2(std::abs(width - 70.27) <= 0.005, qPrintable(QString::number(width, 'f', 4)));
-    QVERIFY2(std::abs(expected - 70.11) <= 0.005, qPrintable(QString::number(expected, 'f', 4)));
+    // docs/physics.md prints "70.39 px against 70.25 px": held to those digits (70.29 / 70.13
+    // before the eye's own off-axis astigmatism entered the spots, 70.27 / 70.11 with the chief
+    // ray's pencil for every beam, before the beam's 2 mm decentration in the pupil entered).
+    QVERIFY2(std::abs(width - 70.39) <= 0.005, qPrintable(QString::number(width, 'f', 4)));
+    QVERIFY2(std::abs(expected - 70.25) <= 0.005, qPrintable(QString::number(expected, 'f', 4)));
   }
 
   void lateralColourFollowsTheGratingEquation() {
