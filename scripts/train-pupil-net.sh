@@ -2,16 +2,16 @@
 # Trains the learned pupil detector and writes resources/pupil/pupil-net.onnx (+ .json with
 # its validation figures). Not part of the test command: the shipped model is what the tests
 # check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch
-# seed 31). The shipped model: 6000 frames, 20 epochs on one thread (two intra-op threads on a
-# shared two-core machine stall at their barriers: up to 17 min an epoch while builds ran,
-# one thread 0.5-0.9 min), the
+# seed 31). The shipped model: 18000 frames, 24 epochs on one thread in 35 minutes (rendering
+# 13 minutes more; two intra-op threads on a shared two-core machine stall at their barriers:
+# up to 17 min an epoch while builds ran, one thread 0.9-2.5 min at 18000 frames), the
 # trainer stopping at --max-minutes whatever the epoch - see
 # resources/pupil/pupil-net.onnx.json for the epochs it ran and its validation figures.
 #   scripts/train-pupil-net.sh [--frames N] [--epochs E] [--max-minutes M] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FRAMES=6000 EPOCHS=20 MINUTES=45 WORK=/tmp/fovea-pupil-train
+FRAMES=18000 EPOCHS=24 MINUTES=65 WORK=/tmp/fovea-pupil-train
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --frames) FRAMES=$2; shift 2 ;;
