@@ -181,10 +181,10 @@ class TestCliBinocular : public QObject {
 
   void detectorOnBothTrackers() {
     // --detector learned: both eyes' calibrations and trackers use the learned detector. On the
-    // classic renderer's frames it is the less accurate one (calibration accuracy 0.90/0.92 deg
-    // per eye against the classical 0.23 deg; the vergence's closed-form SD 0.086 D against
-    // 0.020 D), and its calibration bias leaves the focus 0.255 D off at the end of the
-    // fixation: just outside the 0.25 D target (docs/gaze-tracking.md).
+    // classic renderer's frames it is the less accurate one (calibration accuracy 0.35/0.36 deg
+    // per eye against the classical 0.23 deg; the vergence's closed-form SD 0.044 D against
+    // 0.020 D); the focus ends 0.017 D off, within the 0.25 D target after 69 ms
+    // (docs/gaze-tracking.md; the previous network: 0.90/0.92 deg, 0.086 D, 0.255 D off).
     const std::string file = (tmpDir() / "fixation-detector.json").string();
     std::ofstream(file) << R"({"fixations": [{"distance_cm": 30, "direction_deg": [5, 0], "hold_ms": 700}]})";
     const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", file.c_str(), "--fps", "60",
@@ -195,13 +195,15 @@ class TestCliBinocular : public QObject {
     QCOMPARE(j["detector"].get<std::string>(), std::string("learned"));
     for (const char* e : {"left", "right"}) {
       const double accuracy = j["eyes"][e]["calibration"]["accuracy_deg"].get<double>();
-      QVERIFY2(accuracy > 0.6 && accuracy < 1.2, e);  // the learned detector's, not the classical 0.23 deg
+      QVERIFY2(accuracy > 0.28 && accuracy < 0.5, e);  // the learned detector's, not the classical 0.23 deg
       QCOMPARE(j["eyes"][e]["frames"]["tracked"], j["eyes"][e]["frames"]["captured"]);
     }
     const double sigma = j["vergence"]["closed_form_sigma_d"].get<double>();
-    QVERIFY2(sigma > 0.06 && sigma < 0.12, qPrintable(QString::number(sigma)));
+    QVERIFY2(sigma > 0.03 && sigma < 0.06, qPrintable(QString::number(sigma)));  // classical 0.020 D
     const double final_error = j["fixations"][0]["final_focus_error_d"].get<double>();
-    QVERIFY2(std::abs(final_error) > 0.2 && std::abs(final_error) < 0.3, qPrintable(QString::number(final_error)));
+    QVERIFY2(std::abs(final_error) < 0.1, qPrintable(QString::number(final_error)));
+    const double settle = j["fixations"][0]["time_to_0_25d_ms"].get<double>();
+    QVERIFY2(settle > 0 && settle < 150, qPrintable(QString::number(settle)));
     // A bad --detector: exit 2; a missing model: exit 1 naming its path, before any frame.
     QCOMPARE(cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", "1", "--detector", "neural"}).code, 2);
     fovea::testing::CliCall call;
