@@ -194,7 +194,11 @@ PeripheralSpot peripheralSpotAt(const Scene& scene, double wavelength_nm, double
       const Eigen::Vector3d s_dir = eye.gaze.cross(m_pupil).normalized();  // across, normal to the ray too
       double h_m = offset.dot(m_pupil), h_s = offset.dot(s_dir);
       const double rho = std::hypot(h_m, h_s);
-      if (rho > kMaxPupilOffsetMm) h_m *= kMaxPupilOffsetMm / rho, h_s *= kMaxPupilOffsetMm / rho;
+      if (rho > kMaxPupilOffsetMm) {  // onto the limit, a hair inside so rounding cannot cross it
+        const double scale = kMaxPupilOffsetMm / rho * (1.0 - 1e-12);
+        h_m *= scale;
+        h_s *= scale;
+      }
       s.pupil_offset_mm = {h_m, h_s};
       const EyePencilPower ep = eyePencilPower(e, std::min(s.eye_field_deg, 60.0), h_m, h_s);
       if (ep.valid) {

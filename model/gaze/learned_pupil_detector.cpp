@@ -91,10 +91,10 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
   // augmentation (a mirrored eye is an eye; the network was trained with horizontal flips).
   // The detector is then mirror-equivariant by construction, and on the wide domain's held-out
   // subsets at seed 99 (100 frames each, not the benchmark's seed) it placed more centres within
-  // 5 px than one pass: hard 39 -> 52, occlusion 55 -> 59, easy 96 -> 98, glints 89 -> 91,
-  // off-axis 83 -> 85, partial 59 -> 60, motion blur 90 -> 89 (docs/gaze-tracking.md).
-  // Pixel centres are at integers (OpenCV's convention, the labels'): mirroring the square
-  // takes x to (side - 1) - x, a centre fraction f to (side - 1) / side - f.
+  // 5 px than one pass (measured with the network before the 18000-frame one): hard 39 -> 52, occlusion 55 -> 59, easy
+  // 96 -> 98, glints 89 -> 91, off-axis 83 -> 85, partial 59 -> 60, motion blur 90 -> 89 (docs/gaze-tracking.md). Pixel
+  // centres are at integers (OpenCV's convention, the labels'): mirroring the square takes x to (side - 1) - x, a
+  // centre fraction f to (side - 1) / side - f.
   cv::Mat mirrored;
   cv::flip(small, mirrored, 1);
   const cv::Mat blob = cv::dnn::blobFromImages(std::vector<cv::Mat>{small, mirrored}, 1.0 / 255, {}, cv::Scalar(127.5),

@@ -206,6 +206,18 @@ std::optional<double> focusedVergence(const std::array<ConicSurface, 4>& s, cons
   return std::nullopt;
 }
 
+// The entrance-pupil vergences (D) that focus the tangential and the sagittal pencil of the ray
+// at theta_deg (>= 0) crossing the pupil plane offset_mm from the chief ray on the retina.
+std::optional<std::array<double, 2>> focusedPencils(const std::array<ConicSurface, 4>& s, const SchematicEyeState& eye,
+                                                    double theta_deg, double offset_mm) {
+  const auto path = traceChiefRay(s, eye, theta_deg, offset_mm);
+  if (!path) return std::nullopt;
+  const double start = -eye.accommodation_d / 1000.0;
+  const auto t = focusedVergence(s, *path, 0, start), v = focusedVergence(s, *path, 1, start);
+  if (!t || !v) return std::nullopt;
+  return std::array<double, 2>{*t * 1000.0, *v * 1000.0};
+}
+
 }  // namespace
 
 ChiefRayFoci navarroChiefRayFoci(const SchematicEyeState& eye, double field_deg, double vergence_d,
@@ -236,17 +248,10 @@ EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, 
   EyeObliqueFocus out;
   out.field_deg = field_deg;
   out.pupil_offset_mm = pupil_offset_mm;
-  auto focusAt = [&](double theta_deg, double offset) -> std::optional<std::array<double, 2>> {
-    const auto path = traceChiefRay(surfaces, eye, theta_deg, offset);
-    if (!path) return std::nullopt;
-    const double start = -eye.accommodation_d / 1000.0;
-    const auto t = focusedVergence(surfaces, *path, 0, start), s = focusedVergence(surfaces, *path, 1, start);
-    if (!t || !s) return std::nullopt;
-    return std::array<double, 2>{*t * 1000.0, *s * 1000.0};
-  };
   // A negative field mirrors the meridional plane: the offset changes sign with it.
   const double sign = field_deg < 0 ? -1.0 : 1.0;
-  const auto axis = focusAt(0.0, 0.0), at = focusAt(std::abs(field_deg), sign * pupil_offset_mm);
+  const auto axis = focusedPencils(surfaces, eye, 0.0, 0.0);
+  const auto at = focusedPencils(surfaces, eye, std::abs(field_deg), sign * pupil_offset_mm);
   if (!axis || !at) return out;
   out.axis_d = (*axis)[0];
   out.tangential_d = (*at)[0];
@@ -260,20 +265,29 @@ EyeObliqueFocus eyeObliqueFocus(const SchematicEyeState& eye, double field_deg, 
 
 EyePencilPower eyePencilPower(const SchematicEyeState& eye, double field_deg, double offset_meridional_mm,
                               double offset_sagittal_mm) {
+  requireField(field_deg);
   const double rho = std::hypot(offset_meridional_mm, offset_sagittal_mm);
   requirePupilOffset(rho);
+  // One set of surfaces and one axis for the three pencils (chief ray, +|h|, -|h|); powers are
+  // V_axis - V, as eyeObliqueFocus gives them.
+  const auto surfaces = eyeSurfaces(eye);
+  const double theta = std::abs(field_deg), sign = field_deg < 0 ? -1.0 : 1.0;
   EyePencilPower out;
-  const EyeObliqueFocus chief = eyeObliqueFocus(eye, field_deg);
-  if (!chief.valid) return out;
-  out.meridional_d = chief.power_tangential_d;
-  out.sagittal_d = chief.power_sagittal_d;
+  const auto axis = focusedPencils(surfaces, eye, 0.0, 0.0), chief = focusedPencils(surfaces, eye, theta, 0.0);
+  if (!axis || !chief) return out;
+  const double v_axis = (*axis)[0];
+  out.meridional_d = v_axis - (*chief)[0];
+  out.sagittal_d = v_axis - (*chief)[1];
   if (rho > 0) {
-    const EyeObliqueFocus plus = eyeObliqueFocus(eye, field_deg, rho), minus = eyeObliqueFocus(eye, field_deg, -rho);
-    if (!plus.valid || !minus.valid) return out;
-    const double even_t = 0.5 * (plus.power_tangential_d + minus.power_tangential_d) - chief.power_tangential_d;
-    const double even_s = 0.5 * (plus.power_sagittal_d + minus.power_sagittal_d) - chief.power_sagittal_d;
-    const double odd_t = 0.5 * (plus.power_tangential_d - minus.power_tangential_d);
-    const double odd_s = 0.5 * (plus.power_sagittal_d - minus.power_sagittal_d);
+    const auto plus = focusedPencils(surfaces, eye, theta, sign * rho);
+    const auto minus = focusedPencils(surfaces, eye, theta, -sign * rho);
+    if (!plus || !minus) return out;
+    // Powers differ from vergences by the sign and v_axis, which the even part's difference and
+    // the odd part cancel.
+    const double even_t = (*chief)[0] - 0.5 * ((*plus)[0] + (*minus)[0]);
+    const double even_s = (*chief)[1] - 0.5 * ((*plus)[1] + (*minus)[1]);
+    const double odd_t = -0.5 * ((*plus)[0] - (*minus)[0]);
+    const double odd_s = -0.5 * ((*plus)[1] - (*minus)[1]);
     const double c = offset_meridional_mm / rho, sn = offset_sagittal_mm / rho;
     out.meridional_d += even_t * c * c + even_s * sn * sn + odd_t * c;
     out.sagittal_d += even_s * c * c + even_t * sn * sn + odd_s * c;

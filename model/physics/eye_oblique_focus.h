@@ -35,12 +35,13 @@
 // pupil in schematic_eye.h, the same at every field to this order).
 // A beam that enters off the pupil centre: the same pencil along the ray at theta that crosses
 // the paraxial entrance-pupil plane h from the chief ray's crossing, in the meridional plane
-// (pupil_offset_mm; h > 0 towards the side the ray travels to). On axis this is the zonal pencil of the eye's spherical
-// aberration (its tangential power grows about three times as fast as its sagittal, as W040 rho^4 curves 12 and 4 W040
-// h^2). Departures, all stated: the retinal image (retina_image.h) uses the chief ray's pencil for every pixel beam (a
-// decentred beam's extra power is bounded in docs/physics.md, not applied); a decentration out of the meridional plane
-// (a skew pencil) is not traced; the coma across a beam's own width is not modelled; the retina's local magnification
-// (distortion) is not applied.
+// (pupil_offset_mm; h > 0 towards the side the ray travels to). On axis this is the zonal
+// pencil of the eye's spherical aberration (its tangential power grows about three times as fast
+// as its sagittal, as W040 rho^4 curves 12 and 4 W040 h^2); eyePencilPower (below) extends it to
+// an offset across the meridional plane, and the retinal image (retinal_psf.h peripheralSpotAt)
+// gives each pixel beam the pencil where it enters the pupil. Departures, all stated: a skew
+// offset's cross-plane part takes Seidel's form, not a traced skew pencil; the coma across a
+// beam's own width is not modelled; the retina's local magnification (distortion) is not applied.
 
 namespace fovea {
 
