@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
-# Trains the learned pupil detector and writes resources/pupil/pupil-net.onnx (+ .json with
-# its validation figures). Not part of the test command: the shipped model is what the tests
-# check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch
-# seed 31). The shipped model: 18000 frames, 24 epochs on one thread in 35 minutes (rendering
-# 13 minutes more; two intra-op threads on a shared two-core machine stall at their barriers:
-# up to 17 min an epoch while builds ran, one thread 0.9-2.5 min at 18000 frames), the
-# trainer stopping at --max-minutes whatever the epoch - see
-# resources/pupil/pupil-net.onnx.json for the epochs it ran and its validation figures.
-#   scripts/train-pupil-net.sh [--frames N] [--epochs E] [--max-minutes M] [--work DIR]
+# Trains the learned pupil detector's two stages (scripts/train_pupil_net.py) and writes
+# resources/pupil/pupil-net.onnx (the whole frame at 96 px) and pupil-refine.onnx (a 96 px
+# window of the frame at 200 px around the first stage's centre), each with a .json of its
+# validation figures. Not part of the test command: the shipped models are what the tests
+# check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch seed
+# 31). The shipped models: the full-frame stage 18000 frames, 24 epochs on one thread in 35
+# minutes; the refining stage 36000 frames, 12 epochs in about 25 minutes; rendering a few
+# minutes on two cores when nothing else runs (13 when builds ran beside it). One thread each:
+# two intra-op threads on a shared two-core machine stall at their barriers (up to 17 min an
+# epoch while builds ran). The trainer stops at --max-minutes whatever the epoch; the .json
+# files give the epochs it ran.
+#   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--epochs E]
+#       [--refine-frames N] [--refine-epochs E] [--max-minutes M] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FRAMES=18000 EPOCHS=24 MINUTES=65 WORK=/tmp/fovea-pupil-train
+FRAMES=18000 EPOCHS=24 MINUTES=65 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=36000 REPOCHS=12
 while [[ $# -gt 0 ]]; do
   case "$1" in
+    --stage) STAGE=$2; shift 2 ;;
+    --refine-frames) RFRAMES=$2; shift 2 ;;
+    --refine-epochs) REPOCHS=$2; shift 2 ;;
     --frames) FRAMES=$2; shift 2 ;;
     --epochs) EPOCHS=$2; shift 2 ;;
     --work) WORK=$2; shift 2 ;;
@@ -21,6 +28,7 @@ while [[ $# -gt 0 ]]; do
     *) echo "train-pupil-net.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
+case "$STAGE" in full|refine|both) ;; *) echo "train-pupil-net.sh: --stage $STAGE: full, refine or both" >&2; exit 2 ;; esac
 # PyTorch from Debian (the system interpreter: a pyenv or venv python3 does not see it).
 if ! /usr/bin/python3 -c "import torch, onnx" 2>/dev/null; then
   sudo=""; [[ $(id -u) -ne 0 ]] && sudo=sudo
@@ -29,18 +37,43 @@ fi
 CLI=${FOVEA_CLI:-build/default/app/fovea-cli}
 if [[ ! -x $CLI ]]; then cmake --preset default && cmake --build --preset default --target fovea-cli; fi
 mkdir -p "$WORK"
-render() {  # DIR START COUNT SEED
-  if [[ -f $1/dataset.json ]] && grep -q "\"frames\": $3," "$1/dataset.json" && grep -q "\"start\": $2," "$1/dataset.json" && grep -q "\"seed\": $4," "$1/dataset.json"; then return; fi
-  nice -n 10 "$CLI" eye-dataset --out "$1" --start "$2" --frames "$3" --seed "$4" --size 96 --no-png
+render() {  # DIR START COUNT SEED [SIZE]
+  local size=${5:-96}
+  if [[ -f $1/dataset.json ]] && grep -q "\"frames\": $3," "$1/dataset.json" && grep -q "\"start\": $2," "$1/dataset.json" && grep -q "\"seed\": $4," "$1/dataset.json" && tr -d ' \n' < "$1/dataset.json" | grep -q "\"stored_size_px\":\[$size,"; then return; fi
+  nice -n 10 "$CLI" eye-dataset --out "$1" --start "$2" --frames "$3" --seed "$4" --size "$size" --no-png
 }
-half=$((FRAMES / 2))
-t0=$(date +%s)
-render "$WORK/train-a" 0 "$half" 1 &
-render "$WORK/train-b" "$half" "$((FRAMES - half))" 1 &
-wait
-render "$WORK/val" 0 400 7
-t1=$(date +%s)
-echo "rendered in $((t1 - t0)) s"
-nice -n 10 /usr/bin/python3 scripts/train_pupil_net.py --data "$WORK/train-a" --data "$WORK/train-b" \
-  --val "$WORK/val" --out resources/pupil/pupil-net.onnx --epochs "$EPOCHS" --max-minutes "$MINUTES" --threads 1
-echo "trained in $(( $(date +%s) - t1 )) s"
+train() {  # STAGE OUT EPOCHS DIR... (the last DIR is the validation set)
+  local stage=$1 out=$2 epochs=$3; shift 3
+  local args=() n=$#
+  for ((k = 1; k < n; k++)); do args+=(--data "${!k}"); done
+  nice -n 10 /usr/bin/python3 scripts/train_pupil_net.py --stage "$stage" "${args[@]}" --val "${!n}" --out "$out" \
+    --epochs "$epochs" --max-minutes "$MINUTES" --threads 1
+}
+if [[ $STAGE != refine ]]; then
+  half=$((FRAMES / 2))
+  t0=$(date +%s)
+  render "$WORK/train-a" 0 "$half" 1 &
+  render "$WORK/train-b" "$half" "$((FRAMES - half))" 1 &
+  wait
+  render "$WORK/val" 0 400 7
+  t1=$(date +%s)
+  echo "full-frame stage: rendered in $((t1 - t0)) s"
+  train full resources/pupil/pupil-net.onnx "$EPOCHS" "$WORK/train-a" "$WORK/train-b" "$WORK/val"
+  echo "full-frame stage: trained in $(( $(date +%s) - t1 )) s"
+fi
+if [[ $STAGE != full ]]; then
+  # The same frames (seed 1, from index 0) stored at 200 px, in four shards, two at a time.
+  q=$((RFRAMES / 4))
+  t0=$(date +%s)
+  render "$WORK/refine-a" 0 "$q" 1 200 &
+  render "$WORK/refine-b" "$q" "$q" 1 200 &
+  wait
+  render "$WORK/refine-c" "$((2 * q))" "$q" 1 200 &
+  render "$WORK/refine-d" "$((3 * q))" "$((RFRAMES - 3 * q))" 1 200 &
+  wait
+  render "$WORK/refine-val" 0 400 7 200
+  t1=$(date +%s)
+  echo "refining stage: rendered in $((t1 - t0)) s"
+  train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "$WORK"/refine-{a,b,c,d} "$WORK/refine-val"
+  echo "refining stage: trained in $(( $(date +%s) - t1 )) s"
+fi

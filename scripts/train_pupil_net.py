@@ -32,17 +32,18 @@ import torch.nn as nn
 SIZE = 96
 
 
-def load(dirs):
-    """Frames and targets (centre and axes as fractions of the frame width w), and the mirror of
-    a centre, (w - 1) / w (every directory's frames share w)."""
-    images, targets, widths = [], [], set()
+def load(dirs, stored=SIZE):
+    """Frames, targets (centre and axes as fractions of the frame width w), the mirror of a
+    centre, (w - 1) / w (every directory's frames share w), and the visible fraction of each
+    frame's pupil."""
+    images, targets, widths, visible = [], [], set(), []
     for d in dirs:
         meta = json.load(open(os.path.join(d, "dataset.json")))
         w, h = meta["frame_size_px"]
         widths.add(w)
         s = meta["stored_size_px"][0]
-        if s != SIZE:
-            sys.exit(f"{d}: frames stored at {s} px, the network reads {SIZE}")
+        if s != stored:
+            sys.exit(f"{d}: frames stored at {s} px, this stage reads {stored}")
         n = meta["frames"]
         img = np.fromfile(os.path.join(d, "images.u8"), dtype=np.uint8)
         if img.size != n * s * s:
@@ -55,10 +56,11 @@ def load(dirs):
             t[i] = [float(r["cx_px"]) / w, float(r["cy_px"]) / h, float(r["major_px"]) / w,
                     float(r["minor_px"]) / w, math.cos(2 * a), math.sin(2 * a), float(r["visible"])]
         targets.append(t)
+        visible.append(np.array([float(r["visible_fraction"]) for r in rows], dtype=np.float32))
     if len(widths) != 1:
         sys.exit(f"frames of several widths {sorted(widths)}: the flip needs one")
     w = widths.pop()
-    return np.concatenate(images), np.concatenate(targets), (w - 1) / w
+    return np.concatenate(images), np.concatenate(targets), (w - 1) / w, np.concatenate(visible)
 
 
 def block(cin, cout, stride):
@@ -127,7 +129,9 @@ def loss_fn(out, t):
     return centre + 0.3 * axes + 0.5 * angle + 0.5 * bce, centre
 
 
-def evaluate(model, x, t, bs=512):
+def evaluate(model, x, t, px_per_unit=400, bs=512):
+    """Centre errors in frame px (`px_per_unit`: frame px per unit of the outputs - the frame's
+    width for the full-frame stage, the crop's span for the refining one)."""
     model.eval()
     errs, vis_ok, n_vis = [], 0, 0
     with torch.no_grad():
@@ -138,10 +142,46 @@ def evaluate(model, x, t, bs=512):
             pred_vis = o[:, 6] > 0
             vis_ok += int((pred_vis == (tb[:, 6] > 0.5)).sum())
             m = tb[:, 6] > 0.5
-            errs.append(np.hypot(o[m, 0] - tb[m, 0], o[m, 1] - tb[m, 1]) * 400)
+            errs.append(np.hypot(o[m, 0] - tb[m, 0], o[m, 1] - tb[m, 1]) * px_per_unit)
     e = np.concatenate(errs)
     return {"centre_err_px_median": float(np.median(e)), "within_5px": float((e <= 5).mean()),
-            "visibility_accuracy": vis_ok / len(x)}
+            "p90_px": float(np.percentile(e, 90)), "visibility_accuracy": vis_ok / len(x)}
+
+
+# The refining stage (model/gaze/learned_pupil_detector.cpp runs it after the full-frame one):
+# the frame downscaled to CANVAS x CANVAS (2 frame px per canvas px for the 400 px frames), a
+# SIZE x SIZE window of it centred on the first stage's centre, edges replicated, and the same
+# network regressing the ellipse in units of the window. Twice the full-frame stage's
+# resolution on the pupil (4.17 frame px per input px there), at the cost of one more pass.
+CANVAS = 200
+
+
+def refine_crops(x, t, idx, proposal_px, w):
+    """Windows of the CANVAS-px frames x[idx] around proposals (frame px, pixel centres at
+    integers) and the targets in window units. Frame -> canvas: u = (X + 0.5) / s - 0.5 with
+    s = w / CANVAS frame px per canvas px; the window, whose centre is its start o + (SIZE - 1)
+    / 2, starts at o = round(u - (SIZE - 1) / 2) (round half to even, symmetric: the window of
+    a mirrored frame is the mirrored window), and a window fraction f is the canvas coordinate
+    o + f SIZE - 0.5 (the soft-argmax grid's cell centres (i + 0.5) / GRID span the window's
+    pixel edges), so f = ((X + 0.5) / s - o) / SIZE."""
+    s = w / CANVAS
+    o = np.rint((proposal_px + 0.5) / s - 0.5 - (SIZE - 1) / 2).astype(np.int64)  # (B, 2): x, y
+    ar = np.arange(SIZE)
+    cols = np.clip(o[:, 0, None] + ar, 0, CANVAS - 1)
+    rows = np.clip(o[:, 1, None] + ar, 0, CANVAS - 1)
+    xb = x[idx[:, None, None], 0, rows[:, :, None], cols[:, None, :]][:, None]
+    tb = t[idx].copy()
+    tb[:, 0] = ((tb[:, 0] * w + 0.5) / s - o[:, 0]) / SIZE
+    tb[:, 1] = ((tb[:, 1] * w + 0.5) / s - o[:, 1]) / SIZE
+    tb[:, 2:4] *= w / (s * SIZE)
+    return np.ascontiguousarray(xb), tb
+
+
+def proposal_jitter(gen, n):
+    """The full-frame stage's centre errors, roughly (its held-out p50 1.6-4.7 px, p90 up to 11 px
+    on the hard subset): 70 % Gaussian of 3 px per axis, 30 % of 10 px, clipped to 40 px."""
+    sd = np.where(gen.random(n) < 0.7, 3.0, 10.0)[:, None]
+    return np.clip(gen.normal(size=(n, 2)) * sd, -40, 40)
 
 
 def export(model, path):
@@ -165,42 +205,64 @@ def main():
     ap.add_argument("--data", action="append", required=True)
     ap.add_argument("--val", required=True)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--stage", choices=["full", "refine"], default="full")
     ap.add_argument("--epochs", type=int, default=30)
     ap.add_argument("--seed", type=int, default=31)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--max-minutes", type=float, default=20)
+    ap.add_argument("--occluded-repeats", type=int, default=1,
+                    help="times an epoch shows a frame whose pupil is less than 60 %% visible (default 1)")
     a = ap.parse_args()
     torch.manual_seed(a.seed)
     np.random.seed(a.seed)
     torch.set_num_threads(a.threads)
-    x, t, mirror_x = load(a.data)
-    xv, tv, _ = load([a.val])
-    print(f"train {len(x)} frames ({int(t[:, 6].sum())} with a pupil), validation {len(xv)}", flush=True)
+    refine = a.stage == "refine"
+    stored = CANVAS if refine else SIZE
+    x, t, mirror_x, vis = load(a.data, stored)
+    xv, tv, _, _ = load([a.val], stored)
+    # Each epoch's frames: all once, those with a pupil less than 60 % visible (the occluded and
+    # hard subsets' range, where the centre is furthest behind the lid) `occluded_repeats` times.
+    occluded = np.flatnonzero((t[:, 6] > 0.5) & (vis < 0.6))
+    epoch_frames = np.concatenate([np.arange(len(x))] + [occluded] * (a.occluded_repeats - 1))
+    w = round(1 / (1 - mirror_x))  # the frames' width
+    gen = np.random.default_rng(a.seed)
+    if refine:
+        # Validation windows around fixed jittered proposals (their own seed); errors in frame px.
+        vgen = np.random.default_rng(a.seed + 1)
+        iv = np.arange(len(xv))
+        xv, tv = refine_crops(xv, tv, iv, tv[:, :2] * w + proposal_jitter(vgen, len(iv)), w)
+        px_per_unit, mirror = w / CANVAS * SIZE, 1.0  # window fractions mirror to 1 - f (see refine_crops)
+    else:
+        px_per_unit, mirror = w, mirror_x
+    print(f"{a.stage} stage: train {len(x)} frames ({int(t[:, 6].sum())} with a pupil, {len(occluded)} of them "
+          f"less than 60 % visible, shown {a.occluded_repeats}x an epoch), validation {len(xv)}", flush=True)
     model = PupilNet()
     opt = torch.optim.AdamW(model.parameters(), lr=2e-3, weight_decay=1e-4)
     bs = 64
-    steps = a.epochs * (len(x) // bs)
+    steps = a.epochs * (len(epoch_frames) // bs)
     sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=3e-3, total_steps=steps, pct_start=0.15)
     start = time.time()
-    gen = np.random.default_rng(a.seed)
     step = 0
     for epoch in range(a.epochs):
         model.train()
-        order = gen.permutation(len(x))
+        order = gen.permutation(epoch_frames)
         total = 0.0
         for i in range(0, len(order) - bs + 1, bs):
             idx = order[i:i + bs]
-            xb = torch.from_numpy(x[idx]).float() / 255 - 0.5
+            if refine:
+                xi, tb = refine_crops(x, t, idx, t[idx, :2] * w + proposal_jitter(gen, len(idx)), w)
+            else:
+                xi, tb = x[idx], t[idx]
+            xb = torch.from_numpy(xi).float() / 255 - 0.5
             if gen.random() < 0.5:  # horizontal flip: a mirrored eye is an eye (angle -> -angle)
                 xb = torch.flip(xb, dims=[3])
-                tb = t[idx].copy()
+                tb = tb.copy()
                 # Pixel centres at integers (OpenCV's, the renderer's labels): a mirrored w-px
                 # frame takes cx to (w - 1) - cx, i.e. x -> (w - 1) / w - x. (Until 2026-12-05 the
-                # trainer used 1 - x: flipped labels 1 px off, a +0.5 px bias in x.)
-                tb[:, 0] = mirror_x - tb[:, 0]
+                # trainer used 1 - x: flipped labels 1 px off, a +0.5 px bias in x.) A refining
+                # window's fractions are of its pixel edges: f -> 1 - f.
+                tb[:, 0] = mirror - tb[:, 0]
                 tb[:, 5] = -tb[:, 5]
-            else:
-                tb = t[idx]
             out = model(xb)
             loss, _ = loss_fn(out, torch.from_numpy(tb))
             opt.zero_grad()
@@ -210,7 +272,7 @@ def main():
                 sched.step()
             step += 1
             total += float(loss)
-        ev = evaluate(model, xv, tv)
+        ev = evaluate(model, xv, tv, px_per_unit)
         mins = (time.time() - start) / 60
         print(f"epoch {epoch + 1}/{a.epochs}: loss {total / (len(order) // bs):.4f} val {ev} ({mins:.1f} min)",
               flush=True)
@@ -219,11 +281,13 @@ def main():
             break
     model.eval()
     export(model, a.out)
-    ev = evaluate(model, xv, tv)
+    ev = evaluate(model, xv, tv, px_per_unit)
     # docs/gaze-tracking.md prints these figures (scripts/doc-numbers.json holds it to this file)
     json.dump({"validation": ev, "train_minutes": (time.time() - start) / 60, "frames": len(x),
                "frames_with_pupil": int(t[:, 6].sum()), "validation_frames": len(xv),
-               "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE}, open(a.out + ".json", "w"), indent=2)
+               "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE, "stage": a.stage,
+               "occluded_repeats": a.occluded_repeats, "frames_less_than_60pct_visible": int(len(occluded)),
+               **({"canvas_px": CANVAS} if refine else {})}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
 
 

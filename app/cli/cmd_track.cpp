@@ -214,12 +214,17 @@ void install(CLI::App& app) {
     } else {
       summary["unreadable"] = unreadable;
     }
-    const nlohmann::json out{{"source", virt ? "virtual" : "images"},
-                             {"detector", gaze::detectorName(kind)},
-                             {"domain", virt ? nlohmann::json(a->domain) : nlohmann::json(nullptr)},
-                             {"seed", virt ? nlohmann::json(a->seed) : nlohmann::json(nullptr)},
-                             {"frames", frames},
-                             {"summary", summary}};
+    nlohmann::json out{{"source", virt ? "virtual" : "images"},
+                       {"detector", gaze::detectorName(kind)},
+                       {"domain", virt ? nlohmann::json(a->domain) : nlohmann::json(nullptr)},
+                       {"seed", virt ? nlohmann::json(a->seed) : nlohmann::json(nullptr)},
+                       {"frames", frames},
+                       {"summary", summary}};
+    if (kind != gaze::PupilDetectorKind::Classical) {  // which network files ran (null: no refining stage)
+      const auto files = gaze::learnedModelFiles();
+      out["detector_model"] = files.model;
+      out["detector_refine_model"] = files.refine.empty() ? nlohmann::json(nullptr) : nlohmann::json(files.refine);
+    }
     if (a->json)
       printJson(out);
     else

@@ -1,10 +1,13 @@
 #include "model/gaze/learned_pupil_detector.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 
@@ -16,8 +19,53 @@
 namespace fovea::gaze {
 
 struct LearnedPupilDetector::Net {
-  cv::dnn::Net dnn;
+  cv::dnn::Net dnn, refine;
 };
+
+namespace {
+
+cv::dnn::Net loadNet(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("pupil model " + path + ": no such file");
+  cv::dnn::Net net;
+  try {
+    net = cv::dnn::readNetFromONNX(path);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("pupil model " + path + ": not a readable ONNX model (" + e.msg + ")");
+  }
+  if (net.empty()) throw std::runtime_error("pupil model " + path + ": empty network");
+  net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+  net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  return net;
+}
+
+// One pass of a stage over a 96 x 96 input (x / 255 - 0.5, as scripts/train_pupil_net.py feeds
+// it), or, given `mirror`, the input and its mirror image in one batch, the mirror's outputs
+// mapped back and the two averaged: test-time flip augmentation (a mirrored eye is an eye; both
+// stages were trained with horizontal flips). On the wide domain's held-out subsets at seed 99
+// (100 frames each, not the benchmark's seed) the flip placed more centres within 5 px than one
+// pass (measured with the network before the 18000-frame one): hard 39 -> 52, occlusion 55 ->
+// 59, easy 96 -> 98, glints 89 -> 91, off-axis 83 -> 85, partial 59 -> 60, motion blur 90 -> 89
+// (docs/gaze-tracking.md). A centre fraction f mirrors to *mirror - f: (side - 1) / side for the
+// full frame, whose labels put pixel centres at integers (OpenCV's convention), 1 for a refining
+// window, whose fractions are of its pixel edges. Outputs: centre x, y, axes, cos 2θ, sin 2θ (the
+// mirror takes θ to -θ: sin 2θ changes sign, cos 2θ does not), visibility logit.
+std::array<double, kLearnedPupilOutputs> forward(cv::dnn::Net& net, const cv::Mat& input, std::optional<double> mirror,
+                                                 const std::string& path) {
+  std::vector<cv::Mat> batch{input};
+  if (mirror) cv::flip(input, batch.emplace_back(), 1);
+  net.setInput(cv::dnn::blobFromImages(batch, 1.0 / 255, {}, cv::Scalar(127.5), false, false, CV_32F));
+  const cv::Mat out = net.forward();
+  if (out.total() != batch.size() * kLearnedPupilOutputs)
+    throw std::runtime_error("pupil model " + path + ": expected 7 outputs per frame");
+  const float* a = out.ptr<float>();
+  if (!mirror) return {a[0], a[1], a[2], a[3], a[4], a[5], a[6]};
+  const float* b = a + kLearnedPupilOutputs;
+  return {0.5 * (a[0] + *mirror - b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]), 0.5 * (a[3] + b[3]),
+          0.5 * (a[4] + b[4]),           0.5 * (a[5] - b[5]), 0.5 * (a[6] + b[6])};
+}
+
+}  // namespace
 
 std::vector<std::string> pupilModelCandidates() {
   namespace fs = std::filesystem;
@@ -45,16 +93,15 @@ std::string findPupilModel() {
 
 LearnedPupilDetector::LearnedPupilDetector(const std::string& model_path)
     : net_(std::make_unique<Net>()), path_(model_path.empty() ? findPupilModel() : model_path) {
+  net_->dnn = loadNet(path_);
+  // The refining stage beside the model; a file there that does not load is an error, not a
+  // silent fall-back to one stage.
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path_, ec)) throw std::runtime_error("pupil model " + path_ + ": no such file");
-  try {
-    net_->dnn = cv::dnn::readNetFromONNX(path_);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error("pupil model " + path_ + ": not a readable ONNX model (" + e.msg + ")");
+  const auto refine = std::filesystem::path(path_).parent_path() / "pupil-refine.onnx";
+  if (std::filesystem::is_regular_file(refine, ec)) {
+    refine_path_ = refine.string();
+    net_->refine = loadNet(refine_path_);
   }
-  if (net_->dnn.empty()) throw std::runtime_error("pupil model " + path_ + ": empty network");
-  net_->dnn.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-  net_->dnn.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
 }
 
 LearnedPupilDetector::~LearnedPupilDetector() = default;
@@ -86,31 +133,9 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
   cv::Scalar mean, sd;
   cv::meanStdDev(small, mean, sd);
   if (sd[0] < 4) return refused("no contrast in the frame (lens cap, saturated or uniform)");
-  // The frame and its mirror image in one batch (x / 255 - 0.5, as scripts/train_pupil_net.py
-  // feeds it), the mirror's outputs mapped back and the two averaged: test-time flip
-  // augmentation (a mirrored eye is an eye; the network was trained with horizontal flips).
-  // The detector is then mirror-equivariant by construction, and on the wide domain's held-out
-  // subsets at seed 99 (100 frames each, not the benchmark's seed) it placed more centres within
-  // 5 px than one pass (measured with the network before the 18000-frame one): hard 39 -> 52, occlusion 55 -> 59, easy
-  // 96 -> 98, glints 89 -> 91, off-axis 83 -> 85, partial 59 -> 60, motion blur 90 -> 89 (docs/gaze-tracking.md). Pixel
-  // centres are at integers (OpenCV's convention, the labels'): mirroring the square takes x to (side - 1) - x, a
-  // centre fraction f to (side - 1) / side - f.
-  cv::Mat mirrored;
-  cv::flip(small, mirrored, 1);
-  const cv::Mat blob = cv::dnn::blobFromImages(std::vector<cv::Mat>{small, mirrored}, 1.0 / 255, {}, cv::Scalar(127.5),
-                                               false, false, CV_32F);
-  net_->dnn.setInput(blob);
-  const cv::Mat out = net_->dnn.forward();
-  if (out.total() != 2 * static_cast<std::size_t>(kLearnedPupilOutputs))
-    throw std::runtime_error("pupil model " + path_ + ": expected 7 outputs per frame");
-  const float* a = out.ptr<float>();
-  const float* b = a + kLearnedPupilOutputs;
-  // Outputs: centre x, y (fractions of the side), axes, cos 2θ, sin 2θ, visibility logit. The
-  // mirror takes θ to -θ: sin 2θ changes sign, cos 2θ does not.
-  const double mirror = (side - 1.0) / side;
-  const double o[kLearnedPupilOutputs] = {0.5 * (a[0] + mirror - b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]),
-                                          0.5 * (a[3] + b[3]),          0.5 * (a[4] + b[4]), 0.5 * (a[5] - b[5]),
-                                          0.5 * (a[6] + b[6])};
+  // The full-frame stage with the flip: it alone decides whether there is a pupil, and the
+  // averaged visibility logit keeps closed eyes closed.
+  auto o = forward(net_->dnn, small, (side - 1.0) / side, path_);
   d.confidence = 1.0 / (1.0 + std::exp(-o[6]));
   if (d.confidence < min_confidence) {
     d.reason = "no pupil (learned detector's confidence below the threshold)";
@@ -118,8 +143,39 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
     return d;
   }
   d.found = true;
-  d.ellipse.centre = {o[0] * side - pad_x, o[1] * side - pad_y};
-  double major = o[2] * side, minor = o[3] * side;
+  double cx = o[0] * side, cy = o[1] * side, major = o[2] * side, minor = o[3] * side;
+  if (!net_->refine.empty()) {
+    // The refining window (scripts/train_pupil_net.py, refine_crops): square -> canvas takes
+    // X to u = (X + 0.5) / s - 0.5, s = side / canvas; the window starts at round(u - 47.5)
+    // (cvRound rounds half to even, symmetrically: a mirrored frame's window is the mirrored
+    // window, and the first stage's centre is mirror-equivariant) and a window fraction f is X = (96 f + start) s -
+    // 0.5. Edges replicated, as in training.
+    const double s = static_cast<double>(side) / kLearnedPupilCanvasPx;
+    const auto start = [&](double x) {
+      return std::clamp(cvRound((x + 0.5) / s - 0.5 - (kLearnedPupilInputPx - 1) / 2.0), -kLearnedPupilInputPx,
+                        kLearnedPupilCanvasPx);
+    };
+    const int ox = start(cx), oy = start(cy);
+    cv::Mat canvas, padded;
+    cv::resize(square, canvas, {kLearnedPupilCanvasPx, kLearnedPupilCanvasPx}, 0, 0, cv::INTER_AREA);
+    cv::copyMakeBorder(canvas, padded, kLearnedPupilInputPx, kLearnedPupilInputPx, kLearnedPupilInputPx,
+                       kLearnedPupilInputPx, cv::BORDER_REPLICATE);
+    const cv::Mat window = padded(cv::Rect(ox + kLearnedPupilInputPx, oy + kLearnedPupilInputPx, kLearnedPupilInputPx,
+                                           kLearnedPupilInputPx))
+                               .clone();
+    // One pass, no flip: the ≤ 3 ms budget (issue 31). With the flip it took 3.0-4.2 ms a frame
+    // (Google Benchmark, one core), and at seed 99 it placed as many centres within 5 px (hard
+    // 71 against 72 %, occlusion 80 / 82, partial 93 / 93, the rest within a frame), its medians
+    // 0.1-0.4 px lower. The detector is then mirror-equivariant in whether it finds a pupil and
+    // in its confidence, not exactly in the centre.
+    const auto r = forward(net_->refine, window, std::nullopt, refine_path_);
+    const double span = kLearnedPupilInputPx * s;  // frame px per window unit
+    cx = (kLearnedPupilInputPx * r[0] + ox) * s - 0.5;
+    cy = (kLearnedPupilInputPx * r[1] + oy) * s - 0.5;
+    major = r[2] * span, minor = r[3] * span;
+    o[4] = r[4], o[5] = r[5];
+  }
+  d.ellipse.centre = {cx - pad_x, cy - pad_y};
   // The doubled angle (the ellipse is symmetric under a half turn) back to degrees.
   double angle = 0.5 * std::atan2(o[5], o[4]) * 180 / std::numbers::pi;
   if (minor > major) std::swap(major, minor), angle += 90;

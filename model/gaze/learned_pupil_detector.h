@@ -5,9 +5,15 @@
 // is padded to a square, downscaled to 96 x 96 (INTER_AREA, as the training frames were)
 // and the network regresses the full pupil ellipse (centre, axes, angle) and whether a
 // pupil is visible; its probability is the confidence. The frame and its mirror image run as
-// one batch of two and their outputs are averaged (test-time flip augmentation), so the
-// detector is mirror-equivariant. It returns the classical detector's
+// one batch of two and their outputs are averaged (test-time flip augmentation), so this
+// stage is mirror-equivariant. It returns the classical detector's
 // PupilDetection (no glints: the network does not locate them).
+//
+// A second, refining stage (pupil-refine.onnx beside the model file, the same network trained
+// on windows: scripts/train_pupil_net.py --stage refine) looks again at twice the resolution:
+// the frame downscaled to 200 x 200, a 96 x 96 window of it centred on the first stage's
+// centre, and the ellipse regressed in the window's units (one pass: the 3 ms budget).
+// Without that file the detector is the one stage; refineModelPath() says which it is.
 //
 // The model file is read at run time, never compiled in (build time, issue 25). Looked for:
 // $FOVEA_PUPIL_MODEL when set (then only there); else, in order, the install tree (<exe>/../share/fovea-studio/pupil/
@@ -25,7 +31,8 @@
 namespace fovea::gaze {
 
 inline constexpr int kLearnedPupilInputPx = 96;
-inline constexpr int kLearnedPupilOutputs = 7;  // centre x, y, axes, cos 2θ, sin 2θ, visibility
+inline constexpr int kLearnedPupilOutputs = 7;     // centre x, y, axes, cos 2θ, sin 2θ, visibility
+inline constexpr int kLearnedPupilCanvasPx = 200;  // the refining stage's downscaled frame
 
 // The candidate paths in search order, and the first that exists; findPupilModel throws
 // std::runtime_error naming every path tried when none does.
@@ -44,11 +51,13 @@ class LearnedPupilDetector {
   // Not thread-safe (one forward pass at a time); confidence below min_confidence: not found.
   PupilDetection detect(const cv::Mat& image, double min_confidence = 0.5);
   const std::string& modelPath() const { return path_; }
+  // The refining stage's model, empty when there is none beside modelPath().
+  const std::string& refineModelPath() const { return refine_path_; }
 
  private:
   struct Net;
   std::unique_ptr<Net> net_;
-  std::string path_;
+  std::string path_, refine_path_;
 };
 
 }  // namespace fovea::gaze

@@ -69,6 +69,11 @@ void requireLearnedModel() {
   threadDetector();
 }
 
+LearnedModelFiles learnedModelFiles() {
+  const auto& net = threadDetector();
+  return {net.modelPath(), net.refineModelPath()};
+}
+
 PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, const PupilDetectorOptions& classical,
                                double learned_min_confidence) {
   if (kind == PupilDetectorKind::Classical) return detectPupil(image, classical);

@@ -29,4 +29,11 @@ PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, con
 // Loads the learned model now (throws as above): a command checks it before any work.
 void requireLearnedModel();
 
+// The files the learned detector runs (loading it as requireLearnedModel does): the network
+// and its refining stage (empty when there is none beside it; learned_pupil_detector.h).
+struct LearnedModelFiles {
+  std::string model, refine;
+};
+LearnedModelFiles learnedModelFiles();
+
 }  // namespace fovea::gaze

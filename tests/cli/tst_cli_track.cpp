@@ -173,6 +173,14 @@ class TestCliTrack : public QObject {
     QVERIFY2(r.code == 0, r.err.constData());
     const auto ji = nlohmann::json::parse(r.out.toStdString());
     QCOMPARE(ji["detector"].get<std::string>(), std::string("auto"));
+    // Which network files ran: the full-frame stage and its refining stage beside it.
+    const auto endsWith = [](const nlohmann::json& v, const std::string& tail) {
+      return v.is_string() && v.get<std::string>().size() >= tail.size() &&
+             v.get<std::string>().compare(v.get<std::string>().size() - tail.size(), tail.size(), tail) == 0;
+    };
+    QVERIFY2(endsWith(ji["detector_model"], "/pupil-net.onnx"), ji["detector_model"].dump().c_str());
+    QVERIFY2(endsWith(ji["detector_refine_model"], "/pupil-refine.onnx"), ji["detector_refine_model"].dump().c_str());
+    QVERIFY(!j.contains("detector_model"));  // the classical detector runs no network
     QVERIFY(ji["frames"][0]["found"].get<bool>());
     QVERIFY(std::hypot(ji["frames"][0]["centre_px"][0].get<double>() - frame.truth.pupil.centre.x,
                        ji["frames"][0]["centre_px"][1].get<double>() - frame.truth.pupil.centre.y) < 2.0);

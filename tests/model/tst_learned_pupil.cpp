@@ -24,6 +24,13 @@ namespace {
 std::string shippedModel() {
   return std::string(FOVEA_SOURCE_DIR) + "/resources/pupil/pupil-net.onnx";
 }
+std::string shippedRefineModel() {
+  return std::string(FOVEA_SOURCE_DIR) + "/resources/pupil/pupil-refine.onnx";
+}
+void copyFile(const std::string& from, const std::string& to) {
+  std::ifstream in(from, std::ios::binary);
+  std::ofstream(to, std::ios::binary) << in.rdbuf();
+}
 struct Rates {
   int with_pupil = 0, within = 0, found_closed = 0, closed = 0;
 };
@@ -119,6 +126,41 @@ class TestLearnedPupil : public QObject {
     QVERIFY_THROWS_EXCEPTION(std::runtime_error, findPupilModel());
     qputenv("FOVEA_PUPIL_MODEL", QByteArray::fromStdString(shippedModel()));
     QCOMPARE(findPupilModel(), shippedModel());
+    // A refining stage beside the model that does not load is an error naming it, not a
+    // silent fall-back to one stage.
+    const std::string model = (dir / "pupil-net.onnx").string(), refine = (dir / "pupil-refine.onnx").string();
+    copyFile(shippedModel(), model);
+    std::ofstream(refine) << "not an onnx model either";
+    try {
+      LearnedPupilDetector d(model);
+      QFAIL("no exception for a broken refining stage");
+    } catch (const std::runtime_error& e) {
+      QVERIFY2(std::string(e.what()).find(refine) != std::string::npos, e.what());
+    }
+  }
+
+  // The refining stage runs when its file is beside the model and moves the centre; without it
+  // the detector is the one full-frame stage.
+  void refiningStageIsFoundBesideTheModelAndUsed() {
+    LearnedPupilDetector two(shippedModel());
+    QCOMPARE(two.refineModelPath(), shippedRefineModel());
+    const auto dir = fovea::testing::testTmpDir("learned_pupil_one_stage", true);
+    const std::string alone = (dir / "pupil-net.onnx").string();
+    copyFile(shippedModel(), alone);
+    LearnedPupilDetector one(alone);
+    QVERIFY(one.refineModelPath().empty());
+    double moved = 0;
+    for (int i = 0; i < 4; ++i) {
+      const EyeFrame f = renderWideFrame(WideSubset::Hard, i, 2026);
+      const PupilDetection a = one.detect(f.image), b = two.detect(f.image);
+      QCOMPARE(a.found, b.found);
+      QCOMPARE(a.confidence, b.confidence);  // the full-frame stage decides whether there is a pupil
+      if (a.found)
+        moved = std::max(moved,
+                         std::hypot(a.ellipse.centre.x - b.ellipse.centre.x, a.ellipse.centre.y - b.ellipse.centre.y));
+    }
+    qInfo("the refining stage moved the centre by up to %.2f px on 4 hard frames", moved);
+    QVERIFY(moved > 0.1);
   }
 
   void shippedModelLoadsAndRefusesBadFrames() {
@@ -151,22 +193,32 @@ class TestLearnedPupil : public QObject {
                        dc.ellipse.centre.y + 40 - f.truth.pupil.centre.y) < 6);
   }
 
-  // Test-time flip augmentation makes the detector mirror-equivariant: a mirrored frame gives
-  // the mirrored ellipse (x -> side - 1 - x, pixel centres at integers, and angle -> -angle), which one
-  // pass of the network alone does not (measured there: up to several px apart).
+  // Test-time flip augmentation makes the full-frame stage mirror-equivariant: a mirrored
+  // frame gives the mirrored ellipse (x -> side - 1 - x, pixel centres at integers, and angle ->
+  // -angle), which one pass of the network alone does not (measured there: up to several px
+  // apart). The refining stage runs one pass (the 3 ms budget), so the two-stage detector is
+  // equivariant exactly in whether it finds a pupil and in its confidence, and its centres are
+  // mirrored only to within its own error (measured: up to 2.5 px on these frames).
   void mirroredFrameGivesTheMirroredPupil() {
-    LearnedPupilDetector net(shippedModel());
+    const auto dir = fovea::testing::testTmpDir("learned_pupil_mirror", true);
+    const std::string alone = (dir / "pupil-net.onnx").string();
+    copyFile(shippedModel(), alone);
+    LearnedPupilDetector one(alone), two(shippedModel());
     for (int i = 0; i < 4; ++i) {
       const EyeFrame f = renderWideFrame(WideSubset::Hard, i, 2026);
       cv::Mat mirrored;
       cv::flip(f.image, mirrored, 1);
-      const PupilDetection d = net.detect(f.image), m = net.detect(mirrored);
-      QCOMPARE(d.found, m.found);
-      QVERIFY(std::abs(d.confidence - m.confidence) < 1e-4);
-      if (!d.found) continue;
       const double side = f.image.cols;
-      qInfo("hard frame %d: x %.3f + mirrored x %.3f = %.3f (side %.0f - 1), y %.3f / %.3f", i, d.ellipse.centre.x,
-            m.ellipse.centre.x, d.ellipse.centre.x + m.ellipse.centre.x, side, d.ellipse.centre.y, m.ellipse.centre.y);
+      const PupilDetection d = one.detect(f.image), m = one.detect(mirrored);
+      const PupilDetection d2 = two.detect(f.image), m2 = two.detect(mirrored);
+      QCOMPARE(d.found, m.found);
+      QCOMPARE(d2.found, d.found);
+      QVERIFY(std::abs(d.confidence - m.confidence) < 1e-4);
+      QVERIFY(std::abs(d2.confidence - m2.confidence) < 1e-4);
+      if (!d.found) continue;
+      qInfo("hard frame %d: x %.3f + mirrored x %.3f = %.3f (side %.0f - 1), y %.3f / %.3f; two stages: %.3f", i,
+            d.ellipse.centre.x, m.ellipse.centre.x, d.ellipse.centre.x + m.ellipse.centre.x, side, d.ellipse.centre.y,
+            m.ellipse.centre.y, d2.ellipse.centre.x + m2.ellipse.centre.x);
       // INTER_AREA's 400 -> 96 weights are mirror-symmetric, so only float rounding remains.
       QVERIFY(std::abs(d.ellipse.centre.x + m.ellipse.centre.x - (side - 1)) < 0.01);
       QVERIFY(std::abs(d.ellipse.centre.y - m.ellipse.centre.y) < 0.01);
@@ -175,6 +227,8 @@ class TestLearnedPupil : public QObject {
       const double angle_sum = std::fmod(d.ellipse.angle_deg + m.ellipse.angle_deg + 360.0, 180.0);
       QVERIFY2(std::min(angle_sum, 180.0 - angle_sum) < 0.1 || d.ellipse.major_px - d.ellipse.minor_px < 0.5,
                qPrintable(QString("angles %1 and %2").arg(d.ellipse.angle_deg).arg(m.ellipse.angle_deg)));
+      QVERIFY(std::hypot(d2.ellipse.centre.x + m2.ellipse.centre.x - (side - 1),
+                         d2.ellipse.centre.y - m2.ellipse.centre.y) < 5);
     }
   }
 
@@ -186,21 +240,22 @@ class TestLearnedPupil : public QObject {
     // the docs' table: `fovea-cli track --virtual 128 --domain wide --seed 2026`) less two
     // frames; for closed: the false positives allowed (measured + 1). Low on purpose where the
     // measurement is low: the targets (95 %, 97 %) are not met, docs/gaze-tracking.md. Measured
-    // with the heatmap network of 2026-12-05 (18000 training frames), its test-time flip and auto's
-    // 2 px / 0.1 d radius.
+    // with the heatmap network of 2026-12-05 (18000 training frames) and the refining stage of
+    // 2026-12-06 (36000 windows; the flip on the full-frame stage, one pass on the refining one) and auto's 2 px / 0.1
+    // d radius.
     QTest::newRow("learned/easy") << 1 << 1 << 14.0 / 16;         // measured 16/16
     QTest::newRow("learned/glints") << 1 << 2 << 14.0 / 16;       // measured 16/16
-    QTest::newRow("learned/occlusion") << 1 << 3 << 11.0 / 16;    // measured 13/16
+    QTest::newRow("learned/occlusion") << 1 << 3 << 13.0 / 16;    // measured 15/16
     QTest::newRow("learned/motion_blur") << 1 << 4 << 14.0 / 16;  // measured 16/16
-    QTest::newRow("learned/off_axis") << 1 << 5 << 13.0 / 16;     // measured 15/16
-    QTest::newRow("learned/hard") << 1 << 7 << 9.0 / 16;          // measured 11/16
+    QTest::newRow("learned/off_axis") << 1 << 5 << 14.0 / 16;     // measured 16/16
+    QTest::newRow("learned/hard") << 1 << 7 << 7.0 / 16;          // measured 9/16
     QTest::newRow("learned/closed") << 1 << 8 << 1.0;             // measured 0/16 false positives
     QTest::newRow("auto/easy") << 2 << 1 << 14.0 / 16;            // measured 16/16
-    QTest::newRow("auto/glints") << 2 << 2 << 14.0 / 16;          // measured 16/16
-    QTest::newRow("auto/occlusion") << 2 << 3 << 11.0 / 16;       // measured 13/16
+    QTest::newRow("auto/glints") << 2 << 2 << 13.0 / 16;          // measured 15/16
+    QTest::newRow("auto/occlusion") << 2 << 3 << 13.0 / 16;       // measured 15/16
     QTest::newRow("auto/motion_blur") << 2 << 4 << 14.0 / 16;     // measured 16/16
     QTest::newRow("auto/off_axis") << 2 << 5 << 14.0 / 16;        // measured 16/16
-    QTest::newRow("auto/hard") << 2 << 7 << 10.0 / 16;            // measured 12/16
+    QTest::newRow("auto/hard") << 2 << 7 << 8.0 / 16;             // measured 10/16
     QTest::newRow("auto/closed") << 2 << 8 << 1.0;                // measured 0/16 false positives
   }
   void heldOutRates() {
