@@ -198,7 +198,9 @@ class TestLearnedPupil : public QObject {
   // -angle), which one pass of the network alone does not (measured there: up to several px
   // apart). The refining stage runs one pass (the 3 ms budget), so the two-stage detector is
   // equivariant exactly in whether it finds a pupil and in its confidence, and its centres are
-  // mirrored only to within its own error (measured: up to 2.5 px on these frames).
+  // mirrored only to within its own error: the frame's and the mirror's centres measured up to
+  // 9.3 px apart on these hard frames (the hard subset's p90 error is 11 px), so the bound is
+  // 12 px - it catches a window placed or mapped back wrongly, which moves them by tens of px.
   void mirroredFrameGivesTheMirroredPupil() {
     const auto dir = fovea::testing::testTmpDir("learned_pupil_mirror", true);
     const std::string alone = (dir / "pupil-net.onnx").string();
@@ -228,7 +230,7 @@ class TestLearnedPupil : public QObject {
       QVERIFY2(std::min(angle_sum, 180.0 - angle_sum) < 0.1 || d.ellipse.major_px - d.ellipse.minor_px < 0.5,
                qPrintable(QString("angles %1 and %2").arg(d.ellipse.angle_deg).arg(m.ellipse.angle_deg)));
       QVERIFY(std::hypot(d2.ellipse.centre.x + m2.ellipse.centre.x - (side - 1),
-                         d2.ellipse.centre.y - m2.ellipse.centre.y) < 5);
+                         d2.ellipse.centre.y - m2.ellipse.centre.y) < 12);
     }
   }
 
@@ -241,21 +243,21 @@ class TestLearnedPupil : public QObject {
     // frames; for closed: the false positives allowed (measured + 1). Low on purpose where the
     // measurement is low: the targets (95 %, 97 %) are not met, docs/gaze-tracking.md. Measured
     // with the heatmap network of 2026-12-05 (18000 training frames) and the refining stage of
-    // 2026-12-06 (36000 windows; the flip on the full-frame stage, one pass on the refining one) and auto's 2 px / 0.1
-    // d radius.
+    // 2026-12-06 (54000 frames' windows; the flip on the full-frame stage, one pass on the refining one) and auto's 2
+    // px / 0.1 d radius.
     QTest::newRow("learned/easy") << 1 << 1 << 14.0 / 16;         // measured 16/16
     QTest::newRow("learned/glints") << 1 << 2 << 14.0 / 16;       // measured 16/16
-    QTest::newRow("learned/occlusion") << 1 << 3 << 13.0 / 16;    // measured 15/16
+    QTest::newRow("learned/occlusion") << 1 << 3 << 12.0 / 16;    // measured 14/16
     QTest::newRow("learned/motion_blur") << 1 << 4 << 14.0 / 16;  // measured 16/16
-    QTest::newRow("learned/off_axis") << 1 << 5 << 14.0 / 16;     // measured 16/16
-    QTest::newRow("learned/hard") << 1 << 7 << 7.0 / 16;          // measured 9/16
+    QTest::newRow("learned/off_axis") << 1 << 5 << 13.0 / 16;     // measured 15/16
+    QTest::newRow("learned/hard") << 1 << 7 << 9.0 / 16;          // measured 11/16
     QTest::newRow("learned/closed") << 1 << 8 << 1.0;             // measured 0/16 false positives
     QTest::newRow("auto/easy") << 2 << 1 << 14.0 / 16;            // measured 16/16
     QTest::newRow("auto/glints") << 2 << 2 << 13.0 / 16;          // measured 15/16
-    QTest::newRow("auto/occlusion") << 2 << 3 << 13.0 / 16;       // measured 15/16
+    QTest::newRow("auto/occlusion") << 2 << 3 << 12.0 / 16;       // measured 14/16
     QTest::newRow("auto/motion_blur") << 2 << 4 << 14.0 / 16;     // measured 16/16
     QTest::newRow("auto/off_axis") << 2 << 5 << 14.0 / 16;        // measured 16/16
-    QTest::newRow("auto/hard") << 2 << 7 << 8.0 / 16;             // measured 10/16
+    QTest::newRow("auto/hard") << 2 << 7 << 9.0 / 16;             // measured 11/16
     QTest::newRow("auto/closed") << 2 << 8 << 1.0;                // measured 0/16 false positives
   }
   void heldOutRates() {
