@@ -148,8 +148,8 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
     // The refining window (scripts/train_pupil_net.py, refine_crops): square -> canvas takes
     // X to u = (X + 0.5) / s - 0.5, s = side / canvas; the window starts at round(u - 47.5)
     // (cvRound rounds half to even, symmetrically: a mirrored frame's window is the mirrored
-    // window, and the first stage's centre is mirror-equivariant) and a window fraction f is X = (96 f + start) s -
-    // 0.5. Edges replicated, as in training.
+    // window, and the first stage's centre is mirror-equivariant) and a window fraction f is
+    // X = (96 f + start) s - 0.5. Edges replicated, as in training.
     const double s = static_cast<double>(side) / kLearnedPupilCanvasPx;
     const auto start = [&](double x) {
       return std::clamp(cvRound((x + 0.5) / s - 0.5 - (kLearnedPupilInputPx - 1) / 2.0), -kLearnedPupilInputPx,
@@ -165,10 +165,9 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
                                .clone();
     // One pass, no flip: the ≤ 3 ms budget (issue 31). With the flip it took 3.0-4.2 ms a frame
     // (Google Benchmark, one core), and at seed 99 (the first refining stage, 36000 frames) it
-    // placed as many centres within 5 px (hard
-    // 71 against 72 %, occlusion 80 / 82, partial 93 / 93, the rest within a frame), its medians
-    // 0.1-0.4 px lower. The detector is then mirror-equivariant in whether it finds a pupil and
-    // in its confidence, not exactly in the centre.
+    // placed as many centres within 5 px (hard 71 against 72 %, occlusion 80 / 82, partial
+    // 93 / 93, the rest within a frame), its medians 0.1-0.4 px lower. The detector is then mirror-equivariant in
+    // whether it finds a pupil and in its confidence, not exactly in the centre.
     const auto r = forward(net_->refine, window, std::nullopt, refine_path_);
     const double span = kLearnedPupilInputPx * s;  // frame px per window unit
     cx = (kLearnedPupilInputPx * r[0] + ox) * s - 0.5;

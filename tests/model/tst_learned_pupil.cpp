@@ -31,6 +31,12 @@ void copyFile(const std::string& from, const std::string& to) {
   std::ifstream in(from, std::ios::binary);
   std::ofstream(to, std::ios::binary) << in.rdbuf();
 }
+// The shipped full-frame model copied alone into a fresh directory: the one-stage detector.
+std::string oneStageModel(const std::string& dir_name) {
+  const std::string alone = (fovea::testing::testTmpDir(dir_name, true) / "pupil-net.onnx").string();
+  copyFile(shippedModel(), alone);
+  return alone;
+}
 struct Rates {
   int with_pupil = 0, within = 0, found_closed = 0, closed = 0;
 };
@@ -144,10 +150,7 @@ class TestLearnedPupil : public QObject {
   void refiningStageIsFoundBesideTheModelAndUsed() {
     LearnedPupilDetector two(shippedModel());
     QCOMPARE(two.refineModelPath(), shippedRefineModel());
-    const auto dir = fovea::testing::testTmpDir("learned_pupil_one_stage", true);
-    const std::string alone = (dir / "pupil-net.onnx").string();
-    copyFile(shippedModel(), alone);
-    LearnedPupilDetector one(alone);
+    LearnedPupilDetector one(oneStageModel("learned_pupil_one_stage"));
     QVERIFY(one.refineModelPath().empty());
     double moved = 0;
     for (int i = 0; i < 4; ++i) {
@@ -202,10 +205,7 @@ class TestLearnedPupil : public QObject {
   // 9.3 px apart on these hard frames (the hard subset's p90 error is 11 px), so the bound is
   // 12 px - it catches a window placed or mapped back wrongly, which moves them by tens of px.
   void mirroredFrameGivesTheMirroredPupil() {
-    const auto dir = fovea::testing::testTmpDir("learned_pupil_mirror", true);
-    const std::string alone = (dir / "pupil-net.onnx").string();
-    copyFile(shippedModel(), alone);
-    LearnedPupilDetector one(alone), two(shippedModel());
+    LearnedPupilDetector one(oneStageModel("learned_pupil_mirror")), two(shippedModel());
     for (int i = 0; i < 4; ++i) {
       const EyeFrame f = renderWideFrame(WideSubset::Hard, i, 2026);
       cv::Mat mirrored;
