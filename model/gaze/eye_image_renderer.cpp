@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <opencv2/imgproc.hpp>
 
+#include "model/gaze/thread_scratch.h"
 #include "model/scene/scene_geometry.h"
 #include "model/units.h"
 
@@ -171,7 +172,14 @@ struct Texture {
   std::vector<Lash> lashes;
 };
 
-Texture makeTexture(const IrCameraPose& c, const EyeAppearance& e, std::uint32_t seed) {
+// The full-frame images one frame needs, kept per thread across frames (thread_scratch.h: 94 %
+// of a binocular run's page faults and a third of its CPU time in the ASan tree were fresh
+// images here). Each is fully overwritten before it is read.
+struct Scratch {
+  cv::Mat skin, skin_scaled, acc, eye, opening, iris_mask, noise, pupil_mask, open_mask, visible_mask;
+};
+
+Texture makeTexture(const IrCameraPose& c, const EyeAppearance& e, std::uint32_t seed, cv::Mat& skin) {
   Texture t;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u01(0, 1);
@@ -183,7 +191,8 @@ Texture makeTexture(const IrCameraPose& c, const EyeAppearance& e, std::uint32_t
   cv::Mat low(12, 12, CV_32F);
   for (int y = 0; y < low.rows; ++y)
     for (int x = 0; x < low.cols; ++x) low.at<float>(y, x) = static_cast<float>(1 + 0.2 * (u01(rng) - 0.5));
-  cv::resize(low, t.skin, c.size, 0, 0, cv::INTER_CUBIC);
+  cv::resize(low, skin, c.size, 0, 0, cv::INTER_CUBIC);
+  t.skin = skin;
   for (int i = 0; i < e.eyelashes; ++i)
     t.lashes.push_back(
         {e.lid_half_width_mm * (1.7 * u01(rng) - 0.85), 10 + 18 * u01(rng), u01(rng) - 0.3, (u01(rng) - 0.5) * 0.9});
@@ -250,8 +259,9 @@ struct IrisTexture {
   return v;
 }
 
-void drawIris(cv::Mat& img, const Layers& l, const EyeAppearance& e, const Texture& t) {
-  cv::Mat mask = cv::Mat::zeros(img.size(), CV_8U);
+void drawIris(cv::Mat& img, cv::Mat& mask, const Layers& l, const EyeAppearance& e, const Texture& t) {
+  mask.create(img.size(), CV_8U);
+  mask.setTo(cv::Scalar(0));
   fillPolygon(mask, l.iris, 255);
   const cv::Rect box =
       cv::boundingRect(std::vector<cv::Point2f>(l.iris.begin(), l.iris.end())) & cv::Rect(0, 0, img.cols, img.rows);
@@ -298,14 +308,15 @@ void drawGlint(cv::Mat& img, const cv::Point2d& p) {
 }
 
 // Adds one sub-frame's radiance to `acc`: the eye (sclera, iris, pupil, glints) inside the soft
-// lid opening, `skin` outside it. `eye` and `opening` are scratch images kept across sub-frames
-// (a closed-loop run renders thousands of frames: fresh full-frame images and the temporaries
-// of a matrix expression were a fifth of its time in page faults, issue 25). Per pixel the same
-// float operations as eye.mul(opening) + skin.mul(1 - opening), so the same image.
-void addSubframe(cv::Mat& acc, cv::Mat& eye, cv::Mat& opening, const EyeAppearance& e, const Layers& l,
-                 const Texture& t, const cv::Mat& skin) {
+// lid opening, `skin` outside it, in the Scratch's `eye` and `opening` images (a closed-loop run
+// renders thousands of frames: fresh full-frame images and the temporaries of a matrix
+// expression were a fifth of its time in page faults, issue 25). Per pixel the same float
+// operations as eye.mul(opening) + skin.mul(1 - opening), so the same image.
+void addSubframe(Scratch& s, const EyeAppearance& e, const Layers& l, const Texture& t) {
+  cv::Mat &acc = s.acc, &eye = s.eye, &opening = s.opening;
+  const cv::Mat& skin = s.skin_scaled;
   eye.setTo(cv::Scalar(e.sclera_level));
-  drawIris(eye, l, e, t);
+  drawIris(eye, s.iris_mask, l, e, t);
   fillPolygon(eye, l.pupil, e.pupil_level);
   for (const auto& g : l.glints) drawGlint(eye, g);
   opening.setTo(cv::Scalar(0));
@@ -365,31 +376,40 @@ std::array<double, 2> projectToCamera(const IrCameraPose& camera, const Eigen::V
   return {p.x, p.y};
 }
 
-EyeFrameTruth eyeFrameTruth(const IrCameraPose& c, const EyeAppearance& e, const EyeFrameSpec& spec) {
+namespace {
+
+// The gaze a fraction `s` of the exposure into a frame (a moving eye sweeps gaze_deg -> gaze_end_deg).
+std::array<double, 2> gazeAt(const EyeFrameSpec& spec, double s) {
+  if (!spec.moving) return spec.gaze_deg;
+  return {spec.gaze_deg[0] + s * (spec.gaze_end_deg[0] - spec.gaze_deg[0]),
+          spec.gaze_deg[1] + s * (spec.gaze_end_deg[1] - spec.gaze_deg[1])};
+}
+
+EyeFrameTruth frameTruth(const IrCameraPose& c, const EyeAppearance& e, const EyeFrameSpec& spec, Scratch& scratch) {
   const CameraFrame f = cameraFrame(c);
-  const auto gazeAt = [&](double s) -> std::array<double, 2> {
-    if (!spec.moving) return spec.gaze_deg;
-    return {spec.gaze_deg[0] + s * (spec.gaze_end_deg[0] - spec.gaze_deg[0]),
-            spec.gaze_deg[1] + s * (spec.gaze_end_deg[1] - spec.gaze_deg[1])};
-  };
   EyeFrameTruth truth;
 
   // Ground truth at mid-exposure.
-  const Layers mid = eyeLayers(c, f, e, spec, gazeAt(0.5));
-  truth.gaze_deg = gazeAt(0.5);
+  const Layers mid = eyeLayers(c, f, e, spec, gazeAt(spec, 0.5));
+  truth.gaze_deg = gazeAt(spec, 0.5);
   const std::vector<cv::Point2f> outline(mid.pupil.begin(), mid.pupil.end());
   const cv::RotatedRect r = cv::fitEllipse(outline);
   truth.pupil.centre = r.center;
   truth.pupil.major_px = std::max(r.size.width, r.size.height);
   truth.pupil.minor_px = std::min(r.size.width, r.size.height);
   truth.pupil.angle_deg = r.size.width >= r.size.height ? r.angle : r.angle + 90;
-  cv::Mat pupil_mask = cv::Mat::zeros(c.size, CV_8U), open_mask = cv::Mat::zeros(c.size, CV_8U);
+  cv::Mat &pupil_mask = scratch.pupil_mask, &open_mask = scratch.open_mask;
+  for (cv::Mat* m : {&pupil_mask, &open_mask}) {
+    m->create(c.size, CV_8U);
+    m->setTo(cv::Scalar(0));
+  }
   fillPolygon(pupil_mask, mid.pupil, 255);
   if (polygonArea(mid.opening) > 1) fillPolygon(open_mask, mid.opening, 255);
   cv::threshold(pupil_mask, pupil_mask, 127, 255, cv::THRESH_BINARY);
   cv::threshold(open_mask, open_mask, 127, 255, cv::THRESH_BINARY);
   const double pupil_px = cv::countNonZero(pupil_mask);
-  const double visible_px = cv::countNonZero(pupil_mask & open_mask);
+  cv::bitwise_and(pupil_mask, open_mask, scratch.visible_mask);
+  const double visible_px = cv::countNonZero(scratch.visible_mask);
   truth.visible_fraction = pupil_px > 0 ? visible_px / pupil_px : 0;
   truth.pupil_visible = truth.visible_fraction > 0.05;
   for (const auto& g : mid.glints)
@@ -398,33 +418,39 @@ EyeFrameTruth eyeFrameTruth(const IrCameraPose& c, const EyeAppearance& e, const
   return truth;
 }
 
+}  // namespace
+
+EyeFrameTruth eyeFrameTruth(const IrCameraPose& c, const EyeAppearance& e, const EyeFrameSpec& spec) {
+  const ThreadScratch<Scratch> s;
+  return frameTruth(c, e, spec, *s);
+}
+
 EyeFrame renderEyeFrame(const IrCameraPose& c, const EyeAppearance& e, const EyeFrameSpec& spec) {
   const CameraFrame f = cameraFrame(c);
-  const Texture t = makeTexture(c, e, spec.seed);
-  const auto gazeAt = [&](double s) -> std::array<double, 2> {
-    if (!spec.moving) return spec.gaze_deg;
-    return {spec.gaze_deg[0] + s * (spec.gaze_end_deg[0] - spec.gaze_deg[0]),
-            spec.gaze_deg[1] + s * (spec.gaze_end_deg[1] - spec.gaze_deg[1])};
-  };
+  const ThreadScratch<Scratch> lease;
+  Scratch& s = *lease;
+  const Texture t = makeTexture(c, e, spec.seed, s.skin);
   const int subframes = spec.moving ? std::max(1, spec.blur_subframes) : 1;
-  cv::Mat acc = cv::Mat::zeros(c.size, CV_32F), eye(c.size, CV_32F), opening(c.size, CV_32F);
-  const cv::Mat skin = t.skin * e.skin_level;
+  for (cv::Mat* m : {&s.acc, &s.eye, &s.opening}) m->create(c.size, CV_32F);
+  s.acc.setTo(cv::Scalar(0));
+  s.skin_scaled = t.skin * e.skin_level;  // into the existing buffer (Mat = MatExpr reuses it)
   for (int i = 0; i < subframes; ++i) {
-    const double s = subframes == 1 ? 0.5 : (i + 0.5) / subframes;
-    addSubframe(acc, eye, opening, e, eyeLayers(c, f, e, spec, gazeAt(s)), t, skin);
+    const double at = subframes == 1 ? 0.5 : (i + 0.5) / subframes;
+    addSubframe(s, e, eyeLayers(c, f, e, spec, gazeAt(spec, at)), t);
   }
+  cv::Mat& acc = s.acc;
   acc /= subframes;
   drawLashes(acc, c, f, e, t);
   if (spec.defocus_sigma_px > 0) cv::GaussianBlur(acc, acc, {0, 0}, spec.defocus_sigma_px);
   if (spec.noise_sigma > 0) {
-    cv::Mat noise(c.size, CV_32F);
+    s.noise.create(c.size, CV_32F);
     cv::RNG rng(spec.seed * 2654435761u + 12345u);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, spec.noise_sigma);
-    acc += noise;
+    rng.fill(s.noise, cv::RNG::NORMAL, 0.0, spec.noise_sigma);
+    acc += s.noise;
   }
   EyeFrame out;
   acc.convertTo(out.image, CV_8U, 255.0);
-  out.truth = eyeFrameTruth(c, e, spec);
+  out.truth = frameTruth(c, e, spec, s);
   return out;
 }
 

@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "model/gaze/thread_scratch.h"
+
 namespace fovea::gaze {
 namespace {
 
@@ -140,21 +142,28 @@ WideScene drawScene(WideSubset subset, int index, std::uint32_t seed, int attemp
 }
 
 // Gain, offset, illumination ramp, soft shadows and stray glints on the rendered frame.
+// The images kept per thread across frames (thread_scratch.h); each is overwritten before it is read.
+struct PostFxScratch {
+  cv::Mat img, shade, blob;
+};
+
 void applyPostFx(cv::Mat& grey8, const EyeFrameTruth& truth, const PostFx& fx, std::uint32_t seed) {
   std::mt19937 rng(seed ^ 0x5bd1e995u);
   std::uniform_real_distribution<double> u(0, 1);
-  cv::Mat img;
+  const ThreadScratch<PostFxScratch> scratch;
+  cv::Mat &img = scratch->img, &shade = scratch->shade, &blob = scratch->blob;
   grey8.convertTo(img, CV_32F, 1.0 / 255);
   const double cx = img.cols / 2.0, cy = img.rows / 2.0, half = std::max(img.cols, img.rows) / 2.0;
   const double gx = std::cos(fx.gradient_dir), gy = std::sin(fx.gradient_dir);
-  cv::Mat shade(img.size(), CV_32F);
+  shade.create(img.size(), CV_32F);
   for (int y = 0; y < img.rows; ++y) {
     auto* row = shade.ptr<float>(y);
     for (int x = 0; x < img.cols; ++x)
       row[x] = static_cast<float>(1 + fx.gradient * ((x - cx) * gx + (y - cy) * gy) / half);
   }
   for (int i = 0; i < fx.shadows; ++i) {
-    cv::Mat blob = cv::Mat::zeros(img.size(), CV_32F);
+    blob.create(img.size(), CV_32F);
+    blob.setTo(cv::Scalar(0));
     const cv::Point2f c(static_cast<float>(u(rng) * img.cols), static_cast<float>(u(rng) * img.rows));
     const cv::Size2f axes(static_cast<float>(40 + 120 * u(rng)), static_cast<float>(20 + 60 * u(rng)));
     cv::ellipse(blob, cv::RotatedRect(c, axes * 2.0f, static_cast<float>(180 * u(rng))), cv::Scalar(1), -1);

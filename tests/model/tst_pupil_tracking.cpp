@@ -5,11 +5,14 @@
 #include <QtTest>
 
 #include <cmath>
+#include <thread>
 
 #include "model/gaze/eye_image_renderer.h"
 #include "model/gaze/pupil_benchmark.h"
 #include "model/gaze/pupil_detector.h"
+#include "model/gaze/thread_scratch.h"
 #include "model/gaze/tracked_calibration.h"
+#include "model/gaze/wide_eye_domain.h"
 
 namespace tst_pupil_tracking {
 
@@ -63,6 +66,40 @@ class TestPupilTracking : public QObject {
     QCOMPARE(a.type(), CV_8U);
     QCOMPARE(cv::norm(a, b, cv::NORM_INF), 0.0);
     QVERIFY(cv::norm(a, c, cv::NORM_L1) > 1000);
+  }
+
+  // The renderer keeps its full-frame images per thread across frames (thread_scratch.h): a
+  // frame must not depend on what was rendered before it, at another size, or on another thread.
+  void framesIndependentOfEarlierFrames() {
+    const cv::Mat first = frontal(5, 3, 6, 0.7, 11).image.clone();
+    const cv::Mat hard = renderWideFrame(WideSubset::Hard, 3, 7).image.clone();
+    IrCameraPose small;
+    small.size = {160, 120};
+    QCOMPARE(renderEyeFrame(small, EyeAppearance{}, EyeFrameSpec{}).image.cols, 160);
+    cv::Mat other_thread;
+    std::thread([&] { other_thread = frontal(5, 3, 6, 0.7, 11).image.clone(); }).join();
+    (void)renderWideFrame(WideSubset::Partial, 5, 7);
+    QCOMPARE(cv::norm(first, frontal(5, 3, 6, 0.7, 11).image, cv::NORM_INF), 0.0);
+    QCOMPARE(cv::norm(first, other_thread, cv::NORM_INF), 0.0);
+    QCOMPARE(cv::norm(hard, renderWideFrame(WideSubset::Hard, 3, 7).image, cv::NORM_INF), 0.0);
+  }
+
+  void scratchHeldTwiceIsTwoObjects() {
+    int* outer_address = nullptr;
+    {
+      const ThreadScratch<int> outer;
+      const ThreadScratch<int> inner;  // entered again before the outer returned
+      QVERIFY(&*outer != &*inner);
+      outer_address = &*outer;
+    }
+    const ThreadScratch<int> again;  // released: the thread's own is reused
+    QCOMPARE(&*again, outer_address);
+    int* other = nullptr;
+    std::thread([&] {
+      const ThreadScratch<int> s;
+      other = &*s;
+    }).join();
+    QVERIFY(other != outer_address);
   }
 
   void glintsAndLids() {
