@@ -5,8 +5,8 @@
 # validation figures. Not part of the test command: the shipped models are what the tests
 # check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch seed
 # 31). The shipped models: the full-frame stage 18000 frames, 24 epochs on one thread in 35
-# minutes; the refining stage 54000 frames (those with a pupil less than 60 % visible shown twice
-# an epoch), 10 epochs in about 40 minutes; rendering a few
+# minutes; the refining stage 72000 frames (those with a pupil less than 60 % visible shown three
+# times an epoch), 8 epochs in about 45 minutes; rendering a few
 # minutes on two cores when nothing else runs (13 when builds ran beside it). One thread each:
 # two intra-op threads on a shared two-core machine stall at their barriers (up to 17 min an
 # epoch while builds ran). The trainer stops at --max-minutes whatever the epoch; the .json
@@ -16,7 +16,7 @@
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FRAMES=18000 EPOCHS=24 MINUTES=65 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=54000 REPOCHS=10
+FRAMES=18000 EPOCHS=24 MINUTES=65 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 REPOCHS=8
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;
@@ -76,6 +76,6 @@ if [[ $STAGE != full ]]; then
   render "$WORK/refine-val" 0 400 7 200
   t1=$(date +%s)
   echo "refining stage: rendered in $((t1 - t0)) s"
-  OCCLUDED_REPEATS=2 train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val"
+  OCCLUDED_REPEATS=3 train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val"
   echo "refining stage: trained in $(( $(date +%s) - t1 )) s"
 fi
