@@ -260,8 +260,7 @@ struct IrisTexture {
 }
 
 void drawIris(cv::Mat& img, cv::Mat& mask, const Layers& l, const EyeAppearance& e, const Texture& t) {
-  mask.create(img.size(), CV_8U);
-  mask.setTo(cv::Scalar(0));
+  mask = cv::Mat::zeros(img.size(), CV_8U);  // into the existing buffer (Mat = MatExpr reuses it)
   fillPolygon(mask, l.iris, 255);
   const cv::Rect box =
       cv::boundingRect(std::vector<cv::Point2f>(l.iris.begin(), l.iris.end())) & cv::Rect(0, 0, img.cols, img.rows);
@@ -399,10 +398,8 @@ EyeFrameTruth frameTruth(const IrCameraPose& c, const EyeAppearance& e, const Ey
   truth.pupil.minor_px = std::min(r.size.width, r.size.height);
   truth.pupil.angle_deg = r.size.width >= r.size.height ? r.angle : r.angle + 90;
   cv::Mat &pupil_mask = scratch.pupil_mask, &open_mask = scratch.open_mask;
-  for (cv::Mat* m : {&pupil_mask, &open_mask}) {
-    m->create(c.size, CV_8U);
-    m->setTo(cv::Scalar(0));
-  }
+  pupil_mask = cv::Mat::zeros(c.size, CV_8U);
+  open_mask = cv::Mat::zeros(c.size, CV_8U);
   fillPolygon(pupil_mask, mid.pupil, 255);
   if (polygonArea(mid.opening) > 1) fillPolygon(open_mask, mid.opening, 255);
   cv::threshold(pupil_mask, pupil_mask, 127, 255, cv::THRESH_BINARY);
@@ -431,8 +428,8 @@ EyeFrame renderEyeFrame(const IrCameraPose& c, const EyeAppearance& e, const Eye
   Scratch& s = *lease;
   const Texture t = makeTexture(c, e, spec.seed, s.skin);
   const int subframes = spec.moving ? std::max(1, spec.blur_subframes) : 1;
-  for (cv::Mat* m : {&s.acc, &s.eye, &s.opening}) m->create(c.size, CV_32F);
-  s.acc.setTo(cv::Scalar(0));
+  s.acc = cv::Mat::zeros(c.size, CV_32F);  // into the existing buffer (Mat = MatExpr reuses it)
+  for (cv::Mat* m : {&s.eye, &s.opening}) m->create(c.size, CV_32F);
   s.skin_scaled = t.skin * e.skin_level;  // into the existing buffer (Mat = MatExpr reuses it)
   for (int i = 0; i < subframes; ++i) {
     const double at = subframes == 1 ? 0.5 : (i + 0.5) / subframes;

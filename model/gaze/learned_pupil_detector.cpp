@@ -166,8 +166,9 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
     // One pass, no flip: the ≤ 3 ms budget (issue 31). With the flip it took 3.0-4.2 ms a frame
     // (Google Benchmark, one core), and at seed 99 (the first refining stage, 36000 frames) it
     // placed as many centres within 5 px (hard 71 against 72 %, occlusion 80 / 82, partial
-    // 93 / 93, the rest within a frame), its medians 0.1-0.4 px lower. The detector is then mirror-equivariant in
-    // whether it finds a pupil and in its confidence, not exactly in the centre.
+    // 93 / 93, the rest within a frame), its medians 0.1-0.4 px lower. The detector is then
+    // mirror-equivariant in whether it finds a pupil and in its confidence, not exactly in the
+    // centre.
     const auto r = forward(net_->refine, window, std::nullopt, refine_path_);
     const double span = kLearnedPupilInputPx * s;  // frame px per window unit
     cx = (kLearnedPupilInputPx * r[0] + ox) * s - 0.5;

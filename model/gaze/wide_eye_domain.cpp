@@ -141,12 +141,12 @@ WideScene drawScene(WideSubset subset, int index, std::uint32_t seed, int attemp
   return s;
 }
 
-// Gain, offset, illumination ramp, soft shadows and stray glints on the rendered frame.
 // The images kept per thread across frames (thread_scratch.h); each is overwritten before it is read.
 struct PostFxScratch {
   cv::Mat img, shade, blob;
 };
 
+// Gain, offset, illumination ramp, soft shadows and stray glints on the rendered frame.
 void applyPostFx(cv::Mat& grey8, const EyeFrameTruth& truth, const PostFx& fx, std::uint32_t seed) {
   std::mt19937 rng(seed ^ 0x5bd1e995u);
   std::uniform_real_distribution<double> u(0, 1);
@@ -162,8 +162,7 @@ void applyPostFx(cv::Mat& grey8, const EyeFrameTruth& truth, const PostFx& fx, s
       row[x] = static_cast<float>(1 + fx.gradient * ((x - cx) * gx + (y - cy) * gy) / half);
   }
   for (int i = 0; i < fx.shadows; ++i) {
-    blob.create(img.size(), CV_32F);
-    blob.setTo(cv::Scalar(0));
+    blob = cv::Mat::zeros(img.size(), CV_32F);  // into the existing buffer
     const cv::Point2f c(static_cast<float>(u(rng) * img.cols), static_cast<float>(u(rng) * img.rows));
     const cv::Size2f axes(static_cast<float>(40 + 120 * u(rng)), static_cast<float>(20 + 60 * u(rng)));
     cv::ellipse(blob, cv::RotatedRect(c, axes * 2.0f, static_cast<float>(180 * u(rng))), cv::Scalar(1), -1);
