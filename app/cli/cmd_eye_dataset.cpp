@@ -3,8 +3,9 @@
 // Writes synthetic IR eye-camera frames with their ground truth, from the same renderer the
 // tests and `track --virtual` use, for training the learned pupil detector
 // (scripts/train-pupil-net.sh). --domain wide (model/gaze/wide_eye_domain.h) draws from the
-// randomised domain, subset "train" by default (the held-out subsets can be written for
-// inspection: easy, glints, occlusion, motion_blur, off_axis, partial, hard, closed);
+// randomised domain, subset "train" by default (train_hard: the hard subset's combination in
+// the training's bands; the held-out subsets can be written for inspection: easy, glints,
+// occlusion, motion_blur, off_axis, partial, hard, closed);
 // --domain classic cycles through the pupil benchmark's subsets. DIR gets:
 //   images/NNNNNN.png  the frames (8-bit grey, at --size when given) unless --no-png;
 //   images.u8          all frames packed, N x size x size bytes (row-major), for the trainer;
@@ -42,7 +43,7 @@ void install(CLI::App& app) {
       ->check(CLI::Range(0, 100000000));
   addSeedOption(cmd, a->seed, "seed of the frames (default 1)");
   cmd->add_option("--domain", a->domain, "wide (randomised, default) or classic (the pupil benchmark's)");
-  cmd->add_option("--subset", a->subset, "wide domain: train (default) or a held-out subset name");
+  cmd->add_option("--subset", a->subset, "wide domain: train (default), train_hard or a held-out subset name");
   cmd->add_option("--size", a->size_px, "store frames downscaled to PX x PX (INTER_AREA); default: as rendered")
       ->check(CLI::Range(8, 4096));
   cmd->add_flag("--no-png", a->no_png, "write only images.u8 and the labels");
@@ -52,8 +53,9 @@ void install(CLI::App& app) {
       usageError("--domain: '" + a->domain + "' is not one of wide, classic");
     const auto wide_subset = gaze::parseWideSubset(a->subset);
     if (a->domain == "wide" && !wide_subset)
-      usageError("--subset: '" + a->subset +
-                 "' is not one of train, easy, glints, occlusion, motion_blur, off_axis, partial, hard, closed");
+      usageError(
+          "--subset: '" + a->subset +
+          "' is not one of train, train_hard, easy, glints, occlusion, motion_blur, off_axis, partial, hard, closed");
     namespace fs = std::filesystem;
     const fs::path dir(a->out);
     std::error_code ec;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -75,6 +76,9 @@ Features featuresOf(WideSubset s, Draw& d) {
     case WideSubset::Closed:
       f.leds = d.chance(0.5), f.stray = d.chance(0.5), f.open_lo = 0, f.open_hi = 0.04;
       break;
+    case WideSubset::TrainHard:  // the openness is then bisected to a visible fraction (renderWideFrame)
+      f.leds = f.stray = true, f.motion = d.chance(0.7), f.off_axis = d.chance(0.25), f.defocus_max = 3.5;
+      break;
   }
   return f;
 }
@@ -90,7 +94,7 @@ WideScene drawScene(WideSubset subset, int index, std::uint32_t seed, int attemp
   std::seed_seq seq{seed, 0x77696465u /* "wide" */, static_cast<std::uint32_t>(subset),
                     static_cast<std::uint32_t>(index), static_cast<std::uint32_t>(attempt)};
   Draw d{std::mt19937(seq)};
-  const bool train = subset == WideSubset::Train;
+  const bool train = subset == WideSubset::Train || subset == WideSubset::TrainHard;
   const Features f = featuresOf(subset, d);
   WideScene s;
   s.camera.focal_px = d.in(300, 400);
@@ -226,6 +230,8 @@ bool accepted(WideSubset s, const EyeFrameTruth& t) {
       return t.visible_fraction >= 0.3 && t.visible_fraction <= 0.9;
     case WideSubset::Hard:
       return t.visible_fraction >= 0.3 && t.visible_fraction <= 0.5;
+    case WideSubset::TrainHard:
+      return t.visible_fraction >= 0.15 && t.visible_fraction <= 0.7;
     case WideSubset::Closed:
       return !t.pupil_visible;
     case WideSubset::Train:
@@ -257,6 +263,8 @@ const char* wideSubsetName(WideSubset s) {
       return "hard";
     case WideSubset::Closed:
       return "closed";
+    case WideSubset::TrainHard:
+      return "train_hard";
   }
   return "?";
 }
@@ -264,7 +272,7 @@ const char* wideSubsetName(WideSubset s) {
 std::optional<WideSubset> parseWideSubset(const std::string& name) {
   for (WideSubset s :
        {WideSubset::Train, WideSubset::Easy, WideSubset::Glints, WideSubset::Occlusion, WideSubset::MotionBlur,
-        WideSubset::OffAxis, WideSubset::Partial, WideSubset::Hard, WideSubset::Closed})
+        WideSubset::OffAxis, WideSubset::Partial, WideSubset::Hard, WideSubset::Closed, WideSubset::TrainHard})
     if (name == wideSubsetName(s)) return s;
   return std::nullopt;
 }
@@ -279,14 +287,16 @@ EyeFrame renderWideFrame(WideSubset subset, int index, std::uint32_t seed) {
   // openness on the ground truth alone (the visible fraction grows with the openness); a
   // scene whose pupil is under the lids even when open is drawn again. Closed frames (and
   // the rare others without a visible pupil) are drawn again until they fit. Seeded.
-  const bool cover = subset == WideSubset::Occlusion || subset == WideSubset::Hard;
+  const bool cover = subset == WideSubset::Occlusion || subset == WideSubset::Hard || subset == WideSubset::TrainHard;
   EyeFrame f;
   for (int attempt = 0; attempt < 60; ++attempt) {
     WideScene s = drawScene(subset, index, seed, attempt);
     std::mt19937 rng(s.frame.seed);
     if (cover && !s.fx.partial) {
-      const double target = subset == WideSubset::Hard ? std::uniform_real_distribution<double>(0.3, 0.5)(rng)
-                                                       : std::uniform_real_distribution<double>(0.3, 0.9)(rng);
+      const auto [want_lo, want_hi] = subset == WideSubset::Hard        ? std::pair(0.3, 0.5)
+                                      : subset == WideSubset::TrainHard ? std::pair(0.2, 0.65)
+                                                                        : std::pair(0.3, 0.9);
+      const double target = std::uniform_real_distribution<double>(want_lo, want_hi)(rng);
       s.eye.openness = 1;
       if (eyeFrameTruth(s.camera, s.eye, s.frame).visible_fraction < target) continue;
       double lo = 0, hi = 1;

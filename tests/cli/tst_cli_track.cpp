@@ -134,6 +134,48 @@ class TestCliTrack : public QObject {
     QCOMPARE(cli({"closed-loop", "/nonexistent/scene.json", "--saccades", "1"}).code, 1);
   }
 
+  void eyeDatasetFiles() {
+    // The trainer's input (scripts/train_pupil_net.py reads these names): frames packed at
+    // --size, one label row per frame, dataset.json's keys; the train_hard subset's frames all
+    // show 20-65 % of the pupil; an unknown subset is a usage error naming the choices.
+    const auto dir = tmpDir() / "dataset";
+    std::filesystem::remove_all(dir);
+    const Run r = cli({"eye-dataset", "--out", QString::fromStdString(dir.string()), "--subset", "train_hard",
+                       "--frames", "5", "--start", "7", "--seed", "3", "--size", "48", "--no-png", "--json"});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const auto j = nlohmann::json::parse(r.out.toStdString());
+    const auto meta = nlohmann::json::parse(std::ifstream(dir / "dataset.json"));
+    for (const auto* k :
+         {"domain", "subset", "seed", "start", "frames", "frame_size_px", "stored_size_px", "with_pupil"}) {
+      QVERIFY2(j.contains(k), k);
+      QVERIFY2(meta.contains(k), k);
+    }
+    QCOMPARE(meta["subset"].get<std::string>(), std::string("train_hard"));
+    QCOMPARE(meta["frames"].get<int>(), 5);
+    QCOMPARE(meta["with_pupil"].get<int>(), 5);
+    QCOMPARE(meta["stored_size_px"][0].get<int>(), 48);
+    QCOMPARE(std::filesystem::file_size(dir / "images.u8"), std::uintmax_t{5 * 48 * 48});
+    QVERIFY(!std::filesystem::exists(dir / "images" / "000007.png"));
+    std::ifstream labels(dir / "labels.csv");
+    std::string line;
+    std::getline(labels, line);
+    QCOMPARE(line, std::string("index,subset,visible,visible_fraction,cx_px,cy_px,major_px,minor_px,angle_deg"));
+    int rows = 0;
+    while (std::getline(labels, line)) {
+      QCOMPARE(std::stoi(line), 7 + rows);  // indices from --start
+      const auto c1 = line.find(','), c2 = line.find(',', c1 + 1), c3 = line.find(',', c2 + 1);
+      QCOMPARE(line.substr(c1 + 1, c2 - c1 - 1), std::string("train_hard"));
+      const double visible = std::stod(line.substr(c3 + 1));
+      QVERIFY2(visible >= 0.2 - 1e-9 && visible <= 0.67, line.c_str());
+      ++rows;
+    }
+    QCOMPARE(rows, 5);
+    const Run bad =
+        cli({"eye-dataset", "--out", QString::fromStdString(dir.string()), "--subset", "nope", "--frames", "1"});
+    QCOMPARE(bad.code, 2);
+    QVERIFY2(bad.err.contains("train_hard"), bad.err.constData());
+  }
+
   void detectorChoice() {
     for (const char* det : {"classical", "learned", "auto"}) {
       const Run r = cli({"track", "--virtual", "8", "--domain", "wide", "--seed", "4", "--detector", det, "--json"});

@@ -6,6 +6,7 @@
 #include <QtTest>
 #include "tests/test_paths.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -87,6 +88,27 @@ class TestLearnedPupil : public QObject {
       const double edge = std::min({c.x, c.y, 400 - c.x, 400 - c.y});
       QVERIFY2(edge <= p.truth.pupil.major_px / 2 + 3, std::to_string(edge).c_str());
     }
+  }
+
+  void trainHardSubsetIsTrainingOnly() {
+    // The hard subset's combination for training: named, parsed back, never held out, seeded
+    // apart from the hard subset, 20-65 % of the pupil visible (the bisection's target band).
+    QCOMPARE(std::string(wideSubsetName(WideSubset::TrainHard)), std::string("train_hard"));
+    QVERIFY(parseWideSubset("train_hard") == WideSubset::TrainHard);
+    const auto held = heldOutWideSubsets();
+    QVERIFY(std::find(held.begin(), held.end(), WideSubset::TrainHard) == held.end());
+    QVERIFY(std::find(held.begin(), held.end(), WideSubset::Train) == held.end());
+    const EyeFrame a = renderWideFrame(WideSubset::TrainHard, 2, 9);
+    QCOMPARE(cv::norm(a.image, renderWideFrame(WideSubset::TrainHard, 2, 9).image, cv::NORM_INF), 0.0);
+    QVERIFY(cv::norm(a.image, renderWideFrame(WideSubset::Hard, 2, 9).image, cv::NORM_L1) > 1000);
+    double lo = 1, hi = 0;
+    for (int i = 0; i < 12; ++i) {
+      const EyeFrame f = renderWideFrame(WideSubset::TrainHard, i, 9);
+      QVERIFY(f.truth.pupil_visible);
+      lo = std::min(lo, f.truth.visible_fraction), hi = std::max(hi, f.truth.visible_fraction);
+    }
+    qInfo("train_hard: visible fraction %.3f-%.3f over 12 frames", lo, hi);
+    QVERIFY2(lo >= 0.2 - 1e-9 && hi <= 0.65 + 0.02, (std::to_string(lo) + " " + std::to_string(hi)).c_str());
   }
 
   void cornealRefractionMatchesSingleSurface() {
