@@ -4,24 +4,31 @@
 # window of the frame at 200 px around the first stage's centre), each with a .json of its
 # validation figures. Not part of the test command: the shipped models are what the tests
 # check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch seed
-# 31). The shipped models: the full-frame stage 18000 frames, 24 epochs on one thread in 35
-# minutes; the refining stage 72000 frames (those with a pupil less than 60 % visible shown three
-# times an epoch), 8 epochs in about 45 minutes; rendering a few
-# minutes on two cores when nothing else runs (13 when builds ran beside it). One thread each:
+# 31). The shipped models: the full-frame stage 18000 frames of subset train and 6000 of
+# train_hard (the hard subset's combination in the training's bands), closed eyes' visibility
+# loss weighted 6x, 20 epochs on one thread in 26 minutes; the refining stage 72000 train and
+# 18000 train_hard frames (those with a pupil less than 60 % visible shown twice an epoch; three
+# times without train_hard frames, --refine-hard-frames 0), 7 epochs in 48 minutes beside the
+# first stage; rendering a few minutes on two cores when nothing else runs (13 when builds ran
+# beside it). The two stages train side by side, one core each. One thread each:
 # two intra-op threads on a shared two-core machine stall at their barriers (up to 17 min an
 # epoch while builds ran). The trainer stops at --max-minutes whatever the epoch; the .json
 # files give the epochs it ran.
-#   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--epochs E]
-#       [--refine-frames N] [--refine-epochs E] [--max-minutes M] [--work DIR]
+#   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N]
+#       [--epochs E] [--refine-frames N] [--refine-hard-frames N] [--refine-epochs E]
+#       [--max-minutes M] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FRAMES=18000 EPOCHS=24 MINUTES=65 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 REPOCHS=8
+FRAMES=18000 HARD=6000 EPOCHS=20 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
+REPOCHS=7 CLOSED_WEIGHT=6
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;
     --refine-frames) RFRAMES=$2; shift 2 ;;
     --refine-epochs) REPOCHS=$2; shift 2 ;;
+    --refine-hard-frames) RHARD=$2; shift 2 ;;
+    --hard-frames) HARD=$2; shift 2 ;;
     --frames) FRAMES=$2; shift 2 ;;
     --epochs) EPOCHS=$2; shift 2 ;;
     --work) WORK=$2; shift 2 ;;
@@ -38,44 +45,65 @@ fi
 CLI=${FOVEA_CLI:-build/default/app/fovea-cli}
 if [[ ! -x $CLI ]]; then cmake --preset default && cmake --build --preset default --target fovea-cli; fi
 mkdir -p "$WORK"
-render() {  # DIR START COUNT SEED [SIZE]
-  local size=${5:-96}
-  if [[ -f $1/dataset.json ]] && grep -q "\"frames\": $3," "$1/dataset.json" && grep -q "\"start\": $2," "$1/dataset.json" && grep -q "\"seed\": $4," "$1/dataset.json" && tr -d ' \n' < "$1/dataset.json" | grep -q "\"stored_size_px\":\[$size,"; then return; fi
-  nice -n 10 "$CLI" eye-dataset --out "$1" --start "$2" --frames "$3" --seed "$4" --size "$size" --no-png
+render() {  # DIR START COUNT SEED [SIZE [SUBSET]]
+  local size=${5:-96} subset=${6:-train}
+  if [[ -f $1/dataset.json ]] && grep -q "\"frames\": $3," "$1/dataset.json" && grep -q "\"start\": $2," "$1/dataset.json" && grep -q "\"seed\": $4," "$1/dataset.json" && grep -q "\"subset\": \"$subset\"" "$1/dataset.json" && tr -d ' \n' < "$1/dataset.json" | grep -q "\"stored_size_px\":\[$size,"; then return; fi
+  nice -n 10 "$CLI" eye-dataset --out "$1" --start "$2" --frames "$3" --seed "$4" --size "$size" --subset "$subset" --no-png
 }
 train() {  # STAGE OUT EPOCHS DIR... (the last DIR is the validation set)
   local stage=$1 out=$2 epochs=$3; shift 3
   local args=() n=$#
   for ((k = 1; k < n; k++)); do args+=(--data "${!k}"); done
   nice -n 10 /usr/bin/python3 scripts/train_pupil_net.py --stage "$stage" "${args[@]}" --val "${!n}" --out "$out" \
-    --epochs "$epochs" --max-minutes "$MINUTES" --threads 1 --occluded-repeats "${OCCLUDED_REPEATS:-1}"
+    --epochs "$epochs" --max-minutes "$MINUTES" --threads 1 --occluded-repeats "${OCCLUDED_REPEATS:-1}" \
+    --closed-weight "${CLOSED:-3}"
 }
+# Rendering: the full-frame stage's frames at 96 px, the refining stage's at 200 px in shards of
+# 9000 (the same seed-1 frames from index 0, and train_hard frames from index 0), two at a time.
+t0=$(date +%s)
+pids=()
+wait_all() {  # every background job, failing if one failed
+  local p
+  for p in "${pids[@]}"; do wait "$p"; done
+  pids=()
+}
+queue() {  # render in the background, two at a time
+  render "$@" &
+  pids+=($!)
+  if (( ${#pids[@]} == 2 )); then wait_all; fi
+}
+full_dirs=() shards=()
 if [[ $STAGE != refine ]]; then
   half=$((FRAMES / 2))
-  t0=$(date +%s)
-  render "$WORK/train-a" 0 "$half" 1 &
-  render "$WORK/train-b" "$half" "$((FRAMES - half))" 1 &
-  wait
-  render "$WORK/val" 0 400 7
-  t1=$(date +%s)
-  echo "full-frame stage: rendered in $((t1 - t0)) s"
-  train full resources/pupil/pupil-net.onnx "$EPOCHS" "$WORK/train-a" "$WORK/train-b" "$WORK/val"
-  echo "full-frame stage: trained in $(( $(date +%s) - t1 )) s"
+  full_dirs=("$WORK/train-a" "$WORK/train-b" "$WORK/train-hard")
+  queue "$WORK/train-a" 0 "$half" 1
+  queue "$WORK/train-b" "$half" "$((FRAMES - half))" 1
+  queue "$WORK/train-hard" 0 "$HARD" 1 96 train_hard
+  queue "$WORK/val" 0 400 7
 fi
 if [[ $STAGE != full ]]; then
-  # The same frames (seed 1, from index 0) stored at 200 px, in shards of 9000, two at a time.
-  t0=$(date +%s)
-  shards=()
   for ((start = 0; start < RFRAMES; start += 9000)); do
-    n=$((RFRAMES - start < 9000 ? RFRAMES - start : 9000))
     shards+=("$WORK/refine-$start")
-    render "$WORK/refine-$start" "$start" "$n" 1 200 &
-    if (( ${#shards[@]} % 2 == 0 )); then wait; fi
+    queue "$WORK/refine-$start" "$start" "$((RFRAMES - start < 9000 ? RFRAMES - start : 9000))" 1 200
   done
-  wait
-  render "$WORK/refine-val" 0 400 7 200
-  t1=$(date +%s)
-  echo "refining stage: rendered in $((t1 - t0)) s"
-  OCCLUDED_REPEATS=3 train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val"
-  echo "refining stage: trained in $(( $(date +%s) - t1 )) s"
+  for ((start = 0; start < RHARD; start += 9000)); do
+    shards+=("$WORK/refine-hard-$start")
+    queue "$WORK/refine-hard-$start" "$start" "$((RHARD - start < 9000 ? RHARD - start : 9000))" 1 200 train_hard
+  done
+  queue "$WORK/refine-val" 0 400 7 200
 fi
+wait_all
+t1=$(date +%s)
+echo "rendered in $((t1 - t0)) s"
+# Training: the two stages side by side, one thread each (the refining stage's windows come from
+# the true centres, jittered, not from the first stage: the two are independent).
+if [[ $STAGE != refine ]]; then
+  CLOSED=$CLOSED_WEIGHT train full resources/pupil/pupil-net.onnx "$EPOCHS" "${full_dirs[@]}" "$WORK/val" &
+  pids+=($!)
+fi
+if [[ $STAGE != full ]]; then
+  OCCLUDED_REPEATS=$((RHARD > 0 ? 2 : 3)) train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val" &
+  pids+=($!)
+fi
+wait_all
+echo "trained in $(( $(date +%s) - t1 )) s"

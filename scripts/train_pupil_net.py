@@ -112,11 +112,11 @@ class PupilNet(nn.Module):
         return torch.cat([centre, dense[:, 2:]], dim=1)
 
 
-def loss_fn(out, t):
+def loss_fn(out, t, closed_weight=3.0):
     vis = t[:, 6]
-    # Closed eyes weigh 3x: a false pupil moves the display to a gaze that is not there
-    # (issue 31: <= 1 % false positives on closed eyes).
-    bce = nn.functional.binary_cross_entropy_with_logits(out[:, 6], vis, weight=1 + 2 * (1 - vis))
+    # Closed eyes weigh `closed_weight` (3 by default): a false pupil moves the display to a gaze
+    # that is not there (issue 31: <= 1 % false positives on closed eyes).
+    bce = nn.functional.binary_cross_entropy_with_logits(out[:, 6], vis, weight=1 + (closed_weight - 1) * (1 - vis))
     m = vis > 0.5
     if m.sum() == 0:
         return bce, bce
@@ -212,6 +212,8 @@ def main():
     ap.add_argument("--max-minutes", type=float, default=20)
     ap.add_argument("--occluded-repeats", type=int, default=1,
                     help="times an epoch shows a frame whose pupil is less than 60 %% visible (default 1)")
+    ap.add_argument("--closed-weight", type=float, default=3.0,
+                    help="weight of a closed eye's visibility loss against an open one's 1 (default 3)")
     a = ap.parse_args()
     torch.manual_seed(a.seed)
     np.random.seed(a.seed)
@@ -264,7 +266,7 @@ def main():
                 tb[:, 0] = mirror - tb[:, 0]
                 tb[:, 5] = -tb[:, 5]
             out = model(xb)
-            loss, _ = loss_fn(out, torch.from_numpy(tb))
+            loss, _ = loss_fn(out, torch.from_numpy(tb), a.closed_weight)
             opt.zero_grad()
             loss.backward()
             opt.step()
@@ -286,7 +288,7 @@ def main():
     json.dump({"validation": ev, "train_minutes": (time.time() - start) / 60, "frames": len(x),
                "frames_with_pupil": int(t[:, 6].sum()), "validation_frames": len(xv),
                "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE, "stage": a.stage,
-               "occluded_repeats": a.occluded_repeats, "frames_less_than_60pct_visible": int(len(occluded)),
+               "occluded_repeats": a.occluded_repeats, "closed_weight": a.closed_weight, "frames_less_than_60pct_visible": int(len(occluded)),
                **({"canvas_px": CANVAS} if refine else {})}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
 
