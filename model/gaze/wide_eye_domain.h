@@ -20,8 +20,8 @@
 //
 // Training subsets (the training's pupil diameter and iris level bands): train, the whole
 // domain, and train_hard, the hard subset's combination (LED and stray glints, defocus, 70 %
-// motion blur, 25 % off-axis views) at 20-65 % visible, which the whole domain draws together
-// in about 2 % of its frames.
+// motion blur, 25 % off-axis views) at 20-65 % visible. Of train's frames 12 % show 20-65 % of
+// the pupil, 3.6 % of them with both kinds of glints too, 1.1 % with saccadic blur as well.
 
 #include <cstdint>
 #include <optional>
