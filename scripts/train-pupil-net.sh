@@ -73,6 +73,13 @@ queue() {  # render in the background, two at a time
   if (( ${#pids[@]} == 2 )); then wait_all; fi
 }
 full_dirs=() shards=()
+shard() {  # PREFIX TOTAL SUBSET: seed-1 frames from index 0 at 200 px, in shards of 9000
+  local start
+  for ((start = 0; start < $2; start += 9000)); do
+    shards+=("$1-$start")
+    queue "$1-$start" "$start" "$(($2 - start < 9000 ? $2 - start : 9000))" 1 200 "$3"
+  done
+}
 if [[ $STAGE != refine ]]; then
   half=$((FRAMES / 2))
   full_dirs=("$WORK/train-a" "$WORK/train-b" "$WORK/train-hard")
@@ -82,14 +89,8 @@ if [[ $STAGE != refine ]]; then
   queue "$WORK/val" 0 400 7
 fi
 if [[ $STAGE != full ]]; then
-  for ((start = 0; start < RFRAMES; start += 9000)); do
-    shards+=("$WORK/refine-$start")
-    queue "$WORK/refine-$start" "$start" "$((RFRAMES - start < 9000 ? RFRAMES - start : 9000))" 1 200
-  done
-  for ((start = 0; start < RHARD; start += 9000)); do
-    shards+=("$WORK/refine-hard-$start")
-    queue "$WORK/refine-hard-$start" "$start" "$((RHARD - start < 9000 ? RHARD - start : 9000))" 1 200 train_hard
-  done
+  shard "$WORK/refine" "$RFRAMES" train
+  shard "$WORK/refine-hard" "$RHARD" train_hard
   queue "$WORK/refine-val" 0 400 7 200
 fi
 wait_all

@@ -112,9 +112,9 @@ class PupilNet(nn.Module):
         return torch.cat([centre, dense[:, 2:]], dim=1)
 
 
-def loss_fn(out, t, closed_weight=3.0):
+def loss_fn(out, t, closed_weight):
     vis = t[:, 6]
-    # Closed eyes weigh `closed_weight` (3 by default): a false pupil moves the display to a gaze
+    # Closed eyes weigh `closed_weight` (--closed-weight, 3 by default): a false pupil moves the display to a gaze
     # that is not there (issue 31: <= 1 % false positives on closed eyes).
     bce = nn.functional.binary_cross_entropy_with_logits(out[:, 6], vis, weight=1 + (closed_weight - 1) * (1 - vis))
     m = vis > 0.5
@@ -288,7 +288,8 @@ def main():
     json.dump({"validation": ev, "train_minutes": (time.time() - start) / 60, "frames": len(x),
                "frames_with_pupil": int(t[:, 6].sum()), "validation_frames": len(xv),
                "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE, "stage": a.stage,
-               "occluded_repeats": a.occluded_repeats, "closed_weight": a.closed_weight, "frames_less_than_60pct_visible": int(len(occluded)),
+               "occluded_repeats": a.occluded_repeats, "closed_weight": a.closed_weight,
+               "frames_less_than_60pct_visible": int(len(occluded)),
                **({"canvas_px": CANVAS} if refine else {})}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
 

@@ -52,10 +52,12 @@ void install(CLI::App& app) {
     if (a->domain != "wide" && a->domain != "classic")
       usageError("--domain: '" + a->domain + "' is not one of wide, classic");
     const auto wide_subset = gaze::parseWideSubset(a->subset);
-    if (a->domain == "wide" && !wide_subset)
-      usageError(
-          "--subset: '" + a->subset +
-          "' is not one of train, train_hard, easy, glints, occlusion, motion_blur, off_axis, partial, hard, closed");
+    if (a->domain == "wide" && !wide_subset) {
+      std::string names;
+      for (const auto s : gaze::allWideSubsets())
+        names += (names.empty() ? "" : ", ") + std::string(gaze::wideSubsetName(s));
+      usageError("--subset: '" + a->subset + "' is not one of " + names);
+    }
     namespace fs = std::filesystem;
     const fs::path dir(a->out);
     std::error_code ec;

@@ -269,10 +269,14 @@ const char* wideSubsetName(WideSubset s) {
   return "?";
 }
 
+std::vector<WideSubset> allWideSubsets() {
+  std::vector<WideSubset> all;
+  for (int i = 0; i <= static_cast<int>(WideSubset::TrainHard); ++i) all.push_back(static_cast<WideSubset>(i));
+  return all;
+}
+
 std::optional<WideSubset> parseWideSubset(const std::string& name) {
-  for (WideSubset s :
-       {WideSubset::Train, WideSubset::Easy, WideSubset::Glints, WideSubset::Occlusion, WideSubset::MotionBlur,
-        WideSubset::OffAxis, WideSubset::Partial, WideSubset::Hard, WideSubset::Closed, WideSubset::TrainHard})
+  for (WideSubset s : allWideSubsets())
     if (name == wideSubsetName(s)) return s;
   return std::nullopt;
 }

@@ -32,10 +32,12 @@
 
 namespace fovea::gaze {
 
-// TrainHard last: a subset's number seeds its frames, so the others' frames stay as they were.
+// TrainHard last: a subset's number seeds its frames, so the others' frames stay as they were;
+// allWideSubsets counts up to the last one.
 enum class WideSubset { Train, Easy, Glints, Occlusion, MotionBlur, OffAxis, Partial, Hard, Closed, TrainHard };
 
 const char* wideSubsetName(WideSubset s);
+std::vector<WideSubset> allWideSubsets();  // in the enum's order
 std::optional<WideSubset> parseWideSubset(const std::string& name);
 std::vector<WideSubset> heldOutWideSubsets();  // all but Train and TrainHard
 
