@@ -32,5 +32,8 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# --force-unsafe-io: dpkg skips its fsync after every unpacked file (the install of the 32
+# packages a new machine lacks: 156 s -> 140 s from apt's cache, 2026-12-06). A power cut
+# mid-install could leave a package to reinstall; the script is idempotent and reruns.
+$SUDO apt-get install -y -qq --no-install-recommends -o Dpkg::Options::=--force-unsafe-io "${missing[@]}" >/dev/null
 echo "install-deps: done"

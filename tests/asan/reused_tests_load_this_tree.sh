@@ -14,8 +14,11 @@ required_real=()
 for r in "${required[@]}"; do required_real+=("$(readlink -f "$r")"); done
 allowed_real=()
 for d in "${allowed[@]}"; do allowed_real+=("$(readlink -f "$d")"); done
+# Each test is a link to its batch's executable (tests/CMakeLists.txt): every executable once,
+# by its real path (the loader maps the same libraries whichever link starts it).
+mapfile -t executables < <(for e in "$@"; do readlink -f "$e"; done | sort -u)
 status=0
-for exe in "$@"; do
+for exe in "${executables[@]}"; do
   # The dynamic loader's own list of what it maps (ldd's mechanism: main is not run).
   if ! maps=$(LD_TRACE_LOADED_OBJECTS=1 "$exe" 2>&1); then
     echo "FAIL $exe: the loader could not list its libraries: $maps"; status=1; continue
@@ -36,5 +39,5 @@ for exe in "$@"; do
     esac
   done
 done
-[ $status = 0 ] && echo "all $# reused executables map ${required[*]}, and libfovea_*.so only from ${allowed[*]}"
+[ $status = 0 ] && echo "all ${#executables[@]} reused executables ($# tests) map ${required[*]}, and libfovea_*.so only from ${allowed[*]}"
 exit $status
