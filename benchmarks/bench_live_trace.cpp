@@ -8,21 +8,17 @@
 
 #include <tbb/global_control.h>
 
-#include "app/embedded_scene.h"
+#include "benchmarks/bench_scene.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
 
 namespace {
 
-fovea::Scene prototype() {
-  return *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
-}
-
 // A gaze drag: the diffraction of the design is cached, each move re-evaluates the pupil.
 void BM_LiveGazeMove(benchmark::State& state) {
   const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
-  fovea::Scene s = prototype();
+  fovea::Scene s = fovea::bench::prototypeScene();
   fovea::TraceOptions o;
   o.rays = static_cast<int>(state.range(0));
   o.keep_rays = true;
@@ -41,7 +37,7 @@ BENCHMARK(BM_LiveGazeMove)->Arg(500)->Arg(4000)->Unit(benchmark::kMillisecond);
 // A handle drag of the projector: every move changes the geometry, so the whole trace runs.
 void BM_LiveHandleMove(benchmark::State& state) {
   const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
-  fovea::Scene s = prototype();
+  fovea::Scene s = fovea::bench::prototypeScene();
   fovea::TraceOptions o;
   o.rays = static_cast<int>(state.range(0));
   o.keep_rays = true;
