@@ -1,34 +1,19 @@
 #!/usr/bin/env bash
 # Installs the Debian bookworm packages Foveated AR Studio needs. Idempotent: when every
 # package is already installed it touches nothing (no apt-get update, no install).
-#   install-deps.sh [all|build|test]   (default all)
-# build: what configuring and building both trees needs (openimageio-tools too: OpenImageIO's
-# CMake package names /usr/bin/iconvert, and configuring stops without it); test: the rest, what running the tests,
-# the lint and the studio under Xvfb need. scripts/test.sh installs the second group in the
-# background while the default tree builds (on a new machine its download and unpack, opencv-doc
-# alone 274 MB, cost nothing then: the build is CPU-bound, the install mostly network and disk).
 set -euo pipefail
 
-BUILD_PACKAGES=(
-  build-essential cmake ninja-build mold ccache pkg-config git
+PACKAGES=(
+  build-essential cmake ninja-build mold imagemagick ccache pkg-config git
   qt6-base-dev libqt6opengl6-dev qt6-svg-dev qt6-charts-dev
   libvtk9-dev libopencv-dev libeigen3-dev libopenimageio-dev openimageio-tools
   libglm-dev libusb-1.0-0-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev libtbb-dev
-  python3-dev pybind11-dev python3-pybind11 libumockdev-dev
-)
-TEST_PACKAGES=(
   xvfb xauth libgl1-mesa-dri x11-utils xdotool
-  poppler-utils python3-numpy python3-matplotlib opencv-doc
-  clang-format clang-tidy umockdev imagemagick
+  poppler-utils python3-numpy python3-matplotlib opencv-doc python3-dev pybind11-dev python3-pybind11
+  clang-format clang-tidy umockdev libumockdev-dev
   slurmctld slurmd slurm-client munge
 )
-case "${1:-all}" in
-  all) PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
-  build) PACKAGES=("${BUILD_PACKAGES[@]}") ;;
-  test) PACKAGES=("${TEST_PACKAGES[@]}") ;;
-  *) echo "install-deps: unknown group '$1' (all, build or test)" >&2; exit 2 ;;
-esac
 
 missing=()
 for p in "${PACKAGES[@]}"; do
