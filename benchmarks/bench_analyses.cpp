@@ -1,7 +1,7 @@
 // Timings of the design analyses (docs/analyses.md) on the prototype bench.
 #include <benchmark/benchmark.h>
 
-#include "benchmarks/bench_scene.h"
+#include "app/embedded_scene.h"
 #include "model/analysis/analysis_json.h"
 #include "model/analysis/analysis_registry.h"
 #include "model/analysis/angular_resolution.h"
@@ -14,26 +14,26 @@
 
 namespace {
 void BM_ResolutionProfile(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   for (auto _ : state) benchmark::DoNotOptimize(fovea::analyzeResolution(s).peripheral_pixel_integral);
 }
 BENCHMARK(BM_ResolutionProfile)->Unit(benchmark::kMillisecond);
 
 void BM_CombinerMtf30(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   for (auto _ : state) benchmark::DoNotOptimize(fovea::tracedCombinerMtf30(s, 10.0, 5.0).mtf30_cpd);
 }
 BENCHMARK(BM_CombinerMtf30)->Unit(benchmark::kMicrosecond);
 
 void BM_SpotEvaluationRealLens(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   const fovea::PlacedLens lens{fovea::defaultLensCatalog()[6], {50.0, 2.0, 10.0}};
   for (auto _ : state) benchmark::DoNotOptimize(fovea::evaluateSpots(s, lens).rms_spot_um);
 }
 BENCHMARK(BM_SpotEvaluationRealLens)->Unit(benchmark::kMicrosecond);
 
 void BM_LensOptimisation(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   const auto catalog = fovea::defaultLensCatalog();
   for (auto _ : state) benchmark::DoNotOptimize(fovea::optimizeBeamShapingLens(s, catalog).value->rms_after_um);
 }
@@ -45,7 +45,7 @@ BENCHMARK(BM_LensOptimisation)->Unit(benchmark::kMillisecond)->Iterations(1);
 // The Python call's target is 1.1x this (docs/python.md); its conversion to Python objects and
 // NumPy ray arrays is the difference.
 void BM_TraceCallAsPython4000(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   const auto& def = *fovea::analysis::findAnalysisDefinition("trace");
   nlohmann::json values = fovea::analysis::defaultValues(def);
   values["rays"] = 4000;

@@ -22,7 +22,7 @@ double processCpuMs() {
 }
 
 void BM_CompositeGazeUpdate(benchmark::State& state) {
-  const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "embedded").scene;
+  const fovea::Scene scene = fovea::embeddedDefaultScene();
   cv::Mat target(1080, 1920, CV_32FC3);
   cv::randu(target, 0.0f, 1.0f);
   fovea::image::FoveatedCompositor comp(scene, state.range(0) != 0);
@@ -50,7 +50,7 @@ void BM_CompositeGazeUpdate(benchmark::State& state) {
 BENCHMARK(BM_CompositeGazeUpdate)->Arg(1)->Arg(0)->ArgName("blend")->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_CompositeSetTarget(benchmark::State& state) {
-  const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "embedded").scene;
+  const fovea::Scene scene = fovea::embeddedDefaultScene();
   cv::Mat target(1080, 1920, CV_32FC3);
   cv::randu(target, 0.0f, 1.0f);
   fovea::image::FoveatedCompositor comp(scene, true);

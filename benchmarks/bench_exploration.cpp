@@ -10,7 +10,7 @@
 
 #include <tbb/global_control.h>
 
-#include "benchmarks/bench_scene.h"
+#include "app/embedded_scene.h"
 #include "model/analysis/fov_edges.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/tolerance_analysis.h"
@@ -39,7 +39,7 @@ double denseConverged(const fovea::Scene& s, std::optional<double> lambda) {
 // One FOV evaluation, one core: range(0) = tolerance in mdeg, range(1) = 1 for 532 nm only.
 void BM_EdgeFov(benchmark::State& state) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceEvaluatorOptions o;
   o.fov_method = fovea::FovMethod::Edges;
   o.edge_tolerance_deg = state.range(0) * 1e-3;
@@ -56,7 +56,7 @@ BENCHMARK(BM_EdgeFov)->Args({5, 1})->Args({50, 1})->Args({5, 0})->Args({50, 0})-
 // The 41-gaze x_p sweep (-20..20 deg by 1 deg) on the edge estimator, two cores, 3 λ.
 void BM_Sweep41GazesEdges(benchmark::State& state) {
   tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceEvaluatorOptions o;
   o.fov_method = fovea::FovMethod::Edges;
   o.edge_tolerance_deg = 0.05;
@@ -75,7 +75,7 @@ BENCHMARK(BM_Sweep41GazesEdges)->Unit(benchmark::kMillisecond)->Iterations(1);
 // range(0) = 0 refind (x_p re-found per gaze), 1 fixed.
 void BM_ToleranceTrial(benchmark::State& state) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   nlohmann::json j = nlohmann::json::parse(fovea::analysis::defaultToleranceSpecText());
   j["compensator"] = state.range(0) ? "fixed" : "refind";
   const fovea::ToleranceSpec spec = fovea::parseToleranceSpec(j);

@@ -30,7 +30,7 @@ std::vector<fovea::FitTarget> seedSimulatedTargets() {
 
 void BM_FitSeedSimulatedEvaluation(benchmark::State& state) {
   tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
-  const fovea::Scene s = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   const std::vector<fovea::FitTarget> targets = seedSimulatedTargets();
   std::vector<double> m;
   for (auto _ : state) benchmark::DoNotOptimize(m = fovea::evaluateTargets(s, targets, {}));

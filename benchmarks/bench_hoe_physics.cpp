@@ -10,7 +10,7 @@
 
 #include <tbb/global_control.h>
 
-#include "benchmarks/bench_scene.h"
+#include "app/embedded_scene.h"
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/trace_evaluator.h"
 #include "model/physics/grating.h"
@@ -130,7 +130,7 @@ BENCHMARK(BM_DiffractPlanar1e6AllOutputs)->Unit(benchmark::kMillisecond)->UseRea
 
 // Full trace (diffraction + gaze) of ~20 000 rays in total (3 wavelengths).
 void BM_TraceScene20k(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceOptions o;
   o.rays = 6667;
   for (auto _ : state) benchmark::DoNotOptimize(fovea::traceScene(s, o).fov_deg.horizontal);
@@ -139,7 +139,7 @@ BENCHMARK(BM_TraceScene20k)->Unit(benchmark::kMillisecond);
 
 // Gaze update only: the diffracted rays are reused (trace.h two-stage API).
 void BM_GazeUpdate20k(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceOptions o;
   o.rays = 6667;
   const auto rays = fovea::diffractScene(s, o);
@@ -154,7 +154,7 @@ BENCHMARK(BM_GazeUpdate20k)->Unit(benchmark::kMillisecond);
 
 // Gaze update through the memoised pipeline (trace_pipeline.h): pupil, FOV and analyses only.
 void BM_PipelineGazeUpdate20k(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceOptions o;
   o.rays = 6667;
   fovea::TracePipeline p;
@@ -171,7 +171,7 @@ BENCHMARK(BM_PipelineGazeUpdate20k)->Unit(benchmark::kMillisecond);
 // Gaze and HOE shift together (x_p follows the gaze): everything after the projector grid
 // reruns, with the pupil cull.
 void BM_PipelineGazeAndShift20k(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceOptions o;
   o.rays = 6667;
   o.cull_to_pupil = true;
@@ -189,7 +189,7 @@ BENCHMARK(BM_PipelineGazeAndShift20k)->Unit(benchmark::kMillisecond);
 // The 41-gaze x_p sweep (-20..20 deg by 1 deg) of the gaze studies, default evaluator, on
 // state.range(0) threads (1 vs 2: the scaling; process CPU time beside the wall time).
 void BM_Sweep41Gazes(benchmark::State& state) {
-  const fovea::Scene s = fovea::bench::prototypeScene();
+  const fovea::Scene s = fovea::embeddedDefaultScene();
   const fovea::FovEvaluator eval = fovea::traceEvaluator({});
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
   for (auto _ : state)

@@ -8,7 +8,7 @@
 
 #include <tbb/global_control.h>
 
-#include "benchmarks/bench_scene.h"
+#include "app/embedded_scene.h"
 #include "model/physics/projector_rays.h"
 #include "model/physics/trace.h"
 #include "model/scene/scene_io.h"
@@ -18,7 +18,7 @@ namespace {
 // A gaze drag: the diffraction of the design is cached, each move re-evaluates the pupil.
 void BM_LiveGazeMove(benchmark::State& state) {
   const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
-  fovea::Scene s = fovea::bench::prototypeScene();
+  fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceOptions o;
   o.rays = static_cast<int>(state.range(0));
   o.keep_rays = true;
@@ -37,7 +37,7 @@ BENCHMARK(BM_LiveGazeMove)->Arg(500)->Arg(4000)->Unit(benchmark::kMillisecond);
 // A handle drag of the projector: every move changes the geometry, so the whole trace runs.
 void BM_LiveHandleMove(benchmark::State& state) {
   const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
-  fovea::Scene s = fovea::bench::prototypeScene();
+  fovea::Scene s = fovea::embeddedDefaultScene();
   fovea::TraceOptions o;
   o.rays = static_cast<int>(state.range(0));
   o.keep_rays = true;

@@ -26,7 +26,7 @@ cv::Mat retinaBenchChart() {
 }
 
 void BM_RetinaImage1080p(benchmark::State& state) {
-  const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
+  const fovea::Scene scene = fovea::embeddedDefaultScene();
   const cv::Mat chart = retinaBenchChart();
   fovea::image::RetinaImageOptions o;
   o.rays = static_cast<int>(state.range(0));
@@ -38,7 +38,7 @@ void BM_RetinaImage1080p(benchmark::State& state) {
 BENCHMARK(BM_RetinaImage1080p)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
 void BM_RetinaImage1080pNewGaze(benchmark::State& state) {
-  const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
+  const fovea::Scene scene = fovea::embeddedDefaultScene();
   const cv::Mat chart = retinaBenchChart();
   fovea::image::RetinaImageOptions o;
   o.rays = static_cast<int>(state.range(0));
@@ -55,7 +55,7 @@ void BM_RetinaImage1080pNewGaze(benchmark::State& state) {
 BENCHMARK(BM_RetinaImage1080pNewGaze)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(4);
 
 void BM_RetinaImage1080pNewAccommodation(benchmark::State& state) {
-  const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
+  const fovea::Scene scene = fovea::embeddedDefaultScene();
   const cv::Mat chart = retinaBenchChart();
   fovea::image::RetinaImageOptions o;
   o.rays = static_cast<int>(state.range(0));

@@ -30,7 +30,7 @@ struct View {
   View(int w, int h) {
     view.resize(w, h);
     view.show();
-    const fovea::Scene scene = *fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype").scene;
+    const fovea::Scene scene = fovea::embeddedDefaultScene();
     view.setScene(scene, true);
     overlay = std::make_unique<fovea::viz::TraceOverlay>(&view);
     fovea::TraceOptions o;

@@ -3,7 +3,7 @@
 // bindings, soft limits, and the e-stop interrupting a running move; the binocular example's
 // focus axis (foveal_display z) setting the foveal image distance.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <chrono>
@@ -21,7 +21,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 bool sentMoveAbsolute(const VirtualAptController& c, std::int32_t counts) {
   for (const auto& m : c.received())
     if (auto p = apt::parseMoveAbsolute(m); p && p->value == counts) return true;
@@ -37,7 +37,7 @@ class TestBench : public QObject {
     std::mutex m;
     BenchOptions o;
     o.virtual_clock = std::make_shared<SimulatedClock>();
-    Bench bench(prototype(), o, std::vector<DeviceInfo>{});  // no USB controllers present
+    Bench bench(embeddedDefaultScene(), o, std::vector<DeviceInfo>{});  // no USB controllers present
     QCOMPARE(bench.axes().size(), std::size_t{5});
     QVERIFY(bench.anyVirtual());
     for (auto& f : bench.connectAll()) f.get();
@@ -144,7 +144,7 @@ class TestBench : public QObject {
     o.virtual_clock = std::make_shared<SimulatedClock>();
     o.idle_poll = std::chrono::milliseconds(20);
     o.reconnect_interval = std::chrono::milliseconds(50);
-    Bench bench(prototype(), o, std::vector<DeviceInfo>{});
+    Bench bench(embeddedDefaultScene(), o, std::vector<DeviceInfo>{});
     for (auto& f : bench.connectAll()) f.get();
     AxisWorker* hx = bench.find("hoe", "x");
     AxisWorker* hy = bench.find("hoe", "y");
@@ -166,7 +166,7 @@ class TestBench : public QObject {
   void followGazeCoalescesTargets() {
     // A gaze slider dragged from 0 to 10 deg in 100 steps while the HOE moves in real time:
     // the axis ends at the last target, with far fewer moves than slider events.
-    Scene scene = prototype();
+    Scene scene = embeddedDefaultScene();
     scene.stages.resize(2);  // hoe.x, hoe.y
     BenchOptions o;
     o.idle_poll = std::chrono::milliseconds(20);
@@ -203,7 +203,7 @@ class TestBench : public QObject {
   }
 
   void emergencyStopInterruptsARunningMove() {
-    Scene scene = prototype();
+    Scene scene = embeddedDefaultScene();
     scene.stages.resize(2);  // hoe.x, hoe.y
     BenchOptions o;          // steady clock: real time
     o.idle_poll = std::chrono::milliseconds(50);
@@ -245,7 +245,7 @@ class TestBench : public QObject {
 
   void sceneAxisOverridesAndControllerSetUpRoundTrip() {
     // counts_per_mm and controller_setup on a stage binding: read, validated, written back.
-    Scene scene = prototype();
+    Scene scene = embeddedDefaultScene();
     QVERIFY(!scene.stages.empty());
     scene.stages[0].counts_per_unit = 34554.96;
     scene.stages[0].setup.max_velocity = 1.5;
@@ -257,7 +257,7 @@ class TestBench : public QObject {
     QVERIFY(back.ok());
     QCOMPARE(back.scene->stages[0], scene.stages[0]);
     // The untouched bindings write no new keys.
-    QVERIFY(serializeScene(prototype()).find("controller_setup") == std::string::npos);
+    QVERIFY(serializeScene(embeddedDefaultScene()).find("controller_setup") == std::string::npos);
     // Bad values are named.
     std::string bad = text;
     bad.replace(bad.find("\"breaks\""), 8, "\"sticky\"");

@@ -4,7 +4,7 @@
 // the prototype's screw stage does not, and the vergence noise matches the closed form; a
 // binocular scene in mode "explicit" runs its left eye on its own left train.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -19,7 +19,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 BinocularOptions synthetic(const char* stage) {
   BinocularOptions o;
   o.track = false;
@@ -83,7 +83,7 @@ std::vector<BinocularFixation> depthSteps() {
 
 class TestBinocularLoop : public QObject {
   Q_OBJECT
-  Scene scene_ = prototype();
+  Scene scene_ = embeddedDefaultScene();
 
  private slots:
   // Fixations F with seeds (a, b) against the mirrored fixations (-yaw, pitch) with the seeds

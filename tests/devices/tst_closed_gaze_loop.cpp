@@ -2,7 +2,7 @@
 // against the true gaze, and the stage simulation: fast stages keep the inset on the
 // fovea, the prototype's slow screw stages do not, and added latency makes it worse.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -19,7 +19,7 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 ClosedLoopOptions smallRun() {
   ClosedLoopOptions o;
   o.saccades = 3;
@@ -33,7 +33,7 @@ ClosedLoopOptions smallRun() {
 
 class TestClosedGazeLoop : public QObject {
   Q_OBJECT
-  Scene scene_ = prototype();
+  Scene scene_ = embeddedDefaultScene();
   TrackedRun run_;
 
  private slots:

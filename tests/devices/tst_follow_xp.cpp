@@ -3,7 +3,7 @@
 // table take x_p from model/analysis/hoe_travel.h, so at a gaze the sweep samples they give
 // the sweep's x_p (to 0.01 mm) under either x_p rule.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/sweep_at_gaze.h"
 #include "tests/test_paths.h"
 
@@ -21,14 +21,14 @@ using namespace fovea;
 using namespace fovea::devices;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 }  // namespace
 
 class TestFollowXp : public QObject {
   Q_OBJECT
  private slots:
   void planAndBenchTableTakeTheSweepsXp() {
-    Scene scene = prototype();
+    Scene scene = embeddedDefaultScene();
     QCOMPARE(scene.eye.gaze_range_deg[1], 20.0);  // 9 table samples over [-20, 20]: 20 is one
     for (const XpRule rule : {XpRule::PlateauMiddle, XpRule::FollowFocus}) {
       scene.view.xp_rule = xpRuleName(rule);

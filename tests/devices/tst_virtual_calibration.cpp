@@ -5,7 +5,7 @@
 // keep every capture in their folder and resume where they stopped; measurement imports are
 // checked. The virtual camera shows what the stages do.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <chrono>
@@ -29,7 +29,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 fs::path tmpDir(const std::string& name) {
   return fovea::testing::testTmpDir(name, true);
@@ -57,7 +57,7 @@ class TestVirtualCalibration : public QObject {
   Q_OBJECT
  private slots:
   void planCoversTheGazeRangeWithinTheSoftLimits() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const Plan p = geometricPlan(s);
     // Five gazes over +-20 deg: the projector at each; the micro-OLED where x_f stays within
     // +-8 mm (|alpha| <= 12 deg), so not at +-20 deg.
@@ -72,7 +72,7 @@ class TestVirtualCalibration : public QObject {
   }
 
   void geometricCalibrationRecoversTheGroundTruth() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     auto live = virtualBench(s);
     const Plan plan = geometricPlan(s);
     CaptureSession session(CaptureKind::Geometric, plan.steps, tmpDir("virtual_calibration"), s.name);
@@ -106,7 +106,7 @@ class TestVirtualCalibration : public QObject {
 
   void theCameraSeesTheStagesMove() {
     // The HOE stage moves the projector's board in the camera; the frame after the move shows it.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     auto live = virtualBench(s);
     BenchRig rig = live->rig();
     CaptureStep a;
@@ -137,7 +137,7 @@ class TestVirtualCalibration : public QObject {
     // instant, so the frame comes max(durations) after the step began, not their sum, and the
     // same frame whichever axis thread runs first (a late thread once meant a later move, and
     // captures that changed from run to run on a loaded machine).
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     CaptureStep both;
     both.id = "both";
     both.display = BenchDisplay::Peripheral;
@@ -176,7 +176,7 @@ class TestVirtualCalibration : public QObject {
     // The camera maps follow the camera's pose, not the design's eye gaze: a scene differing
     // only in gaze renders the same radiance (a fresh bench built for it agrees), so a gaze
     // drag in the studio keeps the maps and the last frame; any other change renders anew.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     auto live = virtualBench(s);
     VirtualOptics* optics = live->optics();
     QVERIFY(optics);
@@ -205,7 +205,7 @@ class TestVirtualCalibration : public QObject {
   }
 
   void sessionsResumeAndKeepTheirCaptures() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     auto live = virtualBench(s);
     BenchRig rig = live->rig();
     const Plan plan = gazePlan(s);
@@ -236,7 +236,7 @@ class TestVirtualCalibration : public QObject {
   }
 
   void colourMeasurementsAreCheckedAndKept() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const fs::path dir = tmpDir("capture_colour");
     CaptureSession session(CaptureKind::Color, colorPlan(s).steps, dir, s.name);
     const fs::path bad = dir.parent_path() / "bad_measurements.json";

@@ -29,8 +29,8 @@ namespace tst_analyses_panel {
 
 using namespace fovea;
 using namespace fovea::widgets;
+using fovea::embeddedDefaultScene;
 using fovea::testing::AnalysisGate;
-using fovea::testing::prototypeScene;
 using fovea::testing::testTmpPath;
 
 namespace {
@@ -77,7 +77,7 @@ class TestAnalysesPanel : public QObject {
 
   void resolutionRunMatchesTheCli() {
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("resolution");
     QVERIFY(panel.setParameter("gaze-yaw", 5.0));
@@ -105,7 +105,7 @@ class TestAnalysesPanel : public QObject {
   }
 
   void sweepKeysMatchTheCli() {
-    const Scene scene = prototypeScene();
+    const Scene scene = embeddedDefaultScene();
     AnalysisParams p = defaultParameters(*findAnalysis("sweep"));
     p["gaze-from"] = -10.0;
     p["gaze-to"] = 10.0;
@@ -126,7 +126,7 @@ class TestAnalysesPanel : public QObject {
     // study is held after its first sample, so the run is known to be in progress without
     // waiting for any time to pass.
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     AnalysisGate gate(panel.runner());
     panel.selectAnalysis("sweep");
@@ -158,7 +158,7 @@ class TestAnalysesPanel : public QObject {
   }
 
   void plotExportsCarryTheNumbers() {
-    const Scene scene = prototypeScene();
+    const Scene scene = embeddedDefaultScene();
     AnalysisParams p = defaultParameters(*findAnalysis("resolution"));
     p["samples"] = 41;
     const auto r = runAnalysis("resolution", scene, p);
@@ -214,7 +214,7 @@ class TestAnalysesPanel : public QObject {
   void accommodationPlotCarriesTheSweep() {
     // resolution with accommodation-d (issue 29) fills "resolution-vs-accommodation" too: one
     // CSV row per accommodation, the peripheral and foveal MTF50 of the result's document.
-    const Scene scene = prototypeScene();
+    const Scene scene = embeddedDefaultScene();
     AnalysisParams p = defaultParameters(*findAnalysis("resolution"));
     p["samples"] = 11;
     p["accommodation-d"] = "0.4,1.25,3.3";

@@ -23,7 +23,7 @@ namespace tst_analysis_defaults {
 
 using namespace fovea;
 using namespace fovea::widgets;
-using fovea::testing::prototypeScene;
+using fovea::embeddedDefaultScene;
 
 namespace {
 
@@ -63,7 +63,7 @@ class TestAnalysisDefaults : public QObject {
 
   void formDefaultsEqualTheCliDefaults() {
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     int generated = 0;
     for (const AnalysisSpec& spec : analysisCatalog()) {
@@ -84,7 +84,7 @@ class TestAnalysisDefaults : public QObject {
   // and 12 000, and "Defaults" kept 1 deg.
   void defaultsButtonRestoresTheSharedDefaults() {
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("sweep");
     QVERIFY(panel.setParameter("tolerance-deg", 1.0));
@@ -99,7 +99,7 @@ class TestAnalysisDefaults : public QObject {
 
   void copyCliParsesBackToTheForm() {
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     // Unsaved scene: no command with an empty path, a reason instead.
     panel.selectAnalysis("sweep");
@@ -132,7 +132,7 @@ class TestAnalysisDefaults : public QObject {
   // override is set.
   void fileParameterIsValidatedAndCopied() {
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     auto* field = panel.findChild<QLineEdit*>("spec");
@@ -182,7 +182,7 @@ class TestAnalysisDefaults : public QObject {
     p["gaze-yaw"] = 1000.0;
     QCOMPARE(validateParameters(*findAnalysis("trace"), p),
              QStringList{"gaze-yaw: must lie in [-80, 80] deg, got 1000"});
-    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, runAnalysis("trace", prototypeScene(), p));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, runAnalysis("trace", embeddedDefaultScene(), p));
   }
 };
 

@@ -6,7 +6,7 @@
 // in the row and in the Messages dock, Esc leaving "stopped at X" in the rows, the main
 // window's Bench dock marked VIRTUAL, and the focus axis's row with the foveal image distance.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <QRegularExpression>
@@ -51,7 +51,7 @@ std::filesystem::path tmpDir(const std::string& name) {
   return fovea::testing::testTmpDir(name, true);
 }
 
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 int moveAbsoluteCount(const devices::VirtualAptController& c) {
   int n = 0;
@@ -431,7 +431,7 @@ class TestDevicesPanel : public QObject {
     const double yaw = 10.0;
     rig.document.applyEdit("gaze", [yaw](Scene& s) { s.eye.gaze_deg = {yaw, 0.0}; });
     // x_p(alpha) from the one x_p source (hoe_travel.h: what `fovea-cli sweep` reports), absolute.
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const double xp = hoeTravel(scene, {yaw, 0.0}, sceneXpRule(scene)).shift_mm[0];
     qInfo("x_p(%.1f deg) = %.4f mm from hoeTravel", yaw, xp);
     QTRY_VERIFY_WITH_TIMEOUT(std::abs(*rig.panel->axisPosition("hoe.x") - xp) < 2e-3, 10000);
@@ -447,14 +447,14 @@ class TestDevicesPanel : public QObject {
     // start is superseded and redone, but the user is told "Starting the bench" once (it was
     // logged twice in the Messages dock at every studio start).
     widgets::SceneDocument document;
-    document.resetTo(prototype(), "prototype");
+    document.resetTo(embeddedDefaultScene(), "prototype");
     widgets::DevicesPanelOptions o;
     o.allow_hardware = false;
     o.live_camera = false;
     DevicesPanel panel(&document, nullptr, o);
     QSignalSpy messages(&panel, &DevicesPanel::message);
     panel.connectBench();  // under way, its result not delivered: no event loop has run
-    document.resetTo(prototype(), "prototype (replaced)");
+    document.resetTo(embeddedDefaultScene(), "prototype (replaced)");
     QTRY_VERIFY_WITH_TIMEOUT(panel.isConnected(), 10000);
     int starting = 0, started = 0;
     for (const auto& m : messages) {

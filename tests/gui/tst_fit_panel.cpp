@@ -26,7 +26,7 @@ namespace tst_fit_panel {
 
 using namespace fovea;
 using namespace fovea::widgets;
-using fovea::testing::prototypeScene;
+using fovea::embeddedDefaultScene;
 using fovea::testing::testTmpPath;
 
 namespace {
@@ -36,7 +36,7 @@ QString tmpDir() {
 
 // Targets from the prototype with the HOE 35.2 mm high and the green n1 at 0.0165.
 QString writeTargets() {
-  const Scene nominal = prototypeScene();
+  const Scene nominal = embeddedDefaultScene();
   const Scene built = withParameter(withParameter(nominal, "hoe.size_mm[1]", 35.2), "hoe_layers[1].n1", 0.0165);
   std::vector<FitTarget> t = parseFitTargets(nlohmann::json::parse(R"([
     {"id": "eff", "observable": "mean_efficiency", "shift": "none", "wavelength_nm": 532, "value": 0, "sigma": 0.002},

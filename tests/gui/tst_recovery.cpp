@@ -30,7 +30,7 @@ namespace tst_recovery {
 
 using namespace fovea;
 using namespace fovea::widgets;
-using fovea::testing::prototypeScene;
+using fovea::embeddedDefaultScene;
 using fovea::testing::testTmpPath;
 
 namespace {
@@ -89,7 +89,7 @@ class TestRecovery : public QObject {
   void autosaveFollowsUnsavedChanges() {
     const QString dir = freshDir("autosave");
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     Autosaver saver(&doc, dir);
     saver.setIntervalSeconds(1);
     QVERIFY(!saver.hasRecoveryFile());
@@ -115,7 +115,7 @@ class TestRecovery : public QObject {
   void cleanExitRemovesTheFiles() {
     const QString dir = freshDir("clean-exit");
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     {
       Autosaver saver(&doc, dir);
       QVERIFY(doc.applyEdit("pupil", [](Scene& s) { s.eye.pupil_diameter_mm = 4.0; }).isEmpty());
@@ -127,7 +127,7 @@ class TestRecovery : public QObject {
 
   void crashLeftoversAreFound() {
     const QString dir = freshDir("orphans");
-    writeCrashLeftovers(dir, prototypeScene(), {}, true);
+    writeCrashLeftovers(dir, embeddedDefaultScene(), {}, true);
     const QList<RecoveryEntry> found = Autosaver::findOrphans(dir);
     QCOMPARE(found.size(), 1);
     QCOMPARE(found[0].displayName, QString("bench.json"));
@@ -144,8 +144,8 @@ class TestRecovery : public QObject {
     const QString dir = freshDir("recover");
     // The saved file, and the crashed session's unsaved version of it.
     const QString saved = dir + "/bench.json";
-    saveSceneFileAtomic(prototypeScene(), saved.toStdString());
-    Scene changed = prototypeScene();
+    saveSceneFileAtomic(embeddedDefaultScene(), saved.toStdString());
+    Scene changed = embeddedDefaultScene();
     changed.eye.relief_mm = 27.0;
     changed.hoe_layers[1].n1 = 0.021;
     writeCrashLeftovers(dir, changed, saved, true);
@@ -163,14 +163,14 @@ class TestRecovery : public QObject {
     QVERIFY(window.analysisFeatures()->autosaver()->hasRecoveryFile());
     // Undo goes back to the file on disk.
     window.document()->undoStack()->undo();
-    QCOMPARE(window.document()->scene().eye.relief_mm, prototypeScene().eye.relief_mm);
+    QCOMPARE(window.document()->scene().eye.relief_mm, embeddedDefaultScene().eye.relief_mm);
     window.document()->undoStack()->redo();
     QCOMPARE(window.document()->scene().eye.relief_mm, 27.0);
   }
 
   void declineDiscardsTheLeftovers() {
     const QString dir = freshDir("decline");
-    Scene changed = prototypeScene();
+    Scene changed = embeddedDefaultScene();
     changed.eye.relief_mm = 30.0;
     writeCrashLeftovers(dir, changed, {}, false);  // killed before it ever took a lock
     studio::MainWindow window;
@@ -185,7 +185,7 @@ class TestRecovery : public QObject {
 
   void laterKeepsTheLeftovers() {
     const QString dir = freshDir("later");
-    writeCrashLeftovers(dir, prototypeScene(), {}, true);
+    writeCrashLeftovers(dir, embeddedDefaultScene(), {}, true);
     studio::MainWindow window;
     answerRecoveryWith("later");
     window.analysisFeatures()->startSession(dir);

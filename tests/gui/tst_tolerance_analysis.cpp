@@ -32,7 +32,7 @@ namespace tst_tolerance_analysis {
 
 using namespace fovea;
 using namespace fovea::widgets;
-using fovea::testing::prototypeScene;
+using fovea::embeddedDefaultScene;
 
 namespace {
 
@@ -61,7 +61,7 @@ class TestToleranceAnalysis : public QObject {
     QTemporaryDir dir;
     const QString spec = writeSpec(dir);
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     panel.selectAnalysis("tolerance");
     QCOMPARE(panel.currentAnalysis(), QString("tolerance"));
@@ -139,7 +139,7 @@ class TestToleranceAnalysis : public QObject {
     AnalysisParams p = defaultParameters(*findAnalysis("tolerance"));
     QVERIFY(!p["spec"].isValid());  // unset: the shipped spec
     p["trials"] = 16;               // one Saltelli block of the 14 parameters
-    const auto r = runAnalysis("tolerance", prototypeScene(), p);
+    const auto r = runAnalysis("tolerance", embeddedDefaultScene(), p);
     QVERIFY(r.has_value());
     QCOMPARE((*r)["spec"], shipped);
     QCOMPARE((*r)["trials"].get<int>(), 16);
@@ -156,7 +156,7 @@ class TestToleranceAnalysis : public QObject {
     p["gaze-to"] = 0.0;
     p["gaze-step"] = 5.0;
     p["trials"] = 5;
-    const auto r = runAnalysis("tolerance", prototypeScene(), p);
+    const auto r = runAnalysis("tolerance", embeddedDefaultScene(), p);
     QVERIFY(r.has_value());
     QCOMPARE((*r)["spec"]["compensator"].get<std::string>(), std::string("refind"));
     QCOMPARE((*r)["spec"]["gaze"]["from_deg"].get<double>(), 0.0);
@@ -198,7 +198,7 @@ class TestToleranceAnalysis : public QObject {
 
   void cancelStopsALongRun() {
     SceneDocument doc;
-    doc.resetTo(prototypeScene(), {});
+    doc.resetTo(embeddedDefaultScene(), {});
     AnalysesPanel panel(&doc);
     fovea::testing::AnalysisGate gate(panel.runner());  // holds the run after its first trial
     panel.selectAnalysis("tolerance");

@@ -91,10 +91,6 @@ QString check(const QImage& image, const QString& name) {
   return {};
 }
 
-Scene defaultScene() {
-  return *parseScene(embeddedDefaultSceneJson(), "default").scene;
-}
-
 std::shared_ptr<widgets::LiveTraceResult> traced(const Scene& scene, std::array<double, 2> shift = {0, 0}) {
   auto r = std::make_shared<widgets::LiveTraceResult>();
   r->scene = scene;
@@ -149,7 +145,7 @@ class TestViewBaselines : public QObject {
   }
 
   void sceneViewWithRayFans() {
-    FannedView f(defaultScene());
+    FannedView f(embeddedDefaultScene());
     QVERIFY(f.exposed);
     viz::SceneView& view = f.view;
     view.showStandardView(viz::StandardView::Top);
@@ -158,7 +154,7 @@ class TestViewBaselines : public QObject {
   }
 
   void sceneViewGazeFollowedWithEfficiencyMap() {
-    Scene scene = defaultScene();
+    Scene scene = embeddedDefaultScene();
     scene.eye.gaze_deg = {20.0, 0.0};
     viz::TraceOverlayOptions o;
     o.efficiency_map = true;
@@ -171,7 +167,7 @@ class TestViewBaselines : public QObject {
   }
 
   void legibleLayoutLabelsAndEyesView() {
-    const Scene scene = defaultScene();
+    const Scene scene = embeddedDefaultScene();
     FannedView f(scene);
     QVERIFY(f.exposed);
     viz::SceneView& view = f.view;
@@ -213,7 +209,7 @@ class TestViewBaselines : public QObject {
     // Looking up a little (pitch 10 deg) the eye's view takes in the micro-OLED above the
     // plate; its stages' end stops (0.8 mm balls a few cm from the pupil) were big magenta
     // blobs at the top edge, and the HOE stages' cross showed through the plate.
-    Scene scene = defaultScene();
+    Scene scene = embeddedDefaultScene();
     scene.eye.gaze_deg = {0.0, 10.0};
     FannedView f(scene);
     QVERIFY(f.exposed);
@@ -248,7 +244,7 @@ class TestViewBaselines : public QObject {
     // While a hand drags, the view draws at half resolution (blended in one pass) and
     // magnifies the frame: text, line widths, label boxes and the scale bar scale with it, so
     // the frame looks as the resting one, only softer, and picking keeps full resolution.
-    const Scene scene = defaultScene();
+    const Scene scene = embeddedDefaultScene();
     FannedView f(scene);
     QVERIFY(f.exposed);
     viz::SceneView& view = f.view;
@@ -320,7 +316,7 @@ class TestViewBaselines : public QObject {
     window.resize(980, 670);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    view->setScene(defaultScene(), true);
+    view->setScene(embeddedDefaultScene(), true);
     // The framebuffer's own bytes (premultiplied ARGB keeps them as they are).
     const QImage raw = view->renderToImage().convertToFormat(QImage::Format_ARGB32_Premultiplied);
     QCOMPARE(view->labelsShown(), 6);
@@ -348,10 +344,10 @@ class TestViewBaselines : public QObject {
 
   void retinaView() {
     widgets::RetinaView retina;
-    retina.setResult(traced(defaultScene()), {});
+    retina.setResult(traced(embeddedDefaultScene()), {});
     const QString e = check(retina.render(QSize(720, 540)), "retina-gaze0.png");
     QVERIFY2(e.isEmpty(), qPrintable(e));
-    Scene s = defaultScene();
+    Scene s = embeddedDefaultScene();
     s.eye.gaze_deg = {20.0, 0.0};
     retina.setResult(traced(s, {3.4, 0.0}), {532.0});
     const QString e2 = check(retina.render(QSize(720, 540)), "retina-gaze20-shift3.4-no-green.png");
@@ -363,7 +359,7 @@ class TestViewBaselines : public QObject {
     k.resize(720, 540);
     k.show();
     QVERIFY(QTest::qWaitForWindowExposed(&k));
-    Scene s = defaultScene();
+    Scene s = embeddedDefaultScene();
     s.eye.gaze_deg = {20.0, 0.0};
     k.setCloud(traced(s, {3.4, 0.0})->cloud, {});
     QVERIFY(k.maxDephasing() > 0.01);  // the shifted plate is probed off Bragg

@@ -7,14 +7,13 @@
 #include "model/analysis/angular_resolution.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_angular_resolution {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 }  // namespace
 
 class TestAngularResolution : public QObject {
@@ -23,7 +22,7 @@ class TestAngularResolution : public QObject {
   void wholeProjectionOnHoeGivesBackEveryPixel() {
     // A HOE large enough to catch the whole projection: integrating 2 c_p (pixels per
     // degree of eccentricity) along the gaze row must count all N_px projector columns.
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     s.hoe.size_mm = {400.0, 400.0};
     const ResolutionResult r = analyzeResolution(s);
     QCOMPARE(r.pixels_horizontal, 1280);
@@ -32,7 +31,7 @@ class TestAngularResolution : public QObject {
   }
 
   void prototypeCountsThePixelsLandingOnTheHoe() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const ResolutionResult r = analyzeResolution(s);
     // Independent count: projector columns whose horizontal angle phi falls between the
     // HOE's left and right edges on the gaze row (exact edge geometry, no eccentricity).
@@ -52,7 +51,7 @@ class TestAngularResolution : public QObject {
   }
 
   void fovealIntegralAndCentreValue() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const ResolutionResult r = analyzeResolution(s);
     QVERIFY(std::abs(r.foveal_pixel_integral - 1920.0) < 0.5);
     // On axis: 1920 px across 15.55 mm * 21.9 at 800 + 11.5 mm from the eye's centre...
@@ -71,7 +70,7 @@ class TestAngularResolution : public QObject {
   }
 
   void gazeRecentresTheFovealImage() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     ResolutionOptions o;
     o.gaze_deg = std::array<double, 2>{15.0, 0.0};
     const ResolutionResult r = analyzeResolution(s, o);
@@ -89,7 +88,7 @@ class TestAngularResolution : public QObject {
   }
 
   void tracedCombinerIsDiffractionLimitedOnAxisAndFallsOffAxis() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const CombinerPrescription c = combinerPrescription(s);
     // Mirror equation with M = v/u, v = d_f - b = 770 mm: f = v/(M-1), u = v/M.
     QVERIFY(std::abs(c.focal_length_mm - 770.0 / 20.9) < 1e-9);
@@ -114,7 +113,7 @@ class TestAngularResolution : public QObject {
 
   void peripheralIsMirrorSymmetricForASymmetricBench() {
     // Projector straight in front of the HOE on the eye side, no tilt: c_p(eps) = c_p(-eps).
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     s.projector.pose.position_mm = {0.0, 0.0, -60.0};
     s.projector.pose.rotation_deg = {0.0, 0.0, 0.0};
     s.projector.fov_deg = {60.0, 40.0};

@@ -1,7 +1,7 @@
 // Beam-shaping lens (A.2): the pixel-beam model's closed forms, the thin-lens limits, and
 // the optimiser beating the unshaped beam.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -18,11 +18,11 @@ namespace tst_beam_shaping {
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 // A bench where the HOE faces the projector squarely at distance L on its axis.
 Scene squareBench(double L) {
-  Scene s = prototype();
+  Scene s = embeddedDefaultScene();
   s.projector.pose.position_mm = {0.0, 0.0, -L};
   s.projector.pose.rotation_deg = {0.0, 0.0, 0.0};
   s.projector.fov_deg = {1.0, 1.0};
@@ -118,7 +118,7 @@ class TestBeamShaping : public QObject {
   }
 
   void optimiserBeatsTheUnshapedBeam() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     auto catalog = defaultLensCatalog();
     LensOptimizationOptions opt;
     opt.starts_per_lens = 2;

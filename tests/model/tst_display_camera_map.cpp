@@ -17,7 +17,6 @@
 #include "model/image/warp.h"
 #include "model/physics/display_camera_map.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_display_camera_map {
 
@@ -25,7 +24,7 @@ using namespace fovea;
 
 namespace {
 
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 // Display points on a grid over a board's inner-corner rectangle.
 std::vector<Eigen::Vector2d> boardGrid(const image::DisplayPattern& b, int n = 15) {
@@ -60,7 +59,7 @@ class TestDisplayCameraMap : public QObject {
   Q_OBJECT
  private slots:
   void bothWaysAgree() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const EyeViewCamera cam;
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
       const auto m = makeDisplayMap(d, s, cam, BenchPose{});
@@ -87,7 +86,7 @@ class TestDisplayCameraMap : public QObject {
     // central projections of the plate); the HOE shift and the camera lens take it away from
     // one, and an affine map is pixels off. The micro-OLED's magnifier distorts only a little
     // over its small image (about 200 px wide in this camera).
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
       const auto m = makeDisplayMap(d, s, EyeViewCamera{}, BenchPose{{2.0, 0.0}, {3.0, 0.0}, {8.0, 0.0}});
       std::vector<image::PointPair> pairs;
@@ -110,7 +109,7 @@ class TestDisplayCameraMap : public QObject {
   }
 
   void stagesMoveTheImage() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const EyeViewCamera cam;
     const auto pb = boardFor(s, BenchDisplay::Peripheral), fb = boardFor(s, BenchDisplay::Foveal);
     const Eigen::Vector2d pc = pb.cornerPx(4, 3), fc = fb.cornerPx(4, 3);
@@ -131,7 +130,7 @@ class TestDisplayCameraMap : public QObject {
 
   void fovealImageFollowsTheGaze() {
     // x_f(alpha) and the camera at alpha: the micro-OLED's centre stays near the camera's centre.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const EyeViewCamera cam;
     const Eigen::Vector2d centre(0.5 * (s.foveal_display.pixels[0] - 1), 0.5 * (s.foveal_display.pixels[1] - 1));
     for (double a : {-10.0, 0.0, 10.0}) {
@@ -149,7 +148,7 @@ class TestDisplayCameraMap : public QObject {
   // x_f = (d_f + r) tan(alpha) / M (seed S1, derived in display_camera_map.cpp): on the
   // prototype 811.5 mm x tan(alpha) / 21.9; its +-8 mm micro-OLED stages cover +-12.18 deg of gaze.
   void fovealShiftAndTheGazeItsStagesCover() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     QVERIFY(std::abs(fovealShiftForGaze(s, {10, 0})[0] - 6.534) < 5e-4);
     QVERIFY(std::abs(fovealShiftForGaze(s, {15, 0})[0] - 9.929) < 5e-4);
     QVERIFY(std::abs(fovealShiftForGaze(s, {20, 0})[0] - 13.49) < 5e-3);
@@ -165,7 +164,7 @@ class TestDisplayCameraMap : public QObject {
   }
 
   void renderedBoardsAreFoundWhereTheMapSays() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     for (BenchDisplay d : {BenchDisplay::Peripheral, BenchDisplay::Foveal}) {
       const auto m = makeDisplayMap(d, s, EyeViewCamera{}, BenchPose{{1.0, 0.0}, {2.0, 0.0}, {5.0, 0.0}});
       const auto board = boardFor(s, d);

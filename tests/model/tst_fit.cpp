@@ -18,14 +18,13 @@
 #include "model/analysis/fit_uncertainty.h"
 #include "model/scene/scene_io.h"
 #include "model/scene/scene_parameters.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_fit {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 template <class F>
 QString refusal(F&& f) {
@@ -99,7 +98,7 @@ class TestFit : public QObject {
   }
 
   void observablesReadTheAnalyses() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const std::vector<FitTarget> t{
         target("xp5", "x_p_mm", {{"gaze_deg", 10}, {"wavelength_nm", 532}}, 1),
         target("xp2", "x_p_mm", {{"gaze_deg", 10}, {"wavelength_nm", 532}, {"plateau_tolerance_deg", 2}}, 1),
@@ -129,7 +128,7 @@ class TestFit : public QObject {
   }
 
   void freeParameterSpelling() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const FreeParameter d = parseFreeParameter(s, "eye.relief_mm");
     QCOMPARE(d.initial, 22.0);
     QCOMPARE(d.lower, 17.0);  // +-5 mm default window
@@ -183,7 +182,7 @@ class TestFit : public QObject {
   void recoversPerturbedParameters() {
     // Perturb 4 parameters, compute 5 targets with our forward model (edge FOV, one laser per
     // target: cheap), fit from the prototype: each parameter back within its reported uncertainty.
-    const Scene nominal = prototype();
+    const Scene nominal = embeddedDefaultScene();
     const std::vector<std::pair<std::string, double>> truth{{"hoe.size_mm[1]", 35.2},
                                                             {"hoe_layers[1].n1", 0.0165},
                                                             {"hoe_layers[0].n1", 0.0138},
@@ -243,7 +242,7 @@ class TestFit : public QObject {
     // and waist (relief 22 -> 21.5 mm: chi2 2960 in 211 evaluations, relief back to
     // 21.500 +- 0.028 mm), and at 23 mm the same targets only to +-0.39 mm (past the kink of
     // x_p(relief) near 22.2 mm). Held at the printed digits.
-    const Scene nominal = prototype();
+    const Scene nominal = embeddedDefaultScene();
     const std::vector<FitTarget> shape{
         target("fov-h", "fov_deg", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.05),
         target("fov-v", "fov_deg", {{"shift", "none"}, {"direction", "vertical"}, {"wavelength_nm", 532}}, 0.05),
@@ -286,7 +285,7 @@ class TestFit : public QObject {
   void warnsOfUndeterminedParameters() {
     // Efficiency on Bragg depends on n1 d only (tanh^2(pi n1 d / lambda), Kogelnik 1969): one
     // efficiency target cannot separate n1 from the thickness.
-    const Scene nominal = prototype();
+    const Scene nominal = embeddedDefaultScene();
     std::vector<FitTarget> t{target("eff", "mean_efficiency", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.002)};
     t[0].value = evaluateTargets(withParameter(nominal, "hoe_layers[1].n1", 0.016), t)[0];
     FitOptions o;
@@ -303,7 +302,7 @@ class TestFit : public QObject {
   }
 
   void cancelled() {
-    const Scene nominal = prototype();
+    const Scene nominal = embeddedDefaultScene();
     std::vector<FitTarget> t{target("eff", "mean_efficiency", {{"shift", "none"}, {"wavelength_nm", 532}}, 0.002)};
     std::atomic<bool> stop{true};
     StudyControl c;
@@ -312,7 +311,7 @@ class TestFit : public QObject {
   }
 
   void refusesATargetWithoutValue() {
-    const Scene nominal = prototype();
+    const Scene nominal = embeddedDefaultScene();
     std::vector<FitTarget> t{target("cpd", "cpd", {{"eccentricity_deg", 79}, {"kind", "foveal"}}, 1.0)};
     try {
       fitScene(nominal, t, parseFreeParameters(nominal, {"eye.relief_mm"}));

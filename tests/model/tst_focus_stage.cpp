@@ -2,7 +2,7 @@
 // both ways, the paraxial magnifier against rays traced through the spherical combiner
 // (to 0.01 D), the travel for 30-250 cm and the stage's resolution in dioptres.
 #include <QtTest>
-#include "tests/prototype_scene.h"
+#include "app/embedded_scene.h"
 #include "tests/test_paths.h"
 
 #include <cmath>
@@ -15,12 +15,12 @@ namespace tst_focus_stage {
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 }  // namespace
 
 class TestFocusStage : public QObject {
   Q_OBJECT
-  Scene scene_ = prototype();
+  Scene scene_ = embeddedDefaultScene();
 
  private slots:
   void bothWays() {

@@ -16,7 +16,6 @@
 #include "model/physics/trace_pipeline.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_fov_edges {
 
@@ -24,7 +23,7 @@ using namespace fovea;
 
 namespace {
 
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 ContinuousFov denseFov(const Scene& scene, int rays, const std::array<double, 2>& gaze, double lambda) {
   TraceOptions t;
@@ -50,7 +49,7 @@ class TestFovEdges : public QObject {
   Q_OBJECT
  private slots:
   void probeEqualsThePipelineAtItsGridRays() {
-    Scene scene = prototype();
+    Scene scene = embeddedDefaultScene();
     TraceOptions t;
     t.gaze_deg = std::array<double, 2>{12.0, -4.0};
     t.hoe_shift_mm = {1.5, -0.5};
@@ -89,7 +88,7 @@ class TestFovEdges : public QObject {
     // field ends at the plate's edges (lit: efficiency 0.68-0.86 there): FOV = 2 atan(half size /
     // relief), 90 deg x 78.58 deg for the prototype's 44 x 36 mm plate.
     for (const std::array<double, 2> size : {std::array<double, 2>{44.0, 36.0}, std::array<double, 2>{24.0, 16.0}}) {
-      Scene scene = prototype();
+      Scene scene = embeddedDefaultScene();
       scene.hoe.size_mm = size;
       const ContinuousFov e = edgesFov(scene, {0.0, 0.0}, 532.0, 0.001);
       const double h = 2.0 * std::atan(0.5 * size[0] / 22.0) / kDeg, v = 2.0 * std::atan(0.5 * size[1] / 22.0) / kDeg;
@@ -103,7 +102,7 @@ class TestFovEdges : public QObject {
 
   void denseConvergesToTheEdges() {
     // Gazes with the HOE shifted after them (the Maxwellian focus inside the tilted pupil).
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     struct Case {
       std::array<double, 2> gaze, shift;
     };
@@ -144,7 +143,7 @@ class TestFovEdges : public QObject {
   }
 
   void toleranceSetsTheError() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const ContinuousFov fine = edgesFov(scene, {0.0, 0.0}, 532.0, 1e-4);
     for (const double tol : {0.2, 0.05, 0.01}) {
       const ContinuousFov c = edgesFov(scene, {0.0, 0.0}, 532.0, tol);
@@ -154,7 +153,7 @@ class TestFovEdges : public QObject {
   }
 
   void evaluatorUsesTheEdges() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     TraceEvaluatorOptions o;
     o.fov_method = FovMethod::Edges;
     o.wavelength_nm = 532.0;

@@ -16,7 +16,6 @@
 #include "model/image/foveation.h"
 #include "model/image/image_io.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_foveation {
 
@@ -24,7 +23,7 @@ using namespace fovea;
 using namespace fovea::image;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 cv::Mat constant(float v) {
   return cv::Mat(1080, 1920, CV_32FC3, cv::Scalar::all(v));
 }
@@ -52,7 +51,7 @@ class TestFoveation : public QObject {
   Q_OBJECT
  private slots:
   void displayAnglesFromScene() {
-    const DisplayAngles a = displayAngles(prototype());
+    const DisplayAngles a = displayAngles(embeddedDefaultScene());
     // 15.55 mm x 21.9 at 800 mm: 2 atan(170.3/800) = 24.03 deg for 1920 px.
     const double fov = 2 * std::atan(21.9 * 15.55 / 1600.0) * 180 / std::numbers::pi;
     QVERIFY(std::abs(fov - 24.03) < 0.01);
@@ -63,7 +62,7 @@ class TestFoveation : public QObject {
   }
 
   void blendProfileAtNamedEccentricities() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const BlendProfile p = blendProfile(s, true);
     const DisplayAngles a = displayAngles(s);
     const double pp = 1 / a.peripheralPpd(), pf = 1 / a.fovealPpd();
@@ -92,7 +91,7 @@ class TestFoveation : public QObject {
   }
 
   void perceivedEqualsTargetWithPerfectDisplays() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     FoveatedCompositor c(s, true);
     c.setTarget(constant(0.6f));
     c.update({4.0, -2.0});
@@ -126,7 +125,7 @@ class TestFoveation : public QObject {
   }
 
   void incrementalUpdateMatchesFreshRender() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     FoveatedCompositor moving(s, true), fresh(s, true);
     const cv::Mat t = sinusoid(3.0);
     moving.setTarget(t);
@@ -158,7 +157,7 @@ class TestFoveation : public QObject {
     QVERIFY(mw > 0.9);
 
     // The blending makes the seam less visible than the hard switch.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     FoveatedCompositor soft(s, true), hard(s, false);
     const cv::Mat t = sinusoid(2.0);
     soft.setTarget(t);

@@ -12,14 +12,13 @@
 #include "model/analysis/gaze_studies.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_gaze_studies {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 // Maxwellian toy: the focus sits at the HOE shift (or moves -0.5 mm per mm of source
 // shift); rays miss the pupil when the focus is more than 1 mm from the pupil centre
@@ -73,7 +72,7 @@ class TestGazeStudies : public QObject {
   Q_OBJECT
  private slots:
   void shiftFollowsThePupilAndGrowsMonotonically() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const auto r = sweepGaze(scene, toy, -20, 20, 5, GazeAxis::Yaw, ShiftMethod::Hoe);
     QVERIFY(r.ok());
     QCOMPARE(r.value->samples.size(), std::size_t{9});
@@ -92,7 +91,7 @@ class TestGazeStudies : public QObject {
   }
 
   void eyeBoxBordersMatchABruteForceReference() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const auto r = sweepGaze(scene, toy, -40, 40, 5, GazeAxis::Yaw, ShiftMethod::Hoe);
     QVERIFY(r.ok());
     const EyeBox& eb = r.value->eyebox;
@@ -112,7 +111,7 @@ class TestGazeStudies : public QObject {
   // The fit's lazy eye box (eyebox_walk.h) is the full sweep's, to the bit, with fewer x_p
   // searches: only the gazes up to the first failure on each side and the bisections.
   void lazyEyeBoxWalkEqualsTheFullSweep() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     for (const auto& [method, step] :
          {std::pair{ShiftMethod::Hoe, 5.0}, std::pair{ShiftMethod::Source, 2.5}, std::pair{ShiftMethod::None, 5.0}}) {
       const auto full = sweepGaze(scene, toy, -40, 40, step, GazeAxis::Yaw, method);
@@ -137,7 +136,7 @@ class TestGazeStudies : public QObject {
   }
 
   void sourceShiftEyeBoxIsSmaller() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const auto hoe = sweepGaze(scene, toy, -40, 40, 5, GazeAxis::Yaw, ShiftMethod::Hoe);
     const auto src = sweepGaze(scene, toy, -40, 40, 2.5, GazeAxis::Yaw, ShiftMethod::Source);
     const auto none = sweepGaze(scene, toy, -40, 40, 5, GazeAxis::Yaw, ShiftMethod::None);
@@ -152,7 +151,7 @@ class TestGazeStudies : public QObject {
   }
 
   void pitchAxisUsesTheVerticalFov() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const auto r = sweepGaze(scene, toy, -10, 10, 10, GazeAxis::Pitch, ShiftMethod::Hoe);
     QVERIFY(r.ok());
     // The toy's vertical FOV is flat: every pitch is inside, no border found.
@@ -161,7 +160,7 @@ class TestGazeStudies : public QObject {
   }
 
   void parameterPathsEditTheSerializedScene() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     QCOMPARE(withParameter(scene, "eye.relief_mm", 25).eye.relief_mm, 25.0);
     QCOMPARE(withParameter(scene, "hoe_layers[1].shrinkage_percent", -1.5).hoe_layers[1].shrinkage_percent, -1.5);
     QCOMPARE(withParameter(scene, "hoe.rotation_deg[0]", 2).hoe.pose.rotation_deg[0], 2.0);
@@ -180,7 +179,7 @@ class TestGazeStudies : public QObject {
   }
 
   void sensitivityReportsEachValue() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     // Eye decentration moves the pupil away from the fixed focus: FOV loses 15 deg/mm past 1 mm.
     const auto r = sensitivitySweep(scene, toy, "eye.lateral_offset_mm[0]", 0, 3, 4);
     QVERIFY(r.ok());
@@ -196,7 +195,7 @@ class TestGazeStudies : public QObject {
     std::atomic<bool> cancel{true};
     StudyControl c;
     c.cancel = &cancel;
-    const auto r = sweepGaze(prototype(), toy, -20, 20, 5, GazeAxis::Yaw, ShiftMethod::Hoe, {}, c);
+    const auto r = sweepGaze(embeddedDefaultScene(), toy, -20, 20, 5, GazeAxis::Yaw, ShiftMethod::Hoe, {}, c);
     QCOMPARE(r.status, StudyStatus::Cancelled);
     QVERIFY(!r.value);
   }

@@ -12,14 +12,13 @@
 #include "model/analysis/gaze_studies.h"
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_gaze_studies_traced {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 FovEvaluator evaluator() {
   TraceEvaluatorOptions o;
   o.rays = 3000;
@@ -63,7 +62,7 @@ class TestGazeStudiesTraced : public QObject {
   }
 
   void hoeShiftGrowsWithGazeAndHoldsTheFov() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const auto r = sweepGaze(s, evaluator(), -20, 20, 10, GazeAxis::Yaw, ShiftMethod::Hoe);
     QVERIFY(r.ok());
     const auto& v = r.value->samples;
@@ -82,7 +81,7 @@ class TestGazeStudiesTraced : public QObject {
   }
 
   void fovDropsOutsideTheEyeBoxAndHoeBeatsSource() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const auto eval = evaluator();
     const auto hoe = sweepGaze(s, eval, -45, 45, 7.5, GazeAxis::Yaw, ShiftMethod::Hoe);
     const auto src = sweepGaze(s, eval, -30, 30, 7.5, GazeAxis::Yaw, ShiftMethod::Source);
@@ -112,7 +111,7 @@ class TestGazeStudiesTraced : public QObject {
     // bracket and by the full 17-point bracket (the reference). Both bisect each plateau edge
     // from a 0.5 mm grid interval edge_bisections times, so the optimiser's resolution is
     // 2 half / (n - 1) / 2^edge_bisections (7.8 µm): x_p may differ by at most that.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const FovEvaluator traced = evaluator();
     std::atomic<long long> traces{0};
     const FovEvaluator eval = [&](const Scene& sc, const FovQuery& q) {
@@ -143,7 +142,7 @@ class TestGazeStudiesTraced : public QObject {
   }
 
   void identicalWithOneOrTwoThreads() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     auto run = [&](int threads) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
       return sweepGaze(s, evaluator(), 0, 20, 10, GazeAxis::Yaw, ShiftMethod::Hoe);

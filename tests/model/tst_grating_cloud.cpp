@@ -18,7 +18,6 @@ using namespace fovea;
 class TestGratingCloud : public QObject {
   Q_OBJECT
  private:
-  static Scene scene() { return *parseScene(embeddedDefaultSceneJson(), "default").scene; }
   static std::vector<GratingVectorSample> cloud(const Scene& s, std::array<double, 2> shift) {
     TraceOptions o;
     o.rays = 1500;
@@ -28,17 +27,18 @@ class TestGratingCloud : public QObject {
 
  private slots:
   void braggMatchedInPlace() {
-    const auto c = cloud(scene(), {0, 0});
+    const auto c = cloud(embeddedDefaultScene(), {0, 0});
     QVERIFY(c.size() > 1000);
     for (const auto& s : c) {
       QVERIFY((s.k_probe - s.k_recorded).norm() < 1e-9 * s.k_recorded.norm());
       // Each sample sits on the layer of its own colour.
-      QCOMPARE(scene().hoe_layers[static_cast<std::size_t>(s.layer)].recording.wavelength_nm, s.wavelength_nm);
+      QCOMPARE(embeddedDefaultScene().hoe_layers[static_cast<std::size_t>(s.layer)].recording.wavelength_nm,
+               s.wavelength_nm);
     }
   }
 
   void shiftedPlateSpreadsAlongTheNormal() {
-    const auto c = cloud(scene(), {3.4, 0.0});
+    const auto c = cloud(embeddedDefaultScene(), {3.4, 0.0});
     QVERIFY(c.size() > 1000);
     double max_dz = 0;
     for (const auto& s : c) {
@@ -62,7 +62,10 @@ class TestGratingCloud : public QObject {
     QVERIFY(hi < lo);
   }
 
-  void sampleCap() { QVERIFY(gratingVectorCloud(scene(), diffractScene(scene(), {}), {0, 0}, 500).size() <= 500); }
+  void sampleCap() {
+    QVERIFY(gratingVectorCloud(embeddedDefaultScene(), diffractScene(embeddedDefaultScene(), {}), {0, 0}, 500).size() <=
+            500);
+  }
 };
 
 QTEST_GUILESS_MAIN(TestGratingCloud)

@@ -11,14 +11,13 @@
 #include "model/physics/trace.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_hoe_trace {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 // Distance from point q to the ray origin + t dir (t >= 0).
 double distanceToRay(const Eigen::Vector3d& q, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) {
   const double t = std::max(0.0, (q - origin).dot(dir));
@@ -34,7 +33,7 @@ class TestHoeTrace : public QObject {
     // is on Bragg (xi = 0) and sends its ray through the signal focus (the pupil centre).
     double worst_miss_mm = 0.0, eta_min = 1.0, eta_max = 0.0;
     for (bool conjugate : {false, true}) {
-      Scene s = prototype();
+      Scene s = embeddedDefaultScene();
       for (auto& l : s.hoe_layers) l.recording.phase_conjugate = conjugate;
       const Frame f = frameOf(s.hoe.pose);
       for (const auto& layer : s.hoe_layers) {
@@ -74,7 +73,7 @@ class TestHoeTrace : public QObject {
   }
 
   void phaseConjugateRecordingWritesTheSameFringes() {
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     HoeLayer l = s.hoe_layers[1];
     l.recording.phase_conjugate = false;
     const LayerModel direct = makeLayerModel(s.hoe, l);
@@ -91,7 +90,7 @@ class TestHoeTrace : public QObject {
     // On-axis reflection hologram at the plate centre: reference from (0,0,-500), focus at
     // (0,0,-22): K_rec = -2 k0 n_rec z. Shrinkage s scales K_z by 1/(1+s): Bragg moves to
     // lambda (1+s). A mean-index change moves it to lambda n0 / n_rec.
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     HoeLayer l = s.hoe_layers[1];
     l.recording.reference_point_mm = {0.0, 0.0, -500.0};
     const Eigen::Vector3d probe(0.0, 0.0, 1.0);
@@ -115,7 +114,7 @@ class TestHoeTrace : public QObject {
     // The HOE is 44 x 36 mm at 22 mm eye relief: 2 atan(22/22) = 90 deg by 2 atan(18/22) =
     // 78.6 deg. Every ray is on Bragg (recorded in place) and converges to the pupil centre, so
     // the FOV is the plate's angular size, less the last ray spacing of the finite grid.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TraceOptions o;
     o.rays = 20000;
     o.gaze_deg = std::array<double, 2>{0.0, 0.0};
@@ -134,7 +133,7 @@ class TestHoeTrace : public QObject {
   void gazeNeedsTheHoeShift() {
     // At 20 deg gaze the pupil centre moves 11.5 sin 20 = 3.9 mm > the 2.5 mm pupil radius away
     // from the focus: no ray enters. Shifting the plate along the gaze carries the focus with it.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TraceOptions o;
     o.gaze_deg = std::array<double, 2>{20.0, 0.0};
     QCOMPARE(traceScene(s, o).rays_in_pupil, 0);
@@ -150,7 +149,7 @@ class TestHoeTrace : public QObject {
 
   void shiftedPlateCarriesItsFringes() {
     // With the plate shifted, a ray meets the grating recorded at the same plate coordinates.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TraceOptions o;
     o.keep_rays = true;
     o.rays = 1000;
@@ -174,7 +173,7 @@ class TestHoeTrace : public QObject {
   }
 
   void sourceShiftMovesTheProjectorAlongZ() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TraceOptions o;
     o.keep_rays = true;
     o.rays = 50;
@@ -187,7 +186,7 @@ class TestHoeTrace : public QObject {
   void everyLayerActsOnEveryWavelength() {
     // Without the green layer, 532 nm light only meets the red and blue gratings far off Bragg:
     // a small but computed efficiency, and no efficient ray.
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     s.hoe_layers.erase(s.hoe_layers.begin() + 1);
     TraceOptions o;
     o.wavelength_nm = 532.0;
@@ -206,7 +205,7 @@ class TestHoeTrace : public QObject {
   }
 
   void raysMissingThePupilAreFlagged() {
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     s.eye.lateral_offset_mm = {6.0, 0.0};  // the focus lies 6 mm off the pupil centre
     TraceOptions o;
     o.keep_rays = true;
@@ -225,7 +224,7 @@ class TestHoeTrace : public QObject {
     QVERIFY(std::abs(f0[0]) < 1e-12 && std::abs(f0[1]) < 1e-12);
     const auto f1 = fieldAngleDeg(Eigen::Matrix3d::Identity(), -gazeDirection(25.0, -7.0));
     QVERIFY(std::abs(f1[0] - 25.0) < 1e-12 && std::abs(f1[1] + 7.0) < 1e-12);
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const EyePlacement e = placeEye(s, 0.0, 0.0);
     QVERIFY(crossPupil(e, Eigen::Vector3d(2.0, 0, 0), Eigen::Vector3d(0, 0, -1)).in_pupil);
     QVERIFY(!crossPupil(e, Eigen::Vector3d(2.6, 0, 0), Eigen::Vector3d(0, 0, -1)).in_pupil);
@@ -233,7 +232,7 @@ class TestHoeTrace : public QObject {
   }
 
   void projectorGridAndPixelBeam() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const auto grid = projectorGrid(s.projector, 4000);
     QVERIFY(std::abs(grid[0] * grid[1] - 4000) < 120);
     const auto rays = projectorRays(s.projector, 4000);

@@ -12,7 +12,6 @@
 #include "model/analysis/trace_fov.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 #include "tests/sweep_at_gaze.h"
 
 namespace tst_hoe_travel {
@@ -20,7 +19,7 @@ namespace tst_hoe_travel {
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 }  // namespace
 
 class TestHoeTravel : public QObject {
@@ -56,7 +55,7 @@ class TestHoeTravel : public QObject {
   }
 
   void theHoeFocusMovesWithThePlate() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const auto f0 = hoeFocus(scene, {0.0, 0.0});
     const auto f1 = hoeFocus(scene, {1.0, 0.0});
     QVERIFY(f0 && f1);
@@ -71,7 +70,7 @@ class TestHoeTravel : public QObject {
   }
 
   void followFocusPutsTheFocusOnTheRotatedPupilCentre() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const FovEvaluator eval = hoeTravelEvaluator();
     GazeStudyOptions o = hoeTravelStudyOptions(XpRule::FollowFocus);
     const GazeSample s = optimiseShift(scene, eval, 20.0, GazeAxis::Yaw, ShiftMethod::Hoe, o);
@@ -93,7 +92,7 @@ class TestHoeTravel : public QObject {
     // sweep (the registry's run function, as fovea-cli sweep) at +20 deg against hoeTravel,
     // the x_p of the live trace and the report (tests/devices/tst_follow_xp.cpp: the capture
     // plan and the bench's table; tests/gui/tst_one_fov.cpp: the studio's live trace).
-    Scene scene = prototype();
+    Scene scene = embeddedDefaultScene();
     for (const XpRule rule : {XpRule::PlateauMiddle, XpRule::FollowFocus}) {
       scene.view.xp_rule = xpRuleName(rule);
       const nlohmann::json doc = fovea::testing::sweepAtYaw(scene, 20.0, rule);
@@ -115,7 +114,7 @@ class TestHoeTravel : public QObject {
 
   void aTraceShowsTheSweepsFov() {
     // trace_fov.h's exact FOV is the sweep evaluator's FOV for the same gaze and shift.
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     TraceOptions o;
     o.gaze_deg = std::array<double, 2>{20.0, 0.0};
     o.hoe_shift_mm = {2.964, 0.0};

@@ -20,7 +20,6 @@
 #include "model/color/measurement_csv.h"
 #include "model/io/json_fields.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 #include "tests/test_files.h"
 
 namespace tst_input_hardening {
@@ -30,7 +29,7 @@ using nlohmann::json;
 
 namespace {
 
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 json spec(const json& patch = json::object()) {
   json j = json::parse(R"({
@@ -242,13 +241,13 @@ class TestInputHardening : public QObject {
     json j = spec();
     j["parameters"][1]["path"] = "projector.pixels[0]";
     const ToleranceSpec s = parseToleranceSpec(j, "s.json");
-    const QString m = refusal([&] { checkToleranceSpecPaths(s, prototype(), "s.json"); });
+    const QString m = refusal([&] { checkToleranceSpecPaths(s, embeddedDefaultScene(), "s.json"); });
     QVERIFY2(m.contains("s.json: parameters[1].path: \"projector.pixels[0]\" is an integer field"), qPrintable(m));
     j["parameters"][1]["path"] = "eye.nose_mm";
     QVERIFY(refusal([&] {
-              checkToleranceSpecPaths(parseToleranceSpec(j), prototype(), "s.json");
+              checkToleranceSpecPaths(parseToleranceSpec(j), embeddedDefaultScene(), "s.json");
             }).contains("s.json: parameters[1].path:"));
-    QVERIFY(refusal([&] { checkToleranceSpecPaths(parseToleranceSpec(spec()), prototype()); }).isEmpty());
+    QVERIFY(refusal([&] { checkToleranceSpecPaths(parseToleranceSpec(spec()), embeddedDefaultScene()); }).isEmpty());
   }
 
   // Fit targets: sigma and value in ranges that keep chi2 finite; the eye-box sweep's gazes and a
@@ -360,7 +359,7 @@ class TestInputHardening : public QObject {
   // at most 1e-6 of the way from the scene's value to the bound (the clipped window of a large D
   // still kept the search above half the scene's value).
   void freeWindowClippedBeforeTheMargin() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     std::vector<FreeParameter> p;
     try {
       p = parseFreeParameters(s, {"eye.relief_mm=+-1e12"});

@@ -45,7 +45,6 @@
 #include "model/physics/trace_pipeline.h"
 #include "model/physics/trace_reference.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_numerical_stability {
 
@@ -430,10 +429,10 @@ void checkSample(const Sample& s, std::uint64_t seed, long i, Tally& t) {
 }
 
 // ---- Random scenes ---------------------------------------------------------------------------
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 Scene randomScene(Rng& r) {
-  Scene s = prototype();
+  Scene s = embeddedDefaultScene();
   s.projector.pose.position_mm = {r.range(-60, 60), r.range(-30, 30), r.range(-70, -5)};
   {  // aimed at the plate centre, give or take 15 deg (most rays then meet the plate)
     const auto& pp = s.projector.pose.position_mm;

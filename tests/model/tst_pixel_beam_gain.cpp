@@ -18,7 +18,7 @@ using namespace fovea;
 
 namespace {
 Scene withBeam(double waist_distance_mm, double waist_fwhm_um, double divergence_mrad) {
-  Scene s = *parseScene(embeddedDefaultSceneJson(), "prototype").scene;
+  Scene s = embeddedDefaultScene();
   s.projector.pixel_beam.waist_distance_mm = waist_distance_mm;
   s.projector.pixel_beam.waist_fwhm_um = waist_fwhm_um;
   s.projector.pixel_beam.divergence_mrad = divergence_mrad;

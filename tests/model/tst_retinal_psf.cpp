@@ -19,20 +19,19 @@
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
 #include "model/units.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_retinal_psf {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 constexpr double kArcmin = 60.0 / kDeg;  // arcmin per radian
 
 // The prototype with lasers 10 nm off their layers' recording wavelengths (red, blue) and the
 // green one on it: the three layers are identical except for their wavelength.
 Scene offsetLasers() {
-  Scene s = prototype();
+  Scene s = embeddedDefaultScene();
   s.projector.wavelengths_nm = {650.0, 532.0, 450.0};
   return s;
 }
@@ -217,7 +216,7 @@ class TestRetinalPsf : public QObject {
   }
 
   void peripheralAllInFocusFovealNot() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     for (double wl : s.projector.wavelengths_nm) {
       const PeripheralSpot a = peripheralSpot(s, wl, 0.4, {0, 0});
       const PeripheralSpot b = peripheralSpot(s, wl, 3.3, {0, 0});
@@ -271,7 +270,7 @@ class TestRetinalPsf : public QObject {
   // (measured 3.3 %), and its best focus moves by under 0.01 D (measured 0.003 D: a defocus disc
   // of 5 mm x 0.003 D = 0.06 arcmin, against the 1.6 arcmin spot).
   void combinerFieldDependenceIsSmallOverTheInset() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const double edge_deg = s.foveation.blend_end_deg;
     const FovealOpticsSample axis = tracedCombinerMtf30(s, 0, 0), edge = tracedCombinerMtf30(s, 0, edge_deg);
     const double extra_sigma_arcmin = std::sqrt(
@@ -307,7 +306,7 @@ class TestRetinalPsf : public QObject {
   void uniformFieldHasNoRayRipple() {
     // A white target: away from the edges and the foveal disc, the retinal image varies only
     // as slowly as the efficiency map, not with the ray grid (cells are splatted as areas).
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const cv::Mat target(277, 480, CV_32FC3, cv::Scalar(1, 1, 1));
     image::RetinaImageOptions o;
     o.rays = 20000;
@@ -330,7 +329,7 @@ class TestRetinalPsf : public QObject {
     // sigma_x^2 of each counts; the expected edge is that 1-D model computed here, its 10-90 %
     // width compared with the image's. The wide PSFs run on the coarse grid; the ray cells add
     // a box of about a third of a degree (variance under 1 % of sigma^2), so within 3 %.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const cv::Size size(960, 540);
     cv::Mat target(size, CV_32FC3, cv::Scalar(0, 0, 0));
     const double fov_x = s.projector.fov_deg[0], ppd = size.width / fov_x;
@@ -444,7 +443,7 @@ class TestRetinalPsf : public QObject {
     }
     QVERIFY(std::abs(lc[0].offset_arcmin[0]) > 30);  // red: 41 arcmin, not zero
     // The prototype (lasers on their layers' wavelengths): no lateral colour.
-    for (const auto& c : lateralColourAtLineOfSight(prototype(), {0, 0}))
+    for (const auto& c : lateralColourAtLineOfSight(embeddedDefaultScene(), {0, 0}))
       QVERIFY(c.valid && std::hypot(c.offset_arcmin[0], c.offset_arcmin[1]) < 1e-7);
   }
 
@@ -564,7 +563,7 @@ class TestRetinalPsf : public QObject {
     // Limit 2: an on-axis hologram (reference and projector on the plate's normal through the
     // line of sight's plate point) has no astigmatism on axis: the spot is round and is the
     // scalar chain's (thin lens mu (1/L_r + 1/L_s), free space, the eye's ABCD).
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     for (auto& l : s.hoe_layers) l.recording.reference_point_mm = {0.0, 0.0, -70.0};
     s.projector.pose.position_mm = {0.0, 0.0, -70.0};
     s.projector.pose.rotation_deg = {0.0, 0.0, 0.0};
@@ -621,7 +620,7 @@ class TestRetinalPsf : public QObject {
       QVERIFY(std::abs(c * std::sqrt(dof) - 1) < 0.05);
     }
     // In the retinal image: the measured speckle contrast is the model's sqrt(sum 1/(M_l N))/L.
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const cv::Mat target = image::makeTestTarget(cv::Size(640, 370), s.projector.fov_deg, 20.0);
     image::RetinaImageOptions o;
     o.rays = 4000;
@@ -637,7 +636,7 @@ class TestRetinalPsf : public QObject {
     QVERIFY(std::abs(r.power_on_retina - r.power_in_pupil) <= 1e-6 * r.power_in_pupil);
   }
   void retinalImageConservesPupilPower() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const cv::Mat target = image::makeTestTarget(cv::Size(640, 370), s.projector.fov_deg, 20.0);
     for (int patterns : {0, 2}) {
       image::RetinaImageOptions o;

@@ -12,19 +12,18 @@
 #include "model/analysis/trace_evaluator.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_seed_definitions {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 // The prototype with its projector on the bench axis behind the eye, aimed at the HOE centre
 // and recorded from there: mirror-symmetric about the y-z plane.
 Scene symmetricBench() {
-  Scene s = prototype();
+  Scene s = embeddedDefaultScene();
   s.projector.pose.position_mm = {0.0, 0.0, -70.0};
   s.projector.pose.rotation_deg = {0.0, 0.0, 0.0};
   for (HoeLayer& l : s.hoe_layers) l.recording.reference_point_mm = {0.0, 0.0, -70.0};
@@ -58,7 +57,7 @@ class TestSeedDefinitions : public QObject {
     // On the toy the optimised FOV stays 90 deg while the plateau middle keeps the focus
     // within 1 mm of the pupil, then falls: the centre-FOV box is where it is still 90
     // (less the 0.01 deg slack), found here by brute force over the gaze.
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     GazeStudyOptions centre;
     centre.criterion = EyeBoxCriterion::CentreFov;
     const auto c = sweepGaze(scene, toy, -40, 40, 5, GazeAxis::Yaw, ShiftMethod::Hoe, centre);
@@ -86,7 +85,7 @@ class TestSeedDefinitions : public QObject {
   }
 
   void axialSourceMoveKeepsTheAimAndTheRecording() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const Scene moved = withSourceAlongAxis(s, 5.0);
     // The prototype's projector is aimed at the HOE centre (the origin): moving 5 mm along its
     // axis brings it 5 mm closer, on the same line; its pose angles and the recorded
@@ -111,7 +110,7 @@ class TestSeedDefinitions : public QObject {
     // At zero gaze with the focus on the pupil centre the lit footprint seen from the pupil
     // and the arrival directions span the same field (every lit ray passes near the focus),
     // and neither can exceed what the 44 mm plate subtends at the pupil (2 atan(22/22) = 90).
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const FovSample ours = traced(FovAngle::Arrival)(s, FovQuery{});
     const FovSample seed = traced(FovAngle::Footprint)(s, FovQuery{});
     const double subtense = 2.0 * std::atan(0.5 * s.hoe.size_mm[0] / s.eye.relief_mm) * 180.0 / std::numbers::pi;

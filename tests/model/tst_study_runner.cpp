@@ -11,14 +11,13 @@
 #include "model/analysis/beam_shaping.h"
 #include "model/analysis/study_runner.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_study_runner {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 // A deterministic, moderately expensive per-sample computation with rounding-sensitive
 // floating-point sums (any shared accumulator across threads would change the bits).
@@ -47,7 +46,7 @@ class TestStudyRunner : public QObject {
   }
 
   void lensOptimisationIdenticalAcrossThreadCounts() {
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     auto catalog = defaultLensCatalog();
     catalog.resize(4);
     LensOptimizationOptions opt;
@@ -100,7 +99,7 @@ class TestStudyRunner : public QObject {
     std::atomic<bool> cancel{true};
     StudyControl control;
     control.cancel = &cancel;
-    const auto r = optimizeBeamShapingLens(prototype(), defaultLensCatalog(), {}, control);
+    const auto r = optimizeBeamShapingLens(embeddedDefaultScene(), defaultLensCatalog(), {}, control);
     QCOMPARE(r.status, StudyStatus::Cancelled);
     QVERIFY(!r.value.has_value());
   }
@@ -118,7 +117,7 @@ class TestStudyRunner : public QObject {
 
   void cacheKeysOnSceneContent() {
     StudyCache cache;
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     const nlohmann::json params{{"from", -20}, {"to", 20}};
     const std::string key = StudyCache::makeKey("sweep", params, serializeScene(scene));
     QVERIFY(!cache.find(key));

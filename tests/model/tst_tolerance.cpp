@@ -12,14 +12,13 @@
 #include "model/analysis/tolerance_stats.h"
 #include "model/analysis/tolerance_trial.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_tolerance {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 nlohmann::json specJson() {
   return nlohmann::json::parse(R"({
@@ -220,7 +219,7 @@ class TestTolerance : public QObject {
     j["wavelength_nm"] = 532;
     j["compensator"] = "fixed";
     const ToleranceSpec s = parseToleranceSpec(j);
-    const Scene scene = prototype();
+    const Scene scene = embeddedDefaultScene();
     // Laser drift: 0.1 nm/K x dT on every laser; the traced laser keeps its drifted wavelength.
     const Scene warm = perturbedScene(scene, s, {0.0, 0.3, 1.0});
     QCOMPARE(warm.projector.wavelengths_nm.size(), std::size_t{1});

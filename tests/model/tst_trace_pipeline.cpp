@@ -15,14 +15,13 @@
 #include "model/physics/trace_reference.h"
 #include "model/scene/scene_geometry.h"
 #include "model/scene/scene_io.h"
-#include "tests/prototype_scene.h"
 
 namespace tst_trace_pipeline {
 
 using namespace fovea;
 
 namespace {
-using fovea::testing::prototype;
+using fovea::embeddedDefaultScene;
 
 std::set<std::string> stageSet(const TraceStats& s) {
   return {s.stages_recomputed.begin(), s.stages_recomputed.end()};
@@ -83,7 +82,7 @@ class TestTracePipeline : public QObject {
   Q_OBJECT
  private slots:
   void firstRunComputesEveryStage() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TracePipeline p;
     TraceOptions o;
     o.rays = 2000;
@@ -112,7 +111,7 @@ class TestTracePipeline : public QObject {
   }
 
   void movingTheGazeNeverReRecords() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TracePipeline p;
     TraceOptions o;
     o.rays = 2000;
@@ -133,7 +132,7 @@ class TestTracePipeline : public QObject {
   }
 
   void editingTheRedLayerLeavesGreenAndBlue() {
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     QCOMPARE(s.hoe_layers[0].name, std::string("red"));
     TracePipeline p;
     TraceOptions o;
@@ -164,7 +163,7 @@ class TestTracePipeline : public QObject {
   }
 
   void wavelengthsNotAskedForAreNotEvaluated() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TracePipeline p;
     TraceOptions o;
     o.rays = 2000;
@@ -184,7 +183,7 @@ class TestTracePipeline : public QObject {
   }
 
   void raysThatCannotReachThePupilAreCulled() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TraceOptions full;
     full.rays = 3000;
     TraceOptions culled = full;
@@ -239,7 +238,7 @@ class TestTracePipeline : public QObject {
     // that of a grating carried by the plate: a plate shifted by s is the nominal plate lit by
     // the projector moved by -s (same plate-local hits and directions; the eye does not enter
     // efficiencies and directions).
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     const Frame plate = frameOf(s.hoe.pose);
     TracePipeline p;
     TraceOptions o;
@@ -292,7 +291,7 @@ class TestTracePipeline : public QObject {
   void randomEditSequenceMatchesFreshTraces() {
     // Memoisation must never change a result: a random walk of edits, each compared with a
     // fresh trace (and the culled pipeline with the full one at the pupil).
-    Scene s = prototype();
+    Scene s = embeddedDefaultScene();
     TracePipeline p, pc;
     std::mt19937_64 rng(21);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -343,7 +342,7 @@ class TestTracePipeline : public QObject {
     // in reflection (the prototype), transmission (signal focus moved behind the plate), thick
     // over-modulated films (nu, xi >> 1: side lobes and the saturated reflection branch) and a
     // stack mixing an absorbing layer (scalar path) with lossless ones.
-    const Scene proto = prototype();
+    const Scene proto = embeddedDefaultScene();
     Scene transmission = proto, thick = proto, absorbing = proto;
     for (HoeLayer& l : transmission.hoe_layers) l.recording.signal_point_mm[2] = 22.0;
     for (HoeLayer& l : thick.hoe_layers) {
@@ -390,7 +389,7 @@ class TestTracePipeline : public QObject {
   }
 
   void traceEvaluatorMatchesTheTracer() {
-    const Scene s = prototype();
+    const Scene s = embeddedDefaultScene();
     TraceEvaluatorOptions eo;
     eo.rays = 1200;
     const FovEvaluator eval = traceEvaluator(eo);
