@@ -6,28 +6,28 @@
 # check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch seed
 # 31). The shipped models: the full-frame stage 18000 frames of subset train and 6000 of
 # train_hard (the hard subset's combination in the training's bands), closed eyes' visibility
-# loss weighted 6x, 20 epochs on one thread in 26 minutes; the refining stage 72000 train and
-# 18000 train_hard frames (those with a pupil less than 60 % visible shown twice an epoch; three
-# times without train_hard frames, --refine-hard-frames 0), 7 epochs in 48 minutes beside the
-# first stage; rendering a few minutes on two cores when nothing else runs (13 when builds ran
-# beside it). The two stages train side by side, one core each. One thread each:
-# two intra-op threads on a shared two-core machine stall at their barriers (up to 17 min an
-# epoch while builds ran). The trainer stops at --max-minutes whatever the epoch; the .json
-# files give the epochs it ran.
+# loss weighted 6x, 20 epochs on one thread in 26 minutes; the refining stage 72000 train,
+# 18000 train_hard and 18000 train_partial frames (train's draws, every frame cut at the pupil),
+# those with a pupil less than 60 % visible shown three times an epoch, 6 epochs in 53 minutes
+# beside another training; rendering 18 minutes on two cores while a build ran beside it. The
+# two stages train side by side, one core each. One thread each: two intra-op threads on a
+# shared two-core machine stall at their barriers (up to 17 min an epoch while builds ran). The
+# trainer stops at --max-minutes whatever the epoch; the .json files give the epochs it ran.
 #   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N]
-#       [--epochs E] [--refine-frames N] [--refine-hard-frames N] [--refine-epochs E]
-#       [--max-minutes M] [--work DIR]
+#       [--epochs E] [--refine-frames N] [--refine-hard-frames N] [--refine-partial-frames N]
+#       [--refine-epochs E] [--max-minutes M] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FRAMES=18000 HARD=6000 EPOCHS=20 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
-REPOCHS=7 CLOSED_WEIGHT=6
+REPOCHS=6 CLOSED_WEIGHT=6 RPARTIAL=18000
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;
     --refine-frames) RFRAMES=$2; shift 2 ;;
     --refine-epochs) REPOCHS=$2; shift 2 ;;
     --refine-hard-frames) RHARD=$2; shift 2 ;;
+    --refine-partial-frames) RPARTIAL=$2; shift 2 ;;
     --hard-frames) HARD=$2; shift 2 ;;
     --frames) FRAMES=$2; shift 2 ;;
     --epochs) EPOCHS=$2; shift 2 ;;
@@ -91,6 +91,7 @@ fi
 if [[ $STAGE != full ]]; then
   shard "$WORK/refine" "$RFRAMES" train
   shard "$WORK/refine-hard" "$RHARD" train_hard
+  shard "$WORK/refine-partial" "$RPARTIAL" train_partial
   queue "$WORK/refine-val" 0 400 7 200
 fi
 wait_all
@@ -103,7 +104,7 @@ if [[ $STAGE != refine ]]; then
   pids+=($!)
 fi
 if [[ $STAGE != full ]]; then
-  OCCLUDED_REPEATS=$((RHARD > 0 ? 2 : 3)) train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val" &
+  OCCLUDED_REPEATS=3 train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val" &
   pids+=($!)
 fi
 wait_all

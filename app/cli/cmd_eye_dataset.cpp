@@ -4,8 +4,9 @@
 // tests and `track --virtual` use, for training the learned pupil detector
 // (scripts/train-pupil-net.sh). --domain wide (model/gaze/wide_eye_domain.h) draws from the
 // randomised domain, subset "train" by default (train_hard: the hard subset's combination in
-// the training's bands; the held-out subsets can be written for inspection: easy, glints,
-// occlusion, motion_blur, off_axis, partial, hard, closed);
+// the training's bands; train_partial: train's draws, every frame partial; the held-out
+// subsets can be written for inspection: easy, glints, occlusion, motion_blur, off_axis,
+// partial, hard, closed);
 // --domain classic cycles through the pupil benchmark's subsets. DIR gets:
 //   images/NNNNNN.png  the frames (8-bit grey, at --size when given) unless --no-png;
 //   images.u8          all frames packed, N x size x size bytes (row-major), for the trainer;
@@ -43,7 +44,8 @@ void install(CLI::App& app) {
       ->check(CLI::Range(0, 100000000));
   addSeedOption(cmd, a->seed, "seed of the frames (default 1)");
   cmd->add_option("--domain", a->domain, "wide (randomised, default) or classic (the pupil benchmark's)");
-  cmd->add_option("--subset", a->subset, "wide domain: train (default), train_hard or a held-out subset name");
+  cmd->add_option("--subset", a->subset,
+                  "wide domain: train (default), train_hard, train_partial or a held-out subset name");
   cmd->add_option("--size", a->size_px, "store frames downscaled to PX x PX (INTER_AREA); default: as rendered")
       ->check(CLI::Range(8, 4096));
   cmd->add_flag("--no-png", a->no_png, "write only images.u8 and the labels");

@@ -46,9 +46,11 @@ Features featuresOf(WideSubset s, Draw& d) {
   Features f;
   switch (s) {
     case WideSubset::Train:
+    case WideSubset::TrainPartial:  // train's draws, every frame partial (below)
       f.leds = d.chance(0.6), f.stray = d.chance(0.5), f.motion = d.chance(0.3), f.off_axis = d.chance(0.3);
       f.partial = d.chance(0.12), f.defocus_max = 3.5;
-      if (d.chance(0.07))
+      if (s == WideSubset::TrainPartial) f.partial = true;  // with an open eye: no closed frames
+      if (s != WideSubset::TrainPartial && d.chance(0.07))
         f.open_lo = 0, f.open_hi = 0.04;
       else if (d.chance(0.45))
         f.open_lo = 0.15, f.open_hi = 0.85;
@@ -94,7 +96,8 @@ WideScene drawScene(WideSubset subset, int index, std::uint32_t seed, int attemp
   std::seed_seq seq{seed, 0x77696465u /* "wide" */, static_cast<std::uint32_t>(subset),
                     static_cast<std::uint32_t>(index), static_cast<std::uint32_t>(attempt)};
   Draw d{std::mt19937(seq)};
-  const bool train = subset == WideSubset::Train || subset == WideSubset::TrainHard;
+  const bool train =
+      subset == WideSubset::Train || subset == WideSubset::TrainHard || subset == WideSubset::TrainPartial;
   const Features f = featuresOf(subset, d);
   WideScene s;
   s.camera.focal_px = d.in(300, 400);
@@ -265,13 +268,15 @@ const char* wideSubsetName(WideSubset s) {
       return "closed";
     case WideSubset::TrainHard:
       return "train_hard";
+    case WideSubset::TrainPartial:
+      return "train_partial";
   }
   return "?";
 }
 
 std::vector<WideSubset> allWideSubsets() {
   std::vector<WideSubset> all;
-  for (int i = 0; i <= static_cast<int>(WideSubset::TrainHard); ++i) all.push_back(static_cast<WideSubset>(i));
+  for (int i = 0; i <= static_cast<int>(WideSubset::TrainPartial); ++i) all.push_back(static_cast<WideSubset>(i));
   return all;
 }
 

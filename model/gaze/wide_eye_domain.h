@@ -20,8 +20,10 @@
 //
 // Training subsets (the training's pupil diameter and iris level bands): train, the whole
 // domain, and train_hard, the hard subset's combination (LED and stray glints, defocus, 70 %
-// motion blur, 25 % off-axis views) at 20-65 % visible. Of train's frames 12 % show 20-65 % of
-// the pupil, 3.6 % of them with both kinds of glints too, 1.1 % with saccadic blur as well.
+// motion blur, 25 % off-axis views) at 20-65 % visible, and train_partial, train's draws with
+// every frame partial (the pupil's centre within a radius of a frame edge; train has 12 %).
+// Of train's frames 12 % show 20-65 % of the pupil, 3.6 % of them with both kinds of glints
+// too, 1.1 % with saccadic blur as well.
 
 #include <cstdint>
 #include <optional>
@@ -32,14 +34,26 @@
 
 namespace fovea::gaze {
 
-// TrainHard last: a subset's number seeds its frames, so the others' frames stay as they were;
-// allWideSubsets counts up to the last one.
-enum class WideSubset { Train, Easy, Glints, Occlusion, MotionBlur, OffAxis, Partial, Hard, Closed, TrainHard };
+// New subsets go last: a subset's number seeds its frames, so the others' frames stay as they
+// were; allWideSubsets counts up to the last one.
+enum class WideSubset {
+  Train,
+  Easy,
+  Glints,
+  Occlusion,
+  MotionBlur,
+  OffAxis,
+  Partial,
+  Hard,
+  Closed,
+  TrainHard,
+  TrainPartial
+};
 
 const char* wideSubsetName(WideSubset s);
 std::vector<WideSubset> allWideSubsets();  // in the enum's order
 std::optional<WideSubset> parseWideSubset(const std::string& name);
-std::vector<WideSubset> heldOutWideSubsets();  // all but Train and TrainHard
+std::vector<WideSubset> heldOutWideSubsets();  // all but the training subsets (Train, TrainHard, TrainPartial)
 
 EyeFrame renderWideFrame(WideSubset subset, int index, std::uint32_t seed);
 

@@ -173,7 +173,7 @@ class TestCliTrack : public QObject {
     const Run bad =
         cli({"eye-dataset", "--out", QString::fromStdString(dir.string()), "--subset", "nope", "--frames", "1"});
     QCOMPARE(bad.code, 2);
-    QVERIFY2(bad.err.contains("train_hard"), bad.err.constData());
+    QVERIFY2(bad.err.contains("train_hard") && bad.err.contains("train_partial"), bad.err.constData());
   }
 
   void detectorChoice() {
