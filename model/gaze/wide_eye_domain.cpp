@@ -96,8 +96,7 @@ WideScene drawScene(WideSubset subset, int index, std::uint32_t seed, int attemp
   std::seed_seq seq{seed, 0x77696465u /* "wide" */, static_cast<std::uint32_t>(subset),
                     static_cast<std::uint32_t>(index), static_cast<std::uint32_t>(attempt)};
   Draw d{std::mt19937(seq)};
-  const bool train =
-      subset == WideSubset::Train || subset == WideSubset::TrainHard || subset == WideSubset::TrainPartial;
+  const bool train = isTrainingWideSubset(subset);
   const Features f = featuresOf(subset, d);
   WideScene s;
   s.camera.focal_px = d.in(300, 400);
@@ -286,9 +285,15 @@ std::optional<WideSubset> parseWideSubset(const std::string& name) {
   return std::nullopt;
 }
 
+bool isTrainingWideSubset(WideSubset s) {
+  return s == WideSubset::Train || s == WideSubset::TrainHard || s == WideSubset::TrainPartial;
+}
+
 std::vector<WideSubset> heldOutWideSubsets() {
-  return {WideSubset::Easy,    WideSubset::Glints,  WideSubset::Occlusion, WideSubset::MotionBlur,
-          WideSubset::OffAxis, WideSubset::Partial, WideSubset::Hard,      WideSubset::Closed};
+  std::vector<WideSubset> held;
+  for (WideSubset s : allWideSubsets())
+    if (!isTrainingWideSubset(s)) held.push_back(s);
+  return held;
 }
 
 EyeFrame renderWideFrame(WideSubset subset, int index, std::uint32_t seed) {

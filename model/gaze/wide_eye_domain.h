@@ -53,7 +53,9 @@ enum class WideSubset {
 const char* wideSubsetName(WideSubset s);
 std::vector<WideSubset> allWideSubsets();  // in the enum's order
 std::optional<WideSubset> parseWideSubset(const std::string& name);
-std::vector<WideSubset> heldOutWideSubsets();  // all but the training subsets (Train, TrainHard, TrainPartial)
+// Train, TrainHard and TrainPartial: drawn from the training's bands, never held out.
+bool isTrainingWideSubset(WideSubset s);
+std::vector<WideSubset> heldOutWideSubsets();  // the others, in the enum's order
 
 EyeFrame renderWideFrame(WideSubset subset, int index, std::uint32_t seed);
 

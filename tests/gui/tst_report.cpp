@@ -17,7 +17,6 @@
 
 #include "app/embedded_scene.h"
 #include "app/studio/report_tolerance.h"
-#include "model/scene/scene_io.h"
 #include "tests/tolerance_test_spec.h"
 #include "viz/efficiency_colors.h"
 #include "widgets/analyses/analysis_catalog.h"
@@ -204,12 +203,11 @@ class TestReport : public QObject {
     QVERIFY(sf.open(QIODevice::WriteOnly));
     sf.write(fovea::testing::smallToleranceSpec());
     sf.close();
-    const fovea::SceneLoadResult scene = fovea::parseScene(fovea::embeddedDefaultSceneJson(), "prototype");
-    QVERIFY(scene.ok());
+    const fovea::Scene scene = fovea::embeddedDefaultScene();
     fovea::widgets::AnalysisParams p = fovea::widgets::defaultParameters(*fovea::widgets::findAnalysis("tolerance"));
     p["spec"] = spec;
     p["trials"] = 20;
-    const auto r = fovea::widgets::runAnalysis("tolerance", *scene.scene, p);
+    const auto r = fovea::widgets::runAnalysis("tolerance", scene, p);
     QVERIFY(r.has_value());
     fovea::studio::ReportContent c;
     c.title = "Tolerance report";

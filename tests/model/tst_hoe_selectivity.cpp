@@ -9,7 +9,6 @@
 
 #include "app/embedded_scene.h"
 #include "model/analysis/hoe_selectivity.h"
-#include "model/scene/scene_io.h"
 
 namespace tst_hoe_selectivity {
 
@@ -130,10 +129,9 @@ class TestHoeSelectivity : public QObject {
   }
 
   void prototypeLayersAreBraggMatched() {
-    const SceneLoadResult r = parseScene(embeddedDefaultSceneJson(), "prototype");
-    QVERIFY(r.ok());
-    const SelectivityResult sel = analyzeSelectivity(*r.scene);
-    QCOMPARE(sel.layers.size(), r.scene->hoe_layers.size());
+    const Scene scene = embeddedDefaultScene();
+    const SelectivityResult sel = analyzeSelectivity(scene);
+    QCOMPARE(sel.layers.size(), scene.hoe_layers.size());
     for (const auto& l : sel.layers) {
       QVERIFY(l.valid);
       // Recorded with the projector as reference and probed by it at the same wavelength.
