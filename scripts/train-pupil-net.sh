@@ -8,24 +8,26 @@
 # train_hard (the hard subset's combination in the training's bands), closed eyes' visibility
 # loss weighted 6x, 20 epochs on one thread in 26 minutes; the refining stage 72000 train,
 # 18000 train_hard and 18000 train_partial frames (train's draws, every frame cut at the pupil),
-# those with a pupil less than 60 % visible shown three times an epoch, 6 epochs in 53 minutes
-# beside another training; rendering 18 minutes on two cores while a build ran beside it. The
+# those with a pupil less than 60 % visible shown three times an epoch, two more 3 x 3
+# convolutions at the 6 x 6 level (--context 2, a receptive field over the whole window), 10
+# epochs in 79 minutes beside another training; rendering 18 minutes on two cores while a build ran beside it. The
 # two stages train side by side, one core each. One thread each: two intra-op threads on a
 # shared two-core machine stall at their barriers (up to 17 min an epoch while builds ran). The
 # trainer stops at --max-minutes whatever the epoch; the .json files give the epochs it ran.
 #   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N]
 #       [--epochs E] [--refine-frames N] [--refine-hard-frames N] [--refine-partial-frames N]
-#       [--refine-epochs E] [--max-minutes M] [--work DIR]
+#       [--refine-epochs E] [--max-minutes M] [--refine-max-minutes M] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FRAMES=18000 HARD=6000 EPOCHS=20 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
-REPOCHS=6 CLOSED_WEIGHT=6 RPARTIAL=18000
+REPOCHS=10 CLOSED_WEIGHT=6 RPARTIAL=18000 RMINUTES=120 RCONTEXT=2
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;
     --refine-frames) RFRAMES=$2; shift 2 ;;
     --refine-epochs) REPOCHS=$2; shift 2 ;;
+    --refine-max-minutes) RMINUTES=$2; shift 2 ;;
     --refine-hard-frames) RHARD=$2; shift 2 ;;
     --refine-partial-frames) RPARTIAL=$2; shift 2 ;;
     --hard-frames) HARD=$2; shift 2 ;;
@@ -55,8 +57,8 @@ train() {  # STAGE OUT EPOCHS DIR... (the last DIR is the validation set)
   local args=() n=$#
   for ((k = 1; k < n; k++)); do args+=(--data "${!k}"); done
   nice -n 10 /usr/bin/python3 scripts/train_pupil_net.py --stage "$stage" "${args[@]}" --val "${!n}" --out "$out" \
-    --epochs "$epochs" --max-minutes "$MINUTES" --threads 1 --occluded-repeats "${OCCLUDED_REPEATS:-1}" \
-    --closed-weight "${CLOSED:-3}"
+    --epochs "$epochs" --max-minutes "${LIMIT:-$MINUTES}" --threads 1 --occluded-repeats "${OCCLUDED_REPEATS:-1}" \
+    --closed-weight "${CLOSED:-3}" --context "${CONTEXT:-0}"
 }
 # Rendering: the full-frame stage's frames at 96 px, the refining stage's at 200 px in shards of
 # 9000 (the same seed-1 frames from index 0, and train_hard frames from index 0), two at a time.
@@ -104,7 +106,7 @@ if [[ $STAGE != refine ]]; then
   pids+=($!)
 fi
 if [[ $STAGE != full ]]; then
-  OCCLUDED_REPEATS=3 train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val" &
+  OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val" &
   pids+=($!)
 fi
 wait_all

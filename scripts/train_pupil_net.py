@@ -15,7 +15,8 @@ needs nothing beyond a forward pass, within the ops OpenCV 4.6's ONNX importer r
 classical fit refines the centre in `--detector auto`.
 
 Usage: train_pupil_net.py --data DIR [--data DIR...] --val DIR --out model.onnx
-       [--epochs N] [--seed S] [--threads T]
+       [--stage full|refine] [--epochs N] [--seed S] [--threads T] [--max-minutes M]
+       [--occluded-repeats K] [--closed-weight W] [--context C] [--checkpoint PT] [--init PT]
 """
 import argparse
 import csv
@@ -82,12 +83,20 @@ class PupilNet(nn.Module):
     Concat: ops OpenCV 4.6's ONNX importer reads), so the output stays the 7 numbers
     model/gaze/learned_pupil_detector.cpp reads."""
 
-    def __init__(self):
+    def __init__(self, context=0):
         super().__init__()
         self.e1 = nn.Sequential(*block(1, 16, 2))  # 48
         self.e2 = nn.Sequential(*block(16, 32, 2))  # 24
         self.e3 = nn.Sequential(*block(32, 48, 2))  # 12
-        self.e4 = nn.Sequential(*block(48, 64, 2))  # 6
+        # `context` stride-1 3 x 3 convolutions at 6 x 6 widen what each heatmap cell sees. The
+        # encoder alone gives a 6 x 6 cell a receptive field of 31 input px (3, 7, 15, 31: each
+        # stride-2 layer adds twice its input's stride) and a heatmap cell about 55 (the decoder's
+        # two 3 x 3 layers add 16 and 8): in the refining stage, 2 frame px per input px, a cell
+        # sees about 55 frame px around it, less than the radius of the largest pupils (major
+        # axes to ~180 px), whose centre behind a lid is inferred from an arc a radius away. Each
+        # convolution here adds 32 input px; with two (`--context 2`, the shipped refining stage)
+        # a 6 x 6 cell sees 95 px, nearly the whole 96 px window.
+        self.e4 = nn.Sequential(*block(48, 64, 2), *[m for _ in range(context) for m in block(64, 64, 1)])  # 6
         self.head = nn.Sequential(nn.Flatten(), nn.Linear(64 * 6 * 6, 128), nn.ReLU(inplace=True), nn.Linear(128, 7))
         self.up1 = nn.ConvTranspose2d(64, 48, 2, 2)  # 6 -> 12, added to e3
         self.d1 = nn.Sequential(*block(48, 32, 1))
@@ -214,6 +223,10 @@ def main():
                     help="times an epoch shows a frame whose pupil is less than 60 %% visible (default 1)")
     ap.add_argument("--closed-weight", type=float, default=3.0,
                     help="weight of a closed eye's visibility loss against an open one's 1 (default 3)")
+    ap.add_argument("--context", type=int, default=0,
+                    help="stride-1 convolutions at the 6 x 6 level (a wider receptive field; default 0)")
+    ap.add_argument("--checkpoint", help="also save the trained weights (a PyTorch state dict) here, for --init")
+    ap.add_argument("--init", help="start from these weights (a --checkpoint of the same stage) instead of random ones")
     a = ap.parse_args()
     torch.manual_seed(a.seed)
     np.random.seed(a.seed)
@@ -238,7 +251,9 @@ def main():
         px_per_unit, mirror = w, mirror_x
     print(f"{a.stage} stage: train {len(x)} frames ({int(t[:, 6].sum())} with a pupil, {len(occluded)} of them "
           f"less than 60 % visible, shown {a.occluded_repeats}x an epoch), validation {len(xv)}", flush=True)
-    model = PupilNet()
+    model = PupilNet(a.context)
+    if a.init:
+        model.load_state_dict(torch.load(a.init))
     opt = torch.optim.AdamW(model.parameters(), lr=2e-3, weight_decay=1e-4)
     bs = 64
     steps = a.epochs * (len(epoch_frames) // bs)
@@ -282,6 +297,8 @@ def main():
             print("time budget reached: stopping early", flush=True)
             break
     model.eval()
+    if a.checkpoint:
+        torch.save(model.state_dict(), a.checkpoint)
     export(model, a.out)
     ev = evaluate(model, xv, tv, px_per_unit)
     # docs/gaze-tracking.md prints these figures (scripts/doc-numbers.json holds it to this file)
@@ -289,7 +306,8 @@ def main():
                "frames_with_pupil": int(t[:, 6].sum()), "validation_frames": len(xv),
                "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE, "stage": a.stage,
                "occluded_repeats": a.occluded_repeats, "closed_weight": a.closed_weight,
-               "frames_less_than_60pct_visible": int(len(occluded)),
+               "frames_less_than_60pct_visible": int(len(occluded)), "init": bool(a.init),
+               "context_convs": a.context,
                **({"canvas_px": CANVAS} if refine else {})}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
 
