@@ -8,9 +8,9 @@
 # train_hard (the hard subset's combination in the training's bands), closed eyes' visibility
 # loss weighted 6x, 20 epochs on one thread in 26 minutes; the refining stage 72000 train,
 # 18000 train_hard and 18000 train_partial frames (train's draws, every frame cut at the pupil),
-# those with a pupil less than 60 % visible shown three times an epoch, two more 3 x 3
-# convolutions at the 6 x 6 level (--context 2, a receptive field over the whole window), 10
-# epochs in 79 minutes beside another training; rendering 18 minutes on two cores while a build ran beside it. The
+# those with a pupil less than 60 % visible shown three times an epoch, three more 3 x 3
+# convolutions at the 6 x 6 level (--context 3, a receptive field over the whole window), 9
+# epochs in 81 minutes beside another training; rendering 18 minutes on two cores while a build ran beside it. The
 # two stages train side by side, one core each. One thread each: two intra-op threads on a
 # shared two-core machine stall at their barriers (up to 17 min an epoch while builds ran). The
 # trainer stops at --max-minutes whatever the epoch; the .json files give the epochs it ran.
@@ -21,7 +21,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FRAMES=18000 HARD=6000 EPOCHS=20 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
-REPOCHS=10 CLOSED_WEIGHT=6 RPARTIAL=18000 RMINUTES=120 RCONTEXT=2
+REPOCHS=9 CLOSED_WEIGHT=6 RPARTIAL=18000 RMINUTES=120 RCONTEXT=3
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;

@@ -94,8 +94,8 @@ class PupilNet(nn.Module):
         # two 3 x 3 layers add 16 and 8): in the refining stage, 2 frame px per input px, a cell
         # sees about 55 frame px around it, less than the radius of the largest pupils (major
         # axes to ~180 px), whose centre behind a lid is inferred from an arc a radius away. Each
-        # convolution here adds 32 input px; with two (`--context 2`, the shipped refining stage)
-        # a 6 x 6 cell sees 95 px, nearly the whole 96 px window.
+        # convolution here adds 32 input px; with three (`--context 3`, the shipped refining stage)
+        # a 6 x 6 cell sees 127 px, the whole 96 px window.
         self.e4 = nn.Sequential(*block(48, 64, 2), *[m for _ in range(context) for m in block(64, 64, 1)])  # 6
         self.head = nn.Sequential(nn.Flatten(), nn.Linear(64 * 6 * 6, 128), nn.ReLU(inplace=True), nn.Linear(128, 7))
         self.up1 = nn.ConvTranspose2d(64, 48, 2, 2)  # 6 -> 12, added to e3
