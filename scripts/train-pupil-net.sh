@@ -10,8 +10,8 @@
 # 18000 train_hard and 18000 train_partial frames (train's draws, every frame cut at the pupil),
 # those with a pupil less than 60 % visible shown three times an epoch, three more 3 x 3
 # convolutions at the 6 x 6 level (--context 3, a receptive field over the whole window), 9
-# epochs in 81 minutes beside another training; rendering 18 minutes on two cores while a build ran beside it. The
-# two stages train side by side, one core each. One thread each: two intra-op threads on a
+# epochs in 81 minutes beside another training; rendering 18 minutes on two cores while a build
+# ran beside it. The two stages train side by side, one core each. One thread each: two intra-op threads on a
 # shared two-core machine stall at their barriers (up to 17 min an epoch while builds ran). The
 # trainer stops at --max-minutes whatever the epoch; the .json files give the epochs it ran.
 #   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N]

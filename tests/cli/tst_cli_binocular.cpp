@@ -184,12 +184,9 @@ class TestCliBinocular : public QObject {
     // classic renderer's frames its calibration accuracy is 0.27/0.30 deg per eye (classical
     // 0.23 deg), the vergence's closed-form SD 0.037 D (classical 0.020 D). This one fixation's
     // focus ends 0.098 D off, within the 0.25 D target after 51 ms of the 700 ms hold
-    // (classical: 0.115 D, 34.5 ms; with the refining stage before (no convolutions at 6 x 6):
-    // 0.075 D, 52.5 ms, 0.25/0.20 deg, 0.046 D; the one before that (no train_partial frames):
-    // 0.207 D, 682 ms, 0.31/0.32 deg, 0.052 D; the stages before: 0.165 D, 66 ms; the refining
-    // stage before them 0.171 D, 49 ms; the network without one: 0.017 D, 69 ms): the end error
-    // is the loop's calibration bias, which differs by detector, so the test holds the target, not one
-    // detector's figure (docs/gaze-tracking.md).
+    // (classical: 0.115 D, 34.5 ms). Earlier networks ended 0.017-0.207 D off, one only after
+    // 682 ms (docs/gaze-tracking.md keeps their figures): the end error is the loop's calibration
+    // bias, which differs by detector, so the test holds the target, not one detector's figure.
     const std::string file = (tmpDir() / "fixation-detector.json").string();
     std::ofstream(file) << R"({"fixations": [{"distance_cm": 30, "direction_deg": [5, 0], "hold_ms": 700}]})";
     const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", file.c_str(), "--fps", "60",

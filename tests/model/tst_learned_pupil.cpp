@@ -244,9 +244,9 @@ class TestLearnedPupil : public QObject {
   // apart). The refining stage runs one pass (the 3 ms budget), so the two-stage detector is
   // equivariant exactly in whether it finds a pupil and in its confidence, and its centres are
   // mirrored only to within its own error: the frame's and the mirror's x sum to 399 within 0.7
-  // px on these hard frames (the refining stage of 2026-12-06, sixth session; 4.6, 3.0, 5.1 and
-  // 9.3 px with the refining stages before; the hard subset's p90 error is 5-9 px), so the bound
-  // is 12 px - it catches a window placed or mapped back wrongly, which moves them by tens of px.
+  // px on these hard frames (the shipped refining stage; up to 9.3 px with earlier ones, whose
+  // figures docs/gaze-tracking.md keeps), so the bound is 12 px - it catches a window placed or
+  // mapped back wrongly, which moves them by tens of px.
   void mirroredFrameGivesTheMirroredPupil() {
     LearnedPupilDetector one(oneStageModel("learned_pupil_mirror")), two(shippedModel());
     for (int i = 0; i < 4; ++i) {
@@ -290,8 +290,7 @@ class TestLearnedPupil : public QObject {
     // sixth session, with three more convolutions at 6 x 6, on 72000 train, 18000 train_hard and
     // 18000 train_partial frames' windows, the occluded ones three times an epoch, 9 epochs;
     // the flip on the full-frame stage, one pass on the refining one) and auto's 2 px / 0.1 d
-    // radius. The refining stage before (no extra convolutions, 6 epochs) measured occlusion
-    // 15/16, off-axis 15/16 and hard 13/16 for learned, hard 13/16 for auto.
+    // radius.
     QTest::newRow("learned/easy") << 1 << 1 << 14.0 / 16;         // measured 16/16
     QTest::newRow("learned/glints") << 1 << 2 << 14.0 / 16;       // measured 16/16
     QTest::newRow("learned/occlusion") << 1 << 3 << 14.0 / 16;    // measured 16/16
