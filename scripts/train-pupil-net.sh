@@ -4,33 +4,38 @@
 # window of the frame at 200 px around the first stage's centre), each with a .json of its
 # validation figures. Not part of the test command: the shipped models are what the tests
 # check. Deterministic by seed (renderer seeds 1 for training, 7 for validation; PyTorch seed
-# 31). The shipped models: the full-frame stage 18000 frames of subset train and 6000 of
-# train_hard (the hard subset's combination in the training's bands), closed eyes' visibility
-# loss weighted 6x, 20 epochs on one thread in 26 minutes; the refining stage 72000 train,
-# 18000 train_hard and 18000 train_partial frames (train's draws, every frame cut at the pupil),
-# those with a pupil less than 60 % visible shown three times an epoch, three more 3 x 3
-# convolutions at the 6 x 6 level (--context 3, a receptive field over the whole window), 9
-# epochs in 81 minutes beside another training; rendering 18 minutes on two cores while a build
-# ran beside it. The two stages train side by side, one core each. One thread each: two intra-op threads on a
-# shared two-core machine stall at their barriers (up to 17 min an epoch while builds ran). The
-# trainer stops at --max-minutes whatever the epoch; the .json files give the epochs it ran.
-#   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N]
+# 31). The shipped models: the full-frame stage 18000 frames of subset train, 6000 of train_hard
+# (the hard subset's combination in the training's bands) and 6000 of train_partial (train's
+# draws, every frame cut at the pupil), three more 3 x 3 convolutions at the 6 x 6 level
+# (--context 3, a receptive field over the whole input), closed eyes' visibility loss weighted
+# 10x, 18 epochs on one thread in 30 minutes; the refining stage 72000 train, 18000 train_hard
+# and 18000 train_partial frames, those with a pupil less than 60 % visible shown three times an
+# epoch, --context 3, 9 epochs in 81 minutes, then 5 more from those weights at a third of the
+# peak learning rate (--refine-finetune-epochs) in 50 minutes, each beside another training;
+# rendering 18 minutes on two cores while a build ran beside it. The two stages train side by
+# side, one core each. One thread each: two intra-op threads on a shared two-core machine stall
+# at their barriers (up to 17 min an epoch while builds ran). The trainer stops at --max-minutes
+# whatever the epoch; the .json files give the epochs it ran.
+#   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N] [--partial-frames N]
 #       [--epochs E] [--refine-frames N] [--refine-hard-frames N] [--refine-partial-frames N]
-#       [--refine-epochs E] [--max-minutes M] [--refine-max-minutes M] [--work DIR]
+#       [--refine-epochs E] [--refine-finetune-epochs E] [--max-minutes M] [--refine-max-minutes M]
+#       [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FRAMES=18000 HARD=6000 EPOCHS=20 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
-REPOCHS=9 CLOSED_WEIGHT=6 RPARTIAL=18000 RMINUTES=120 RCONTEXT=3
+FRAMES=18000 HARD=6000 PARTIAL=6000 EPOCHS=18 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
+REPOCHS=9 CLOSED_WEIGHT=10 RPARTIAL=18000 RMINUTES=120 RCONTEXT=3 FCONTEXT=3 RFINE=5 RFINE_LR=1e-3
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;
     --refine-frames) RFRAMES=$2; shift 2 ;;
     --refine-epochs) REPOCHS=$2; shift 2 ;;
+    --refine-finetune-epochs) RFINE=$2; shift 2 ;;
     --refine-max-minutes) RMINUTES=$2; shift 2 ;;
     --refine-hard-frames) RHARD=$2; shift 2 ;;
     --refine-partial-frames) RPARTIAL=$2; shift 2 ;;
     --hard-frames) HARD=$2; shift 2 ;;
+    --partial-frames) PARTIAL=$2; shift 2 ;;
     --frames) FRAMES=$2; shift 2 ;;
     --epochs) EPOCHS=$2; shift 2 ;;
     --work) WORK=$2; shift 2 ;;
@@ -58,7 +63,7 @@ train() {  # STAGE OUT EPOCHS DIR... (the last DIR is the validation set)
   for ((k = 1; k < n; k++)); do args+=(--data "${!k}"); done
   nice -n 10 /usr/bin/python3 scripts/train_pupil_net.py --stage "$stage" "${args[@]}" --val "${!n}" --out "$out" \
     --epochs "$epochs" --max-minutes "${LIMIT:-$MINUTES}" --threads 1 --occluded-repeats "${OCCLUDED_REPEATS:-1}" \
-    --closed-weight "${CLOSED:-3}" --context "${CONTEXT:-0}"
+    --closed-weight "${CLOSED:-3}" --context "${CONTEXT:-0}" ${EXTRA:-}
 }
 # Rendering: the full-frame stage's frames at 96 px, the refining stage's at 200 px in shards of
 # 9000 (the same seed-1 frames from index 0, and train_hard frames from index 0), two at a time.
@@ -85,9 +90,11 @@ shard() {  # PREFIX TOTAL SUBSET: seed-1 frames from index 0 at 200 px, in shard
 if [[ $STAGE != refine ]]; then
   half=$((FRAMES / 2))
   full_dirs=("$WORK/train-a" "$WORK/train-b" "$WORK/train-hard")
+  if ((PARTIAL > 0)); then full_dirs+=("$WORK/train-partial"); fi
   queue "$WORK/train-a" 0 "$half" 1
   queue "$WORK/train-b" "$half" "$((FRAMES - half))" 1
   queue "$WORK/train-hard" 0 "$HARD" 1 96 train_hard
+  if ((PARTIAL > 0)); then queue "$WORK/train-partial" 0 "$PARTIAL" 1 96 train_partial; fi
   queue "$WORK/val" 0 400 7
 fi
 if [[ $STAGE != full ]]; then
@@ -102,11 +109,22 @@ echo "rendered in $((t1 - t0)) s"
 # Training: the two stages side by side, one thread each (the refining stage's windows come from
 # the true centres, jittered, not from the first stage: the two are independent).
 if [[ $STAGE != refine ]]; then
-  CLOSED=$CLOSED_WEIGHT train full resources/pupil/pupil-net.onnx "$EPOCHS" "${full_dirs[@]}" "$WORK/val" &
+  CLOSED=$CLOSED_WEIGHT CONTEXT=$FCONTEXT train full resources/pupil/pupil-net.onnx "$EPOCHS" "${full_dirs[@]}" "$WORK/val" &
   pids+=($!)
 fi
 if [[ $STAGE != full ]]; then
-  OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${shards[@]}" "$WORK/refine-val" &
+  refine() {  # REPOCHS epochs from random weights, then RFINE more from them at a lower peak rate
+    local rargs=("${shards[@]}" "$WORK/refine-val")
+    if ((RFINE == 0)); then
+      OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${rargs[@]}"
+      return
+    fi
+    OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES EXTRA="--checkpoint $WORK/refine-first.pt" \
+      train refine "$WORK/refine-first.onnx" "$REPOCHS" "${rargs[@]}"
+    OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES EXTRA="--init $WORK/refine-first.pt --max-lr $RFINE_LR" \
+      train refine resources/pupil/pupil-refine.onnx "$RFINE" "${rargs[@]}"
+  }
+  refine &
   pids+=($!)
 fi
 wait_all

@@ -94,8 +94,9 @@ class PupilNet(nn.Module):
         # two 3 x 3 layers add 16 and 8): in the refining stage, 2 frame px per input px, a cell
         # sees about 55 frame px around it, less than the radius of the largest pupils (major
         # axes to ~180 px), whose centre behind a lid is inferred from an arc a radius away. Each
-        # convolution here adds 32 input px; with three (`--context 3`, the shipped refining stage)
-        # a 6 x 6 cell sees 127 px, the whole 96 px window.
+        # convolution here adds 32 input px; with three (`--context 3`, both shipped stages) a 6 x 6
+        # cell sees 127 px, the whole 96 px input: the refining stage's window, and the first
+        # stage's whole frame (there a cell saw 31 input px, 129 frame px, before).
         self.e4 = nn.Sequential(*block(48, 64, 2), *[m for _ in range(context) for m in block(64, 64, 1)])  # 6
         self.head = nn.Sequential(nn.Flatten(), nn.Linear(64 * 6 * 6, 128), nn.ReLU(inplace=True), nn.Linear(128, 7))
         self.up1 = nn.ConvTranspose2d(64, 48, 2, 2)  # 6 -> 12, added to e3
@@ -227,6 +228,8 @@ def main():
                     help="stride-1 convolutions at the 6 x 6 level (a wider receptive field; default 0)")
     ap.add_argument("--checkpoint", help="also save the trained weights (a PyTorch state dict) here, for --init")
     ap.add_argument("--init", help="start from these weights (a --checkpoint of the same stage) instead of random ones")
+    ap.add_argument("--max-lr", type=float, default=3e-3,
+                    help="the one-cycle schedule's peak learning rate (default 3e-3; lower to continue from --init)")
     a = ap.parse_args()
     torch.manual_seed(a.seed)
     np.random.seed(a.seed)
@@ -257,7 +260,7 @@ def main():
     opt = torch.optim.AdamW(model.parameters(), lr=2e-3, weight_decay=1e-4)
     bs = 64
     steps = a.epochs * (len(epoch_frames) // bs)
-    sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=3e-3, total_steps=steps, pct_start=0.15)
+    sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=a.max_lr, total_steps=steps, pct_start=0.15)
     start = time.time()
     step = 0
     for epoch in range(a.epochs):
@@ -306,7 +309,7 @@ def main():
                "frames_with_pupil": int(t[:, 6].sum()), "validation_frames": len(xv),
                "epochs": epoch + 1, "seed": a.seed, "input_px": SIZE, "stage": a.stage,
                "occluded_repeats": a.occluded_repeats, "closed_weight": a.closed_weight,
-               "frames_less_than_60pct_visible": int(len(occluded)), "init": bool(a.init),
+               "frames_less_than_60pct_visible": int(len(occluded)), "init": bool(a.init), "max_lr": a.max_lr,
                "context_convs": a.context,
                **({"canvas_px": CANVAS} if refine else {})}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")

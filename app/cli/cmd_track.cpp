@@ -1,5 +1,5 @@
 // fovea-cli track IMAGE... | --virtual N [--domain classic|wide] [--seed S]
-//                 [--detector classical|learned|auto] [--json]
+//                 [--detector classical|learned|auto] [--auto-radius-px R] [--json]
 // Pupil detection on IR eye-camera frames (model/gaze/pupil_detector_choice.h: the classical
 // detector by default, the learned one or both fused): per frame the pupil centre, ellipse,
 // glints, confidence and the detector's time. Images are read by the
@@ -11,6 +11,9 @@
 // motion_blur, off_axis, partial, hard, closed). Per subset the centre error's percentiles
 // count a missed pupil as an infinite error (null when more than that share is missed). An unreadable image gives a
 // frame with zero confidence and its error, the others are still tracked; the exit code is then 1.
+// --auto-radius-px R sets auto's acceptance radius (pupil_detector_choice.h: kAutoAcceptRadiusPx,
+// 2 frame px; 0 gives the learned centres, a huge R every classical fit near them, which
+// scripts/auto-radius-sweep.py uses to choose R); the JSON names it as auto_accept_radius_px.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -88,6 +91,7 @@ void install(CLI::App& app) {
     unsigned seed = 1;
     bool json = false;
     std::string detector = "classical", domain = "classic";
+    double auto_radius_px = gaze::kAutoAcceptRadiusPx;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("IMAGE", a->images, "eye-camera images (PNG, JPEG, ...)");
@@ -96,15 +100,21 @@ void install(CLI::App& app) {
   addSeedOption(cmd, a->seed, "seed of the synthetic frames (default 1)");
   cmd->add_flag("--json", a->json, "print the result as JSON");
   cmd->add_option("--detector", a->detector, "classical (default), learned or auto (learned refined by classical)");
+  auto* radius = cmd->add_option("--auto-radius-px", a->auto_radius_px,
+                                 "--detector auto: take the classical fit when its centre is within R frame px of "
+                                 "the learned one (default 2; 0: never)");
   cmd->add_option("--domain", a->domain, "--virtual frames: classic (default, the pupil benchmark) or wide");
-  cmd->callback([a, v] {
+  cmd->callback([a, v, radius] {
     const bool virt = v->count() > 0;
     if (virt == !a->images.empty()) usageError("track: give either IMAGE files or --virtual N");
     if (a->domain != "classic" && a->domain != "wide")
       usageError("--domain: '" + a->domain + "' is not one of classic, wide");
     if (!virt && a->domain != "classic") usageError("--domain: only with --virtual");
     const bool wide = a->domain == "wide";
+    if (!(a->auto_radius_px >= 0)) usageError("--auto-radius-px: a radius >= 0 frame px");
     const gaze::PupilDetectorKind kind = detectorOrExit(a->detector);
+    if (radius->count() > 0 && kind != gaze::PupilDetectorKind::Auto)
+      usageError("--auto-radius-px: only with --detector auto");
     const gaze::PupilDetectorOptions options;
     nlohmann::json frames = nlohmann::json::array();
     double total_ms = 0, max_ms = 0;
@@ -117,7 +127,7 @@ void install(CLI::App& app) {
     std::string first_error;
     const auto timed = [&](const cv::Mat& img, gaze::PupilDetection& d) {
       const auto t0 = std::chrono::steady_clock::now();
-      d = gaze::detectPupilWith(kind, img, options);
+      d = gaze::detectPupilWith(kind, img, options, 0.5, a->auto_radius_px);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       total_ms += ms;
       max_ms = std::max(max_ms, ms);
@@ -225,6 +235,7 @@ void install(CLI::App& app) {
       out["detector_model"] = files.model;
       out["detector_refine_model"] = files.refine.empty() ? nlohmann::json(nullptr) : nlohmann::json(files.refine);
     }
+    if (kind == gaze::PupilDetectorKind::Auto) out["auto_accept_radius_px"] = a->auto_radius_px;
     if (a->json)
       printJson(out);
     else

@@ -16,16 +16,8 @@ LearnedPupilDetector& threadDetector() {
   return net;
 }
 
-// The classical ellipse replaces the proposal when its centre lies within max(2 px, 0.1
-// diameters) of it. Chosen on the wide domain's held-out subsets at seed 99 (50 frames each,
-// not the benchmark's seed 2026) for the heatmap network (median error ~2.5 px): within 5 px,
-// radii 2 px/0.1 d, 3/0.15, 4/0.2, 5/0.3 (the first network's) gave hard 36/32/28/24 %,
-// occlusion 66/68/66/60 %, easy 96/92/92/92 %, and the same elsewhere within a frame; the
-// network alone 36 % hard, 64 % occlusion. A wider radius lets the fit jump to a lid crease or
-// a glint cluster near a precise proposal.
-constexpr double kRefineRadiusPx = 2.0, kRefineRadiusDiameters = 0.1;
-
-PupilDetection refined(const cv::Mat& image, const PupilDetection& learned, const PupilDetectorOptions& o) {
+PupilDetection refined(const cv::Mat& image, const PupilDetection& learned, const PupilDetectorOptions& o,
+                       double accept_radius_px) {
   const cv::Mat grey = toGrey8(image);
   const double diameter = std::max(learned.ellipse.major_px, 1.0);
   const int side = static_cast<int>(std::max(96.0, 2.5 * diameter));
@@ -40,7 +32,7 @@ PupilDetection refined(const cv::Mat& image, const PupilDetection& learned, cons
   for (auto& g : c.glints_px) g += offset;
   const double moved =
       std::hypot(c.ellipse.centre.x - learned.ellipse.centre.x, c.ellipse.centre.y - learned.ellipse.centre.y);
-  if (moved > std::max(kRefineRadiusPx, kRefineRadiusDiameters * diameter)) return learned;
+  if (!(moved <= accept_radius_px)) return learned;
   c.confidence = std::max(c.confidence, learned.confidence);
   return c;
 }
@@ -75,11 +67,11 @@ LearnedModelFiles learnedModelFiles() {
 }
 
 PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, const PupilDetectorOptions& classical,
-                               double learned_min_confidence) {
+                               double learned_min_confidence, double auto_accept_radius_px) {
   if (kind == PupilDetectorKind::Classical) return detectPupil(image, classical);
   PupilDetection learned = threadDetector().detect(image, learned_min_confidence);
   if (kind == PupilDetectorKind::Learned || !learned.found) return learned;
-  return refined(image, learned, classical);
+  return refined(image, learned, classical, auto_accept_radius_px);
 }
 
 }  // namespace fovea::gaze

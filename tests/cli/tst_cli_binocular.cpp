@@ -181,12 +181,12 @@ class TestCliBinocular : public QObject {
 
   void detectorOnBothTrackers() {
     // --detector learned: both eyes' calibrations and trackers use the learned detector. On the
-    // classic renderer's frames its calibration accuracy is 0.27/0.30 deg per eye (classical
-    // 0.23 deg), the vergence's closed-form SD 0.037 D (classical 0.020 D). This one fixation's
-    // focus ends 0.098 D off, within the 0.25 D target after 51 ms of the 700 ms hold
-    // (classical: 0.115 D, 34.5 ms). Earlier networks ended 0.017-0.207 D off, one only after
-    // 682 ms (docs/gaze-tracking.md keeps their figures): the end error is the loop's calibration
-    // bias, which differs by detector, so the test holds the target, not one detector's figure.
+    // classic renderer's frames its calibration accuracy is 0.24/0.27 deg per eye (classical
+    // 0.23 deg), the vergence's closed-form SD 0.032 D (classical 0.020 D; earlier networks
+    // 0.037-0.052 D). This one fixation's focus ends 0.103 D off, within the 0.25 D target after
+    // 47.5 ms of the 700 ms hold (classical: 0.115 D, 34.5 ms). Earlier networks ended 0.017-0.207 D off, one only
+    // after 682 ms (docs/gaze-tracking.md keeps their figures): the end error is the loop's calibration bias, which
+    // differs by detector, so the test holds the target, not one detector's figure.
     const std::string file = (tmpDir() / "fixation-detector.json").string();
     std::ofstream(file) << R"({"fixations": [{"distance_cm": 30, "direction_deg": [5, 0], "hold_ms": 700}]})";
     const Run r = cli({"closed-loop", kScene.c_str(), "--binocular", "--fixations", file.c_str(), "--fps", "60",
@@ -201,7 +201,7 @@ class TestCliBinocular : public QObject {
       QCOMPARE(j["eyes"][e]["frames"]["tracked"], j["eyes"][e]["frames"]["captured"]);
     }
     const double sigma = j["vergence"]["closed_form_sigma_d"].get<double>();
-    QVERIFY2(sigma > 0.03 && sigma < 0.06, qPrintable(QString::number(sigma)));  // classical 0.020 D
+    QVERIFY2(sigma > 0.025 && sigma < 0.06, qPrintable(QString::number(sigma)));  // classical 0.020 D
     const double final_error = j["fixations"][0]["final_focus_error_d"].get<double>();
     QVERIFY2(std::abs(final_error) < 0.25, qPrintable(QString::number(final_error)));  // the focus target
     const double settle = j["fixations"][0]["time_to_0_25d_ms"].get<double>();

@@ -7,6 +7,7 @@
 #include <QtTest>
 #include "tests/test_paths.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -226,6 +227,57 @@ class TestCliTrack : public QObject {
     QVERIFY(ji["frames"][0]["found"].get<bool>());
     QVERIFY(std::hypot(ji["frames"][0]["centre_px"][0].get<double>() - frame.truth.pupil.centre.x,
                        ji["frames"][0]["centre_px"][1].get<double>() - frame.truth.pupil.centre.y) < 2.0);
+  }
+
+  // Auto's acceptance radius (--auto-radius-px; pupil_detector_choice.h): 0 takes no classical
+  // fit, so auto's centres are the learned detector's; the default, 2 px, takes the fits within
+  // 2 px of them and no others; an unlimited radius takes every fit, some of them further away.
+  // On these 32 frames (seed 4) the default took 8 fits, the unlimited radius 3 more, 2.3-18 px
+  // away (the counts below are those less two and one).
+  void autoAcceptRadius() {
+    const auto run = [](QStringList extra) {
+      QStringList args{"track", "--virtual", "32", "--domain", "wide", "--seed", "4", "--json"};
+      args += extra;
+      const Run r = cli(args);
+      if (r.code != 0) qWarning("%s", r.err.constData());
+      return r.code == 0 ? nlohmann::json::parse(r.out.toStdString()) : nlohmann::json();
+    };
+    const auto learned = run({"--detector", "learned"});
+    const auto never = run({"--detector", "auto", "--auto-radius-px", "0"});
+    const auto dflt = run({"--detector", "auto"});
+    const auto every = run({"--detector", "auto", "--auto-radius-px", "1e9"});
+    QVERIFY(!learned.is_null() && !never.is_null() && !dflt.is_null() && !every.is_null());
+    QVERIFY(!learned.contains("auto_accept_radius_px"));
+    QCOMPARE(never["auto_accept_radius_px"].get<double>(), 0.0);
+    QCOMPARE(dflt["auto_accept_radius_px"].get<double>(), 2.0);
+    int taken = 0, far = 0;
+    for (std::size_t i = 0; i < 32; ++i) {
+      const auto &l = learned["frames"][i], &n = never["frames"][i], &d = dflt["frames"][i], &e = every["frames"][i];
+      QCOMPARE(n["found"].get<bool>(), l["found"].get<bool>());
+      QCOMPARE(d["found"].get<bool>(), l["found"].get<bool>());
+      QCOMPARE(e["found"].get<bool>(), l["found"].get<bool>());
+      if (!l["found"].get<bool>()) continue;
+      const auto moved = [&l](const nlohmann::json& f) {
+        return std::hypot(f["centre_px"][0].get<double>() - l["centre_px"][0].get<double>(),
+                          f["centre_px"][1].get<double>() - l["centre_px"][1].get<double>());
+      };
+      QCOMPARE(moved(n), 0.0);
+      QVERIFY2(moved(d) <= 2.0, std::to_string(moved(d)).c_str());
+      // The same fit either way: the default takes it exactly when it lies within 2 px.
+      QCOMPARE(moved(d), moved(e) <= 2.0 ? moved(e) : 0.0);
+      taken += moved(d) > 0 ? 1 : 0;
+      far += moved(e) > 2.0 ? 1 : 0;
+    }
+    QVERIFY2(taken >= 6, std::to_string(taken).c_str());  // the fit is taken on clean frames
+    QVERIFY2(far >= 2, std::to_string(far).c_str());
+    Run r = cli({"track", "--virtual", "2", "--detector", "auto", "--auto-radius-px", "-1"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--auto-radius-px"), r.err.constData());
+    r = cli({"track", "--virtual", "2", "--detector", "auto", "--auto-radius-px", "nan"});
+    QCOMPARE(r.code, 2);
+    r = cli({"track", "--virtual", "2", "--detector", "learned", "--auto-radius-px", "3"});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("only with --detector auto"), r.err.constData());
   }
 
   void detectorErrors() {

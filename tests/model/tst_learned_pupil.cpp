@@ -243,10 +243,10 @@ class TestLearnedPupil : public QObject {
   // -angle), which one pass of the network alone does not (measured there: up to several px
   // apart). The refining stage runs one pass (the 3 ms budget), so the two-stage detector is
   // equivariant exactly in whether it finds a pupil and in its confidence, and its centres are
-  // mirrored only to within its own error: the frame's and the mirror's x sum to 399 within 0.7
-  // px on these hard frames (the shipped refining stage; up to 9.3 px with earlier ones, whose
-  // figures docs/gaze-tracking.md keeps), so the bound is 12 px - it catches a window placed or
-  // mapped back wrongly, which moves them by tens of px.
+  // mirrored only to within its own error: the frame's and the mirror's x sum to 399 within 1.2
+  // px on these hard frames (the shipped stages; up to 9.3 px with earlier ones, whose figures
+  // docs/gaze-tracking.md keeps), so the bound is 12 px - it catches a window placed or mapped
+  // back wrongly, which moves them by tens of px.
   void mirroredFrameGivesTheMirroredPupil() {
     LearnedPupilDetector one(oneStageModel("learned_pupil_mirror")), two(shippedModel());
     for (int i = 0; i < 4; ++i) {
@@ -283,14 +283,13 @@ class TestLearnedPupil : public QObject {
     QTest::addColumn<double>("min_rate");
     // Thresholds: the rates measured on these 16 frames per subset (seed 2026, the first 16 of
     // the docs' table: `fovea-cli track --virtual 128 --domain wide --seed 2026`) less two
-    // frames; for closed: the false positives allowed (measured + 1). Low on purpose where the
-    // measurement is low: the targets (95 %, 97 %) are not met over 1000 frames,
-    // docs/gaze-tracking.md. Measured with the two stages of 2026-12-06 (the heatmap network on
-    // 18000 train and 6000 train_hard frames, closed eyes weighted 6x; the refining stage of the
-    // sixth session, with three more convolutions at 6 x 6, on 72000 train, 18000 train_hard and
-    // 18000 train_partial frames' windows, the occluded ones three times an epoch, 9 epochs;
-    // the flip on the full-frame stage, one pass on the refining one) and auto's 2 px / 0.1 d
-    // radius.
+    // frames; for closed: the false positives allowed (measured + 1). Sixteen frames cannot hold
+    // the targets (95 %, 97 %; over 1000 frames, docs/gaze-tracking.md); these catch a detector
+    // that got worse by more than two frames in sixteen. Measured with the two stages of
+    // 2026-12-06, seventh session (both with three more convolutions at 6 x 6; the first stage on
+    // 18000 train, 6000 train_hard and 6000 train_partial frames, closed eyes weighted 10x, with
+    // the flip; the refining stage on 72000 train, 18000 train_hard and 18000 train_partial
+    // frames' windows, 9 epochs and 5 of fine-tuning, one pass) and auto's 2 px radius.
     QTest::newRow("learned/easy") << 1 << 1 << 14.0 / 16;         // measured 16/16
     QTest::newRow("learned/glints") << 1 << 2 << 14.0 / 16;       // measured 16/16
     QTest::newRow("learned/occlusion") << 1 << 3 << 14.0 / 16;    // measured 16/16
@@ -299,10 +298,10 @@ class TestLearnedPupil : public QObject {
     QTest::newRow("learned/hard") << 1 << 7 << 14.0 / 16;         // measured 16/16
     QTest::newRow("learned/closed") << 1 << 8 << 1.0;             // measured 0/16 false positives
     QTest::newRow("auto/easy") << 2 << 1 << 14.0 / 16;            // measured 16/16
-    QTest::newRow("auto/glints") << 2 << 2 << 13.0 / 16;          // measured 15/16
+    QTest::newRow("auto/glints") << 2 << 2 << 14.0 / 16;          // measured 16/16
     QTest::newRow("auto/occlusion") << 2 << 3 << 14.0 / 16;       // measured 16/16
     QTest::newRow("auto/motion_blur") << 2 << 4 << 14.0 / 16;     // measured 16/16
-    QTest::newRow("auto/off_axis") << 2 << 5 << 14.0 / 16;        // measured 16/16
+    QTest::newRow("auto/off_axis") << 2 << 5 << 13.0 / 16;        // measured 15/16
     QTest::newRow("auto/hard") << 2 << 7 << 14.0 / 16;            // measured 16/16
     QTest::newRow("auto/closed") << 2 << 8 << 1.0;                // measured 0/16 false positives
   }
