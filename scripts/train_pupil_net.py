@@ -17,6 +17,7 @@ classical fit refines the centre in `--detector auto`.
 Usage: train_pupil_net.py --data DIR [--data DIR...] --val DIR --out model.onnx
        [--stage full|refine] [--epochs N] [--seed S] [--threads T] [--max-minutes M]
        [--occluded-repeats K] [--closed-weight W] [--context C] [--checkpoint PT] [--init PT]
+       [--max-lr LR]
 """
 import argparse
 import csv

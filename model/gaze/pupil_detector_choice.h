@@ -28,7 +28,7 @@ inline constexpr const char* kDetectorChoices = "classical, learned, auto";
 // stages of 2026-12-06, seventh session (median centre error 0.34-1.52 px). There every radius
 // from 1 to 3 px placed as many centres within 5 px as the network alone on every subset, and
 // 2 px lowered the median error of easy, glints, off-axis and partial frames (0.14-0.67 px
-// against 0.35-0.81 px) and moved the others' by 0.01 px; the former max(2 px, 0.1 diameters),
+// against 0.35-0.81 px) and the others' by at most 0.01 px; the former max(2 px, 0.1 diameters),
 // chosen for a network three times less precise, let fits up to 18 px from a large pupil's
 // proposal through and lost 0.9-2.9 points on every subset (scripts/auto-radius-sweep.py).
 inline constexpr double kAutoAcceptRadiusPx = 2.0;
