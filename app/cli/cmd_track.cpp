@@ -127,7 +127,7 @@ void install(CLI::App& app) {
     std::string first_error;
     const auto timed = [&](const cv::Mat& img, gaze::PupilDetection& d) {
       const auto t0 = std::chrono::steady_clock::now();
-      d = gaze::detectPupilWith(kind, img, options, 0.5, a->auto_radius_px);
+      d = gaze::detectPupilWith(kind, img, options, gaze::kLearnedMinConfidence, a->auto_radius_px);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       total_ms += ms;
       max_ms = std::max(max_ms, ms);

@@ -33,6 +33,8 @@ namespace fovea::gaze {
 inline constexpr int kLearnedPupilInputPx = 96;
 inline constexpr int kLearnedPupilOutputs = 7;     // centre x, y, axes, cos 2θ, sin 2θ, visibility
 inline constexpr int kLearnedPupilCanvasPx = 200;  // the refining stage's downscaled frame
+// The visibility sigmoid at or above which the detector reports a pupil.
+inline constexpr double kLearnedMinConfidence = 0.5;
 
 // The candidate paths in search order, and the first that exists; findPupilModel throws
 // std::runtime_error naming every path tried when none does.
@@ -49,7 +51,7 @@ class LearnedPupilDetector {
   LearnedPupilDetector& operator=(LearnedPupilDetector&&) noexcept;
 
   // Not thread-safe (one forward pass at a time); confidence below min_confidence: not found.
-  PupilDetection detect(const cv::Mat& image, double min_confidence = 0.5);
+  PupilDetection detect(const cv::Mat& image, double min_confidence = kLearnedMinConfidence);
   const std::string& modelPath() const { return path_; }
   // The refining stage's model, empty when there is none beside modelPath().
   const std::string& refineModelPath() const { return refine_path_; }

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "model/gaze/learned_pupil_detector.h"
 #include "model/gaze/pupil_detector.h"
 
 namespace fovea::gaze {
@@ -36,7 +37,8 @@ inline constexpr double kAutoAcceptRadiusPx = 2.0;
 // Runs the chosen detector. The learned model is loaded once per thread from the default
 // search (findPupilModel); a missing model throws std::runtime_error naming the paths.
 PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, const PupilDetectorOptions& classical = {},
-                               double learned_min_confidence = 0.5, double auto_accept_radius_px = kAutoAcceptRadiusPx);
+                               double learned_min_confidence = kLearnedMinConfidence,
+                               double auto_accept_radius_px = kAutoAcceptRadiusPx);
 
 // Loads the learned model now (throws as above): a command checks it before any work.
 void requireLearnedModel();
