@@ -39,30 +39,47 @@ cv::dnn::Net loadNet(const std::string& path) {
   return net;
 }
 
-// One pass of a stage over a 96 x 96 input (x / 255 - 0.5, as scripts/train_pupil_net.py feeds
-// it), or, given `mirror`, the input and its mirror image in one batch, the mirror's outputs
-// mapped back and the two averaged: test-time flip augmentation (a mirrored eye is an eye; both
-// stages were trained with horizontal flips). On the wide domain's held-out subsets at seed 99
-// (100 frames each, not the benchmark's seed) the flip placed more centres within 5 px than one
-// pass (measured with the network before the 18000-frame one): hard 39 -> 52, occlusion 55 ->
-// 59, easy 96 -> 98, glints 89 -> 91, off-axis 83 -> 85, partial 59 -> 60, motion blur 90 -> 89
-// (docs/gaze-tracking.md). A centre fraction f mirrors to *mirror - f: (side - 1) / side for the
-// full frame, whose labels put pixel centres at integers (OpenCV's convention), 1 for a refining
-// window, whose fractions are of its pixel edges. Outputs: centre x, y, axes, cos 2θ, sin 2θ (the
-// mirror takes θ to -θ: sin 2θ changes sign, cos 2θ does not), visibility logit.
-std::array<double, kLearnedPupilOutputs> forward(cv::dnn::Net& net, const cv::Mat& input, std::optional<double> mirror,
-                                                 const std::string& path) {
-  std::vector<cv::Mat> batch{input};
-  if (mirror) cv::flip(input, batch.emplace_back(), 1);
+using Outputs = std::array<double, kLearnedPupilOutputs>;
+
+// One pass of a stage over a batch of 96 x 96 inputs (x / 255 - 0.5, as
+// scripts/train_pupil_net.py feeds them). Outputs per input: centre x, y, axes, cos 2θ, sin 2θ,
+// visibility logit.
+std::vector<Outputs> run(cv::dnn::Net& net, const std::vector<cv::Mat>& batch, const std::string& path) {
   net.setInput(cv::dnn::blobFromImages(batch, 1.0 / 255, {}, cv::Scalar(127.5), false, false, CV_32F));
   const cv::Mat out = net.forward();
   if (out.total() != batch.size() * kLearnedPupilOutputs)
     throw std::runtime_error("pupil model " + path + ": expected 7 outputs per frame");
+  std::vector<Outputs> r(batch.size());
   const float* a = out.ptr<float>();
-  if (!mirror) return {a[0], a[1], a[2], a[3], a[4], a[5], a[6]};
-  const float* b = a + kLearnedPupilOutputs;
-  return {0.5 * (a[0] + *mirror - b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]), 0.5 * (a[3] + b[3]),
-          0.5 * (a[4] + b[4]),           0.5 * (a[5] - b[5]), 0.5 * (a[6] + b[6])};
+  for (auto& o : r)
+    for (double& v : o) v = *a++;
+  return r;
+}
+
+cv::Mat mirrored(const cv::Mat& input) {
+  cv::Mat m;
+  cv::flip(input, m, 1);
+  return m;
+}
+
+// Test-time flip augmentation (a mirrored eye is an eye; both stages were trained with
+// horizontal flips): `a` of the input and `b` of its mirror image, b mapped back and the two
+// averaged. A centre fraction f mirrors to `mirror` - f: (side - 1) / side for the full frame,
+// whose labels put pixel centres at integers (OpenCV's convention), 1 for a refining window,
+// whose fractions are of its pixel edges; the mirror takes θ to -θ: sin 2θ changes sign, cos 2θ
+// does not. The average is symmetric in the two, so a frame and its mirror image get the same
+// visibility and the mirrored ellipse.
+Outputs flipAverage(const Outputs& a, const Outputs& b, double mirror) {
+  return {0.5 * (a[0] + mirror - b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]), 0.5 * (a[3] + b[3]),
+          0.5 * (a[4] + b[4]),          0.5 * (a[5] - b[5]), 0.5 * (a[6] + b[6])};
+}
+
+// One pass of a stage, or with `mirror` the input and its mirror image as one batch of two
+// (cheaper than two passes), flip-averaged.
+Outputs forward(cv::dnn::Net& net, const cv::Mat& input, std::optional<double> mirror, const std::string& path) {
+  if (!mirror) return run(net, {input}, path)[0];
+  const auto r = run(net, {input, mirrored(input)}, path);
+  return flipAverage(r[0], r[1], *mirror);
 }
 
 }  // namespace
@@ -133,9 +150,21 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
   cv::Scalar mean, sd;
   cv::meanStdDev(small, mean, sd);
   if (sd[0] < 4) return refused("no contrast in the frame (lens cap, saturated or uniform)");
-  // The full-frame stage with the flip: it alone decides whether there is a pupil, and the
-  // averaged visibility logit keeps closed eyes closed.
-  auto o = forward(net_->dnn, small, (side - 1.0) / side, path_);
+  // The full-frame stage alone decides whether there is a pupil. Alone it runs the frame and its
+  // mirror image (test-time flip). Before a refining stage it runs the frame, and the mirror
+  // image only when the visibility logit is within kFirstStageFlipBandLogit of the threshold's:
+  // there the averaged logit decides, elsewhere the one pass, whose decision the average would
+  // turn only if the mirror's logit lay further than the band on the other side (so a frame and
+  // its mirror image are found alike unless their passes' logits differ by more than twice the
+  // band). The refining stage places the centre; the first stage's only places its
+  // window, and the flip moved it too little to matter (docs/gaze-tracking.md, Google Benchmark:
+  // the flip cost ~0.5 ms a frame).
+  const double mirror_full = (side - 1.0) / side;
+  const bool two_stages = !net_->refine.empty();
+  auto o = forward(net_->dnn, small, two_stages ? std::nullopt : std::optional(mirror_full), path_);
+  const double threshold_logit = std::log(min_confidence / (1.0 - min_confidence));
+  if (two_stages && std::abs(o[6] - threshold_logit) <= kFirstStageFlipBandLogit)
+    o = flipAverage(o, run(net_->dnn, {mirrored(small)}, path_)[0], mirror_full);
   d.confidence = 1.0 / (1.0 + std::exp(-o[6]));
   if (d.confidence < min_confidence) {
     d.reason = "no pupil (learned detector's confidence below the threshold)";
@@ -163,13 +192,12 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
     const cv::Mat window = padded(cv::Rect(ox + kLearnedPupilInputPx, oy + kLearnedPupilInputPx, kLearnedPupilInputPx,
                                            kLearnedPupilInputPx))
                                .clone();
-    // One pass, no flip: the ≤ 3 ms budget (issue 31). With the flip it took 3.0-4.2 ms a frame
-    // (Google Benchmark, one core), and at seed 99 (the first refining stage, 36000 frames) it
-    // placed as many centres within 5 px (hard 71 against 72 %, occlusion 80 / 82, partial
-    // 93 / 93, the rest within a frame), its medians 0.1-0.4 px lower. The detector is then
-    // mirror-equivariant in whether it finds a pupil and in its confidence, not exactly in the
-    // centre.
-    const auto r = forward(net_->refine, window, std::nullopt, refine_path_);
+    // The flipped pair for pupils wider than half the window, one pass for the rest: the
+    // centre's error grows with the pupil (the lid hides more outline to infer it from) and the
+    // mirror's pass averages part of it away, where the 5 px criterion is tightest; a pass costs
+    // ~0.9 ms, the mirror in the same batch ~0.5 ms more (kRefineFlipMinMajor, docs/gaze-tracking.md).
+    const bool flip = major > kRefineFlipMinMajor * kLearnedPupilInputPx * s;
+    const auto r = forward(net_->refine, window, flip ? std::optional(1.0) : std::nullopt, refine_path_);
     const double span = kLearnedPupilInputPx * s;  // frame px per window unit
     cx = (kLearnedPupilInputPx * r[0] + ox) * s - 0.5;
     cy = (kLearnedPupilInputPx * r[1] + oy) * s - 0.5;

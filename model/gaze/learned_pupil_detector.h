@@ -4,15 +4,17 @@
 // Python at run time. The frame (any size; CV_8U grey, BGR or float as detectPupil takes)
 // is padded to a square, downscaled to 96 x 96 (INTER_AREA, as the training frames were)
 // and the network regresses the full pupil ellipse (centre, axes, angle) and whether a
-// pupil is visible; its probability is the confidence. The frame and its mirror image run as
-// one batch of two and their outputs are averaged (test-time flip augmentation), so this
-// stage is mirror-equivariant. It returns the classical detector's
-// PupilDetection (no glints: the network does not locate them).
+// pupil is visible; its probability is the confidence. Alone, this stage runs the frame and its
+// mirror image as one batch of two and averages their outputs (test-time flip augmentation),
+// so it is mirror-equivariant; before a refining stage, only frames whose visibility is near
+// the threshold get the mirror's pass. It returns the classical detector's PupilDetection (no
+// glints: the network does not locate them).
 //
 // A second, refining stage (pupil-refine.onnx beside the model file, the same network trained
 // on windows: scripts/train_pupil_net.py --stage refine) looks again at twice the resolution:
 // the frame downscaled to 200 x 200, a 96 x 96 window of it centred on the first stage's
-// centre, and the ellipse regressed in the window's units (one pass: the 3 ms budget).
+// centre, and the ellipse regressed in the window's units (one pass, or the flipped pair for a
+// pupil wider than half the window: the 3 ms budget).
 // Without that file the detector is the one stage; refineModelPath() says which it is.
 //
 // The model file is read at run time, never compiled in (build time, issue 25). Looked for:
@@ -35,6 +37,14 @@ inline constexpr int kLearnedPupilOutputs = 7;     // centre x, y, axes, cos 2θ
 inline constexpr int kLearnedPupilCanvasPx = 200;  // the refining stage's downscaled frame
 // The visibility sigmoid at or above which the detector reports a pupil.
 inline constexpr double kLearnedMinConfidence = 0.5;
+// Before a refining stage the first stage runs the mirror image too only when its visibility
+// logit is within this of the threshold's. Chosen at seed 5 (docs/gaze-tracking.md): from a band
+// of 3 up, every one of its 8000 frames was found or not as with the flip on every frame (2: two
+// frames not); 4 for a margin, about 1 % of the frames. At seeds 2026 and 99, likewise every frame.
+inline constexpr double kFirstStageFlipBandLogit = 4;
+// The refining stage runs the flipped pair when the first stage's major axis exceeds this
+// fraction of its window (96 px of a 400 px frame): the larger pupils, whose centres err most.
+inline constexpr double kRefineFlipMinMajor = 0.5;
 
 // The candidate paths in search order, and the first that exists; findPupilModel throws
 // std::runtime_error naming every path tried when none does.
