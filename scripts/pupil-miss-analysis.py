@@ -50,6 +50,7 @@ def main():
     except (OSError, ValueError, KeyError, TypeError) as e:
         sys.exit(f"pupil-miss-analysis: {args.track_json}: not a fovea-cli track --json output ({e})")
     subsets = args.subset or sorted({f["subset"] for f in frames if f["truth"]["pupil_visible"]})
+    summary = {x["subset"]: x for x in run.get("summary", {}).get("subsets", [])}
     print(f"{args.track_json}: detector {run.get('detector')}, seed {run.get('seed')}")
     for name in subsets:
         r = analyse(frames, name)
@@ -57,6 +58,13 @@ def main():
             print(f"{name}: no frames with a visible pupil")
             continue
         misses = r["not_found"] + r["off"]
+        # The same criterion as the CLI's summary (its detection_rate over the same frames): a
+        # mismatch means this script and the C++ benchmark count misses differently.
+        if name in summary and "detection_rate" in summary[name]:
+            expected = round(summary[name]["detection_rate"] * r["frames"])
+            if expected != r["frames"] - misses:
+                sys.exit(f"pupil-miss-analysis: {name}: {r['frames'] - misses} within 5 px here, "
+                         f"{expected} by the run's summary")
         print(f"{name}: {misses} misses at 5 px of {r['frames']}: {r['not_found']} not found, {r['off']} found "
               f"but off ({r['vertical']} vertically, {r['off'] - r['vertical']} horizontally)")
         for lo, hi, n, within in r["bins"]:
