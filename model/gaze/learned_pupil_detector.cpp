@@ -196,9 +196,9 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
     // centre's error grows with the pupil (the lid hides more outline to infer it from) and the
     // mirror's pass averages part of it away, where the 5 px criterion is tightest; a pass costs
     // ~0.9 ms, the mirror in the same batch ~0.5 ms more (kRefineFlipMinMajor, docs/gaze-tracking.md).
-    const bool flip = major > kRefineFlipMinMajor * kLearnedPupilInputPx * s;
-    const auto r = forward(net_->refine, window, flip ? std::optional(1.0) : std::nullopt, refine_path_);
     const double span = kLearnedPupilInputPx * s;  // frame px per window unit
+    const bool flip = major > kRefineFlipMinMajor * span;
+    const auto r = forward(net_->refine, window, flip ? std::optional(1.0) : std::nullopt, refine_path_);
     cx = (kLearnedPupilInputPx * r[0] + ox) * s - 0.5;
     cy = (kLearnedPupilInputPx * r[1] + oy) * s - 0.5;
     major = r[2] * span, minor = r[3] * span;
