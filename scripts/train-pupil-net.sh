@@ -11,26 +11,31 @@
 # 10x, 18 epochs on one thread in 30 minutes; the refining stage 72000 train, 18000 train_hard
 # and 18000 train_partial frames, those with a pupil less than 60 % visible shown three times an
 # epoch, --context 3, 9 epochs in 81 minutes, then 5 more from those weights at a third of the
-# peak learning rate (--refine-finetune-epochs) in 50 minutes, each beside another training;
+# peak learning rate (--refine-finetune-epochs) in 50 minutes, each beside another training,
+# then 4 more from those at the same rate with windows that scale with the pupil (--refine-scale-
+# epochs; T drawn from 90-150 px, --refine-scale-above; learned_pupil_detector.h) in 41 minutes;
 # rendering 18 minutes on two cores while a build ran beside it. The two stages train side by
 # side, one core each. One thread each: two intra-op threads on a shared two-core machine stall
 # at their barriers (up to 17 min an epoch while builds ran). The trainer stops at --max-minutes
 # whatever the epoch; the .json files give the epochs it ran.
 #   scripts/train-pupil-net.sh [--stage full|refine|both] [--frames N] [--hard-frames N] [--partial-frames N]
 #       [--epochs E] [--refine-frames N] [--refine-hard-frames N] [--refine-partial-frames N]
-#       [--refine-epochs E] [--refine-finetune-epochs E] [--max-minutes M] [--refine-max-minutes M]
-#       [--work DIR]
+#       [--refine-epochs E] [--refine-finetune-epochs E] [--refine-scale-epochs E] [--refine-scale-above LO:HI]
+#       [--max-minutes M] [--refine-max-minutes M] [--work DIR]
 # FOVEA_CLI overrides the fovea-cli to use (default: build/default/app/fovea-cli, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FRAMES=18000 HARD=6000 PARTIAL=6000 EPOCHS=18 MINUTES=80 WORK=/tmp/fovea-pupil-train STAGE=both RFRAMES=72000 RHARD=18000
 REPOCHS=9 CLOSED_WEIGHT=10 RPARTIAL=18000 RMINUTES=120 RCONTEXT=3 FCONTEXT=3 RFINE=5 RFINE_LR=1e-3
+RSCALE=4 RSCALE_ABOVE=90:150
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --stage) STAGE=$2; shift 2 ;;
     --refine-frames) RFRAMES=$2; shift 2 ;;
     --refine-epochs) REPOCHS=$2; shift 2 ;;
     --refine-finetune-epochs) RFINE=$2; shift 2 ;;
+    --refine-scale-epochs) RSCALE=$2; shift 2 ;;
+    --refine-scale-above) RSCALE_ABOVE=$2; shift 2 ;;
     --refine-max-minutes) RMINUTES=$2; shift 2 ;;
     --refine-hard-frames) RHARD=$2; shift 2 ;;
     --refine-partial-frames) RPARTIAL=$2; shift 2 ;;
@@ -113,16 +118,21 @@ if [[ $STAGE != refine ]]; then
   pids+=($!)
 fi
 if [[ $STAGE != full ]]; then
-  refine() {  # REPOCHS epochs from random weights, then RFINE more from them at a lower peak rate
-    local rargs=("${shards[@]}" "$WORK/refine-val")
-    if ((RFINE == 0)); then
-      OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES train refine resources/pupil/pupil-refine.onnx "$REPOCHS" "${rargs[@]}"
-      return
-    fi
-    OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES EXTRA="--checkpoint $WORK/refine-first.pt" \
-      train refine "$WORK/refine-first.onnx" "$REPOCHS" "${rargs[@]}"
-    OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES EXTRA="--init $WORK/refine-first.pt --max-lr $RFINE_LR" \
-      train refine resources/pupil/pupil-refine.onnx "$RFINE" "${rargs[@]}"
+  refine() {  # REPOCHS epochs from random weights, RFINE more from them at a lower peak rate, then
+    # RSCALE more from those at that rate with scaled windows (each phase skipped when 0 epochs)
+    local rargs=("${shards[@]}" "$WORK/refine-val") out=resources/pupil/pupil-refine.onnx
+    local phases=("first $REPOCHS" "finetune $RFINE" "scale $RSCALE") prev="" name epochs k extra last=0
+    for k in 0 1 2; do read -r name epochs <<< "${phases[k]}"; ((epochs > 0)) && last=$k; done
+    for k in 0 1 2; do
+      read -r name epochs <<< "${phases[k]}"
+      ((epochs > 0)) || continue
+      extra="--checkpoint $WORK/refine-$name.pt"
+      [[ -n $prev ]] && extra+=" --init $prev --max-lr $RFINE_LR"
+      ((k == 2)) && extra+=" --scale-above $RSCALE_ABOVE"
+      OCCLUDED_REPEATS=3 CONTEXT=$RCONTEXT LIMIT=$RMINUTES EXTRA="$extra" \
+        train refine "$( ((k == last)) && echo "$out" || echo "$WORK/refine-$name.onnx")" "$epochs" "${rargs[@]}"
+      prev=$WORK/refine-$name.pt
+    done
   }
   refine &
   pids+=($!)

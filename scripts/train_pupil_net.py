@@ -17,7 +17,7 @@ classical fit refines the centre in `--detector auto`.
 Usage: train_pupil_net.py --data DIR [--data DIR...] --val DIR --out model.onnx
        [--stage full|refine] [--epochs N] [--seed S] [--threads T] [--max-minutes M]
        [--occluded-repeats K] [--closed-weight W] [--context C] [--checkpoint PT] [--init PT]
-       [--max-lr LR]
+       [--max-lr LR] [--scale-above LO:HI]
 """
 import argparse
 import csv
@@ -142,7 +142,8 @@ def loss_fn(out, t, closed_weight):
 
 def evaluate(model, x, t, px_per_unit=400, bs=512):
     """Centre errors in frame px (`px_per_unit`: frame px per unit of the outputs - the frame's
-    width for the full-frame stage, the crop's span for the refining one)."""
+    width for the full-frame stage, each crop's span for the refining one)."""
+    px_per_unit = np.broadcast_to(np.asarray(px_per_unit, dtype=np.float64), (len(x),))
     model.eval()
     errs, vis_ok, n_vis = [], 0, 0
     with torch.no_grad():
@@ -153,7 +154,7 @@ def evaluate(model, x, t, px_per_unit=400, bs=512):
             pred_vis = o[:, 6] > 0
             vis_ok += int((pred_vis == (tb[:, 6] > 0.5)).sum())
             m = tb[:, 6] > 0.5
-            errs.append(np.hypot(o[m, 0] - tb[m, 0], o[m, 1] - tb[m, 1]) * px_per_unit)
+            errs.append(np.hypot(o[m, 0] - tb[m, 0], o[m, 1] - tb[m, 1]) * px_per_unit[i:i + bs][m])
     e = np.concatenate(errs)
     return {"centre_err_px_median": float(np.median(e)), "within_5px": float((e <= 5).mean()),
             "p90_px": float(np.percentile(e, 90)), "visibility_accuracy": vis_ok / len(x)}
@@ -167,25 +168,53 @@ def evaluate(model, x, t, px_per_unit=400, bs=512):
 CANVAS = 200
 
 
-def refine_crops(x, t, idx, proposal_px, w):
+def refine_crops(x, t, idx, proposal_px, w, canvas=None):
     """Windows of the CANVAS-px frames x[idx] around proposals (frame px, pixel centres at
-    integers) and the targets in window units. Frame -> canvas: u = (X + 0.5) / s - 0.5 with
-    s = w / CANVAS frame px per canvas px; the window, whose centre is its start o + (SIZE - 1)
-    / 2, starts at o = round(u - (SIZE - 1) / 2) (round half to even, symmetric: the window of
-    a mirrored frame is the mirrored window), and a window fraction f is the canvas coordinate
-    o + f SIZE - 0.5 (the soft-argmax grid's cell centres (i + 0.5) / GRID span the window's
-    pixel edges), so f = ((X + 0.5) / s - o) / SIZE."""
-    s = w / CANVAS
-    o = np.rint((proposal_px + 0.5) / s - 0.5 - (SIZE - 1) / 2).astype(np.int64)  # (B, 2): x, y
+    integers), the targets in window units and each window's span in frame px. `canvas` (one
+    size per frame, CANVAS where None) shrinks a frame's canvas first: the CANVAS-px frame
+    resized to c px with INTER_AREA, as model/gaze/learned_pupil_detector.cpp does (a scaled
+    window, see scaled_canvas). Frame -> canvas: u = (X + 0.5) / s - 0.5 with s = w / c frame px
+    per canvas px (OpenCV's resize maps pixel centres so, at any size); the window, whose centre
+    is its start o + (SIZE - 1) / 2, starts at o = round(u - (SIZE - 1) / 2) (round half to even,
+    symmetric: the window of a mirrored frame is the mirrored window), and a window fraction f is
+    the canvas coordinate o + f SIZE - 0.5 (the soft-argmax grid's cell centres (i + 0.5) / GRID
+    span the window's pixel edges), so f = ((X + 0.5) / s - o) / SIZE."""
+    c = np.full(len(idx), CANVAS) if canvas is None else np.asarray(canvas)
+    s = w / c
+    o = np.rint((proposal_px + 0.5) / s[:, None] - 0.5 - (SIZE - 1) / 2).astype(np.int64)  # (B, 2): x, y
     ar = np.arange(SIZE)
-    cols = np.clip(o[:, 0, None] + ar, 0, CANVAS - 1)
-    rows = np.clip(o[:, 1, None] + ar, 0, CANVAS - 1)
-    xb = x[idx[:, None, None], 0, rows[:, :, None], cols[:, None, :]][:, None]
+    cols = np.clip(o[:, 0, None] + ar, 0, c[:, None] - 1)
+    rows = np.clip(o[:, 1, None] + ar, 0, c[:, None] - 1)
+    xb = np.empty((len(idx), 1, SIZE, SIZE), dtype=x.dtype)
+    plain = c == CANVAS
+    if plain.any():
+        i = idx[plain]
+        xb[plain] = x[i[:, None, None], 0, rows[plain][:, :, None], cols[plain][:, None, :]][:, None]
+    for k in np.flatnonzero(~plain):
+        import cv2  # python3-opencv, the C++ side's OpenCV 4.6: the same INTER_AREA weights
+        small = cv2.resize(x[idx[k], 0], (int(c[k]), int(c[k])), interpolation=cv2.INTER_AREA)
+        xb[k, 0] = small[rows[k][:, None], cols[k][None, :]]
     tb = t[idx].copy()
     tb[:, 0] = ((tb[:, 0] * w + 0.5) / s - o[:, 0]) / SIZE
     tb[:, 1] = ((tb[:, 1] * w + 0.5) / s - o[:, 1]) / SIZE
-    tb[:, 2:4] *= w / (s * SIZE)
-    return np.ascontiguousarray(xb), tb
+    tb[:, 2:4] *= (w / (s * SIZE))[:, None]
+    return np.ascontiguousarray(xb), tb, s * SIZE
+
+
+def scaled_canvas(gen, major_px, above):
+    """The canvas each window is cut from when the refining stage's window scales with the pupil
+    (--scale-above LO:HI): the proposed major axis (the true one times a log-normal factor of
+    sd 0.07, the first stage's own spread on the validation frames) m above T frame px shrinks
+    the canvas to round(CANVAS T / m) px (at least SIZE), so the pupil looks T px of the
+    CANVAS-px canvas wide and the window spans more of the frame around it. T is drawn
+    uniformly from [LO, HI] per window, so the C++ side's T (kRefineScaleAboveMajorPx) can be
+    chosen within the trained range on held-out frames."""
+    if above is None:
+        return None
+    lo, hi = above
+    m = major_px * np.exp(gen.normal(size=len(major_px)) * 0.07)
+    T = gen.uniform(lo, hi, size=len(major_px))
+    return np.where(m > T, np.maximum(SIZE, np.rint(CANVAS * T / np.maximum(m, 1e-6))), CANVAS).astype(np.int64)
 
 
 def proposal_jitter(gen, n):
@@ -231,7 +260,15 @@ def main():
     ap.add_argument("--init", help="start from these weights (a --checkpoint of the same stage) instead of random ones")
     ap.add_argument("--max-lr", type=float, default=3e-3,
                     help="the one-cycle schedule's peak learning rate (default 3e-3; lower to continue from --init)")
+    ap.add_argument("--scale-above", metavar="LO:HI",
+                    help="refining stage: shrink the canvas of a window whose proposed major axis m exceeds T frame "
+                         "px, T drawn from [LO, HI] per window, to CANVAS T / m px (see scaled_canvas; default off)")
     a = ap.parse_args()
+    if a.scale_above:
+        lo, hi = (float(v) for v in a.scale_above.split(":"))
+        if not 0 < lo <= hi:
+            sys.exit(f"--scale-above {a.scale_above}: LO:HI with 0 < LO <= HI")
+        a.scale_above = (lo, hi)
     torch.manual_seed(a.seed)
     np.random.seed(a.seed)
     torch.set_num_threads(a.threads)
@@ -249,8 +286,9 @@ def main():
         # Validation windows around fixed jittered proposals (their own seed); errors in frame px.
         vgen = np.random.default_rng(a.seed + 1)
         iv = np.arange(len(xv))
-        xv, tv = refine_crops(xv, tv, iv, tv[:, :2] * w + proposal_jitter(vgen, len(iv)), w)
-        px_per_unit, mirror = w / CANVAS * SIZE, 1.0  # window fractions mirror to 1 - f (see refine_crops)
+        proposals = tv[:, :2] * w + proposal_jitter(vgen, len(iv))
+        xv, tv, px_per_unit = refine_crops(xv, tv, iv, proposals, w, scaled_canvas(vgen, tv[:, 2] * w, a.scale_above))
+        mirror = 1.0  # window fractions mirror to 1 - f (see refine_crops)
     else:
         px_per_unit, mirror = w, mirror_x
     print(f"{a.stage} stage: train {len(x)} frames ({int(t[:, 6].sum())} with a pupil, {len(occluded)} of them "
@@ -271,7 +309,8 @@ def main():
         for i in range(0, len(order) - bs + 1, bs):
             idx = order[i:i + bs]
             if refine:
-                xi, tb = refine_crops(x, t, idx, t[idx, :2] * w + proposal_jitter(gen, len(idx)), w)
+                proposals = t[idx, :2] * w + proposal_jitter(gen, len(idx))
+                xi, tb, _ = refine_crops(x, t, idx, proposals, w, scaled_canvas(gen, t[idx, 2] * w, a.scale_above))
             else:
                 xi, tb = x[idx], t[idx]
             xb = torch.from_numpy(xi).float() / 255 - 0.5
@@ -312,6 +351,7 @@ def main():
                "occluded_repeats": a.occluded_repeats, "closed_weight": a.closed_weight,
                "frames_less_than_60pct_visible": int(len(occluded)), "init": bool(a.init), "max_lr": a.max_lr,
                "context_convs": a.context,
+               **({"scale_above_px": list(a.scale_above)} if a.scale_above else {}),
                **({"canvas_px": CANVAS} if refine else {})}, open(a.out + ".json", "w"), indent=2)
     print(f"wrote {a.out} ({os.path.getsize(a.out)} bytes), validation {ev}")
 

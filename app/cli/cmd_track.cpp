@@ -1,5 +1,5 @@
 // fovea-cli track IMAGE... | --virtual N [--domain classic|wide] [--seed S]
-//                 [--detector classical|learned|auto] [--auto-radius-px R] [--json]
+//                 [--detector classical|learned|auto] [--auto-radius-px R] [--refine-scale-above F] [--json]
 // Pupil detection on IR eye-camera frames (model/gaze/pupil_detector_choice.h: the classical
 // detector by default, the learned one or both fused): per frame the pupil centre, ellipse,
 // glints, confidence and the detector's time. Images are read by the
@@ -14,6 +14,10 @@
 // --auto-radius-px R sets auto's acceptance radius (pupil_detector_choice.h: kAutoAcceptRadiusPx,
 // 2 frame px; 0 gives the learned centres, a huge R every classical fit near them, which
 // scripts/auto-radius-sweep.py uses to choose R); the JSON names it as auto_accept_radius_px.
+// --refine-scale-above F sets where the learned detector's refining window starts to scale with
+// the pupil (learned_pupil_detector.h: kRefineScaleAboveMajor, a fraction of the window's span;
+// 0: never), which scripts/refine-scale-sweep.py uses to choose F; the JSON names it as
+// refine_scale_above for the learned and auto detectors.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -92,6 +96,7 @@ void install(CLI::App& app) {
     bool json = false;
     std::string detector = "classical", domain = "classic";
     double auto_radius_px = gaze::kAutoAcceptRadiusPx;
+    double refine_scale_above = gaze::kRefineScaleAboveMajor;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("IMAGE", a->images, "eye-camera images (PNG, JPEG, ...)");
@@ -103,8 +108,11 @@ void install(CLI::App& app) {
   auto* radius = cmd->add_option("--auto-radius-px", a->auto_radius_px,
                                  "--detector auto: take the classical fit when its centre is within R frame px of "
                                  "the learned one (default 2; 0: never)");
+  auto* scale = cmd->add_option("--refine-scale-above", a->refine_scale_above,
+                                "--detector learned|auto: scale the refining window with a pupil whose proposed "
+                                "major axis exceeds F of the window's span (192 px of a 400 px frame; 0: never)");
   cmd->add_option("--domain", a->domain, "--virtual frames: classic (default, the pupil benchmark) or wide");
-  cmd->callback([a, v, radius] {
+  cmd->callback([a, v, radius, scale] {
     const bool virt = v->count() > 0;
     if (virt == !a->images.empty()) usageError("track: give either IMAGE files or --virtual N");
     if (a->domain != "classic" && a->domain != "wide")
@@ -115,6 +123,10 @@ void install(CLI::App& app) {
     const gaze::PupilDetectorKind kind = detectorOrExit(a->detector);
     if (radius->count() > 0 && kind != gaze::PupilDetectorKind::Auto)
       usageError("--auto-radius-px: only with --detector auto");
+    if (!(a->refine_scale_above >= 0 && a->refine_scale_above <= 1))
+      usageError("--refine-scale-above: a fraction of the window's span in [0, 1] (0: never scale)");
+    if (scale->count() > 0 && kind == gaze::PupilDetectorKind::Classical)
+      usageError("--refine-scale-above: only with --detector learned or auto");
     const gaze::PupilDetectorOptions options;
     nlohmann::json frames = nlohmann::json::array();
     double total_ms = 0, max_ms = 0;
@@ -127,7 +139,8 @@ void install(CLI::App& app) {
     std::string first_error;
     const auto timed = [&](const cv::Mat& img, gaze::PupilDetection& d) {
       const auto t0 = std::chrono::steady_clock::now();
-      d = gaze::detectPupilWith(kind, img, options, gaze::kLearnedMinConfidence, a->auto_radius_px);
+      d = gaze::detectPupilWith(kind, img, options, gaze::kLearnedMinConfidence, a->auto_radius_px,
+                                a->refine_scale_above);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       total_ms += ms;
       max_ms = std::max(max_ms, ms);
@@ -234,6 +247,7 @@ void install(CLI::App& app) {
       const auto files = gaze::learnedModelFiles();
       out["detector_model"] = files.model;
       out["detector_refine_model"] = files.refine.empty() ? nlohmann::json(nullptr) : nlohmann::json(files.refine);
+      out["refine_scale_above"] = a->refine_scale_above;
     }
     if (kind == gaze::PupilDetectorKind::Auto) out["auto_accept_radius_px"] = a->auto_radius_px;
     if (a->json)

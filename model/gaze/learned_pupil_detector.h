@@ -12,9 +12,9 @@
 //
 // A second, refining stage (pupil-refine.onnx beside the model file, the same network trained
 // on windows: scripts/train_pupil_net.py --stage refine) looks again at twice the resolution:
-// the frame downscaled to 200 x 200, a 96 x 96 window of it centred on the first stage's
-// centre, and the ellipse regressed in the window's units (one pass, or the flipped pair for a
-// pupil wider than half the window: the 3 ms budget).
+// the frame downscaled to 200 x 200 (less for a large pupil: kRefineScaleAboveMajor), a 96 x 96
+// window of it centred on the first stage's centre, and the ellipse regressed in the window's
+// units (one pass: the 3 ms budget).
 // Without that file the detector is the one stage; refineModelPath() says which it is.
 //
 // The model file is read at run time, never compiled in (build time, issue 25). Looked for:
@@ -42,9 +42,15 @@ inline constexpr double kLearnedMinConfidence = 0.5;
 // of 3 up, every one of its 8000 frames was found or not as with the flip on every frame (2: two
 // frames not); 4 for a margin, about 1 % of the frames. At seeds 2026 and 99, likewise every frame.
 inline constexpr double kFirstStageFlipBandLogit = 4;
-// The refining stage runs the flipped pair when the first stage's major axis exceeds this
-// fraction of its window (96 px of a 400 px frame): the larger pupils, whose centres err most.
-inline constexpr double kRefineFlipMinMajor = 0.5;
+// The refining window scales with the pupil: a first-stage major axis m above this fraction of
+// the window's span at the 200 px canvas (192 px of a 400 px frame; T frame px) shrinks the canvas
+// to round(200 T / m) px (at least 96), so the pupil looks T px wide and the window spans the
+// frame around it in proportion (192 m / T px). The refining stage was trained so, T drawn from
+// 90-150 px per window (scripts/train_pupil_net.py --scale-above); T = 120 px was chosen within
+// that range at seed 5 (scripts/refine-scale-sweep.py; docs/gaze-tracking.md), the T that placed
+// the most of the hard set's centres within 5 px: 95.5 % (90 / 105 / 135 / 150 px 94.5 / 94.9 /
+// 95.2 / 94.9 %, a fixed canvas 94.6 %), the other subsets within 0.3 points. 0: never scale.
+inline constexpr double kRefineScaleAboveMajor = 0.625;
 
 // The candidate paths in search order, and the first that exists; findPupilModel throws
 // std::runtime_error naming every path tried when none does.
@@ -61,7 +67,9 @@ class LearnedPupilDetector {
   LearnedPupilDetector& operator=(LearnedPupilDetector&&) noexcept;
 
   // Not thread-safe (one forward pass at a time); confidence below min_confidence: not found.
-  PupilDetection detect(const cv::Mat& image, double min_confidence = kLearnedMinConfidence);
+  // `refine_scale_above`: kRefineScaleAboveMajor's fraction (a sweep's; 0: a fixed 200 px canvas).
+  PupilDetection detect(const cv::Mat& image, double min_confidence = kLearnedMinConfidence,
+                        double refine_scale_above = kRefineScaleAboveMajor);
   const std::string& modelPath() const { return path_; }
   // The refining stage's model, empty when there is none beside modelPath().
   const std::string& refineModelPath() const { return refine_path_; }

@@ -67,9 +67,9 @@ LearnedModelFiles learnedModelFiles() {
 }
 
 PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, const PupilDetectorOptions& classical,
-                               double learned_min_confidence, double auto_accept_radius_px) {
+                               double learned_min_confidence, double auto_accept_radius_px, double refine_scale_above) {
   if (kind == PupilDetectorKind::Classical) return detectPupil(image, classical);
-  PupilDetection learned = threadDetector().detect(image, learned_min_confidence);
+  PupilDetection learned = threadDetector().detect(image, learned_min_confidence, refine_scale_above);
   if (kind == PupilDetectorKind::Learned || !learned.found) return learned;
   return refined(image, learned, classical, auto_accept_radius_px);
 }

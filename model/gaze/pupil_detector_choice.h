@@ -36,9 +36,11 @@ inline constexpr double kAutoAcceptRadiusPx = 2.0;
 
 // Runs the chosen detector. The learned model is loaded once per thread from the default
 // search (findPupilModel); a missing model throws std::runtime_error naming the paths.
+// `refine_scale_above`: the learned detector's scaled refining window (learned_pupil_detector.h).
 PupilDetection detectPupilWith(PupilDetectorKind kind, const cv::Mat& image, const PupilDetectorOptions& classical = {},
                                double learned_min_confidence = kLearnedMinConfidence,
-                               double auto_accept_radius_px = kAutoAcceptRadiusPx);
+                               double auto_accept_radius_px = kAutoAcceptRadiusPx,
+                               double refine_scale_above = kRefineScaleAboveMajor);
 
 // Loads the learned model now (throws as above): a command checks it before any work.
 void requireLearnedModel();
