@@ -50,9 +50,11 @@ while [[ $# -gt 0 ]]; do
 done
 case "$STAGE" in full|refine|both) ;; *) echo "train-pupil-net.sh: --stage $STAGE: full, refine or both" >&2; exit 2 ;; esac
 # PyTorch from Debian (the system interpreter: a pyenv or venv python3 does not see it).
-if ! /usr/bin/python3 -c "import torch, onnx" 2>/dev/null; then
+# python3-opencv: the scaled refining windows' INTER_AREA, the same OpenCV 4.6 as the C++ side's.
+if ! /usr/bin/python3 -c "import torch, onnx, cv2" 2>/dev/null; then
   sudo=""; [[ $(id -u) -ne 0 ]] && sudo=sudo
-  $sudo apt-get install -y python3-torch python3-onnx || { $sudo apt-get update && $sudo apt-get install -y python3-torch python3-onnx; }
+  pkgs=(python3-torch python3-onnx python3-opencv)
+  $sudo apt-get install -y "${pkgs[@]}" || { $sudo apt-get update && $sudo apt-get install -y "${pkgs[@]}"; }
 fi
 CLI=${FOVEA_CLI:-build/default/app/fovea-cli}
 if [[ ! -x $CLI ]]; then cmake --preset default && cmake --build --preset default --target fovea-cli; fi

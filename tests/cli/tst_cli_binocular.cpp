@@ -181,10 +181,10 @@ class TestCliBinocular : public QObject {
 
   void detectorOnBothTrackers() {
     // --detector learned: both eyes' calibrations and trackers use the learned detector. On the
-    // classic renderer's frames its calibration accuracy is 0.24/0.26 deg per eye (classical
-    // 0.23 deg), the vergence's closed-form SD 0.033 D (classical 0.020 D; earlier networks and
-    // flips 0.032-0.052 D). This one fixation's focus ends 0.100 D off, within the 0.25 D target
-    // after 47.5 ms of the 700 ms hold (classical: 0.115 D, 34.5 ms). Earlier networks ended 0.017-0.207 D off, one
+    // classic renderer's frames its calibration accuracy is 0.24/0.24 deg per eye (classical
+    // 0.23 deg), the vergence's closed-form SD 0.032 D (classical 0.020 D; earlier networks and
+    // flips 0.032-0.052 D). This one fixation's focus ends 0.109 D off, within the 0.25 D target
+    // after 50 ms of the 700 ms hold (classical: 0.115 D, 34.5 ms). Earlier networks ended 0.017-0.207 D off, one
     // only after 682 ms (docs/gaze-tracking.md keeps their figures): the end error is the loop's calibration bias,
     // which differs by detector, so the test holds the target, not one detector's figure.
     const std::string file = (tmpDir() / "fixation-detector.json").string();
