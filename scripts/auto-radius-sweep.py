@@ -15,27 +15,15 @@ centre error of the frames found.
 FOVEA_CLI overrides the fovea-cli (default build/default/app/fovea-cli), FOVEA_PUPIL_MODEL the
 network. One core (taskset -c C, one OpenCV thread); about 4 minutes a seed at 1000 frames a subset.
 """
-import argparse
-import json
 import math
-import os
-import subprocess
 import sys
-import tempfile
+
+import held_out_runs
 
 # (px, diameters): radius max(px, diameters * d). The shipped rule is (2, 0); (2, 0.1) was the
 # rule before 2026-12-06 (seventh session).
 RULES = [(0, 0), (1, 0), (1.5, 0), (2, 0), (3, 0), (2, 0.02), (2, 0.05), (2, 0.1), (3, 0.15)]
 SUBSETS = ["easy", "glints", "occlusion", "motion_blur", "off_axis", "partial", "hard"]
-
-
-def track(cli, core, seed, frames, extra, path):
-    if not os.path.exists(path):
-        env = dict(os.environ, OPENCV_FOR_THREADS_NUM="1", OMP_NUM_THREADS="1")
-        with open(path, "w") as out:
-            subprocess.run(["taskset", "-c", str(core), cli, "track", "--virtual", str(frames * 8), "--domain", "wide",
-                            "--seed", str(seed), "--json", *extra], stdout=out, env=env, check=True)
-    return json.load(open(path))["frames"]
 
 
 def sweep(learned, fits):
@@ -67,20 +55,13 @@ def sweep(learned, fits):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--seed", type=int, action="append", help="held-out seed (repeatable; default 5)")
-    ap.add_argument("--frames-per-subset", type=int, default=1000)
-    ap.add_argument("--work", help="keep the runs' JSON here (reused when present)")
-    ap.add_argument("--core", type=int, default=0, help="the CPU core to run on (default 0)")
-    a = ap.parse_args()
-    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    cli = os.environ.get("FOVEA_CLI", os.path.join(root, "build/default/app/fovea-cli"))
-    work = a.work or tempfile.mkdtemp(prefix="auto-radius-")
-    os.makedirs(work, exist_ok=True)
+    a, cli, work = held_out_runs.parse_args(__doc__, "auto-radius-")
     for seed in a.seed or [5]:
         n = a.frames_per_subset
-        learned = track(cli, a.core, seed, n, ["--detector", "learned"], f"{work}/learned-s{seed}-n{n}.json")
-        fits = track(cli, a.core, seed, n, ["--detector", "auto", "--auto-radius-px", "1e9"], f"{work}/fits-s{seed}-n{n}.json")
+        learned = held_out_runs.track(cli, a.core, seed, n, ["--detector", "learned"],
+                                      f"{work}/learned-s{seed}-n{n}.json")["frames"]
+        fits = held_out_runs.track(cli, a.core, seed, n, ["--detector", "auto", "--auto-radius-px", "1e9"],
+                                   f"{work}/fits-s{seed}-n{n}.json")["frames"]
         table = sweep(learned, fits)
         print(f"\nseed {seed}, {n} frames a subset: within 5 px / median centre error px")
         print("| radius | " + " | ".join(SUBSETS) + " |")

@@ -40,6 +40,14 @@ void writeGreyPng(const std::string& path, const cv::Mat& grey8) {
   fovea::image::writeLinearRgb(path, rgb);
 }
 const std::string kScene = std::string(FOVEA_SOURCE_DIR) + "/resources/scenes/prototype-bench.json";
+// `track --virtual N --domain wide --seed 4 --json EXTRA...`'s JSON (null, with a warning, on failure).
+nlohmann::json trackWide(int frames, const QStringList& extra) {
+  QStringList args{"track", "--virtual", QString::number(frames), "--domain", "wide", "--seed", "4", "--json"};
+  args += extra;
+  const Run r = cli(args);
+  if (r.code != 0) qWarning("%s", r.err.constData());
+  return r.code == 0 ? nlohmann::json::parse(r.out.toStdString()) : nlohmann::json();
+}
 }  // namespace
 
 class TestCliTrack : public QObject {
@@ -236,13 +244,7 @@ class TestCliTrack : public QObject {
   // On these 32 frames (seed 4) the default took 8 fits, the unlimited radius 3 more, 2.3-18 px
   // away (the counts below are those less two and one).
   void autoAcceptRadius() {
-    const auto run = [](QStringList extra) {
-      QStringList args{"track", "--virtual", "32", "--domain", "wide", "--seed", "4", "--json"};
-      args += extra;
-      const Run r = cli(args);
-      if (r.code != 0) qWarning("%s", r.err.constData());
-      return r.code == 0 ? nlohmann::json::parse(r.out.toStdString()) : nlohmann::json();
-    };
+    const auto run = [](const QStringList& extra) { return trackWide(32, extra); };
     const auto learned = run({"--detector", "learned"});
     const auto never = run({"--detector", "auto", "--auto-radius-px", "0"});
     const auto dflt = run({"--detector", "auto"});
@@ -290,13 +292,7 @@ class TestCliTrack : public QObject {
   // 4, 160 wide frames: 85 small pupils, 7 large, 6 of them within 5 px either way, summed errors
   // 13.3 against 15.2 px).
   void refineScaleAbove() {
-    const auto run = [](QStringList extra) {
-      QStringList args{"track", "--virtual", "160", "--domain", "wide", "--seed", "4", "--json"};
-      args += extra;
-      const Run r = cli(args);
-      if (r.code != 0) qWarning("%s", r.err.constData());
-      return r.code == 0 ? nlohmann::json::parse(r.out.toStdString()) : nlohmann::json();
-    };
+    const auto run = [](const QStringList& extra) { return trackWide(160, extra); };
     const auto dflt = run({"--detector", "learned"});
     const auto fixed = run({"--detector", "learned", "--refine-scale-above", "0"});
     const auto autoj = run({"--detector", "auto"});
