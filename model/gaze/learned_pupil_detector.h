@@ -49,7 +49,7 @@ inline constexpr double kFirstStageFlipBandLogit = 4;
 // 90-150 px per window (scripts/train_pupil_net.py --scale-above); T = 120 px was chosen within
 // that range at seed 5 (scripts/refine-scale-sweep.py; docs/gaze-tracking.md), the T that placed
 // the most of the hard set's centres within 5 px: 95.5 % (90 / 105 / 135 / 150 px 94.5 / 94.9 /
-// 95.2 / 94.9 %, a fixed canvas 94.6 %), the other subsets within 0.3 points. 0: never scale.
+// 95.2 / 94.9 %, a fixed canvas 94.6 %), the other subsets within 0.4 points. 0: never scale.
 inline constexpr double kRefineScaleAboveMajor = 0.625;
 
 // The candidate paths in search order, and the first that exists; findPupilModel throws
