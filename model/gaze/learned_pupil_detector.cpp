@@ -176,11 +176,13 @@ PupilDetection LearnedPupilDetector::detect(const cv::Mat& image, double min_con
   if (!net_->refine.empty()) {
     // The refining window (scripts/train_pupil_net.py, refine_crops and scaled_canvas): the
     // square frame at 200 px, shrunk to c = round(200 T / m) px when the proposed major axis m
-    // exceeds T = kRefineScaleAboveMajor of the window's span at 200 px (192 px of a 400 px frame;
-    // 200 -> c with INTER_AREA, the trainer's two steps). Square -> canvas takes X to u = (X + 0.5) / s - 0.5, s = side
-    // / c (OpenCV's resize maps pixel centres so at any size); the window starts at round(u - 47.5) (cvRound rounds
-    // half to even, symmetrically: a mirrored frame's window is the mirrored window, and the first stage's centre is
-    // mirror-equivariant) and a window fraction f is X = (96 f + start) s - 0.5. Edges replicated, as in training.
+    // exceeds T = kRefineScaleAboveMajor of the window's span at 200 px (192 px of a 400 px
+    // frame; 200 -> c with INTER_AREA, the trainer's two steps). Square -> canvas takes X to
+    // u = (X + 0.5) / s - 0.5, s = side / c (OpenCV's resize maps pixel centres so at any size);
+    // the window starts at round(u - 47.5) (cvRound rounds half to even, symmetrically: a
+    // mirrored frame's window is the mirrored window, and the first stage's centre is
+    // mirror-equivariant) and a window fraction f is X = (96 f + start) s - 0.5. Edges
+    // replicated, as in training.
     const double scale_above_px = refine_scale_above * kLearnedPupilInputPx * side / kLearnedPupilCanvasPx;
     const double proposed_major = std::max(major, minor);
     int c = kLearnedPupilCanvasPx;
