@@ -207,8 +207,9 @@ def scaled_canvas(gen, major_px, above):
     sd 0.07, the first stage's own spread on the validation frames) m above T frame px shrinks
     the canvas to round(CANVAS T / m) px (at least SIZE), so the pupil looks T px of the
     CANVAS-px canvas wide and the window spans more of the frame around it. T is drawn
-    uniformly from [LO, HI] per window, so the C++ side's T (kRefineScaleAboveMajorPx) can be
-    chosen within the trained range on held-out frames."""
+    uniformly from [LO, HI] per window, so the C++ side's T (kRefineScaleAboveMajor, a fraction
+    of the window's 192 frame px: T / 192) can be chosen within the trained range on held-out
+    frames (scripts/refine-scale-sweep.py)."""
     if above is None:
         return None
     lo, hi = above
@@ -265,7 +266,10 @@ def main():
                          "px, T drawn from [LO, HI] per window, to CANVAS T / m px (see scaled_canvas; default off)")
     a = ap.parse_args()
     if a.scale_above:
-        lo, hi = (float(v) for v in a.scale_above.split(":"))
+        try:
+            lo, hi = (float(v) for v in a.scale_above.split(":"))
+        except ValueError:
+            sys.exit(f"--scale-above {a.scale_above}: LO:HI, two numbers of frame px (e.g. 90:150)")
         if not 0 < lo <= hi:
             sys.exit(f"--scale-above {a.scale_above}: LO:HI with 0 < LO <= HI")
         a.scale_above = (lo, hi)
